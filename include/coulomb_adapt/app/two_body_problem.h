@@ -1,0 +1,64 @@
+#ifndef coulomb_adapt_app_two_body_problem_h
+#define coulomb_adapt_app_two_body_problem_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/output/body_output.h>
+#include <coulomb_adapt/output/run_summary.h>
+#include <coulomb_adapt/scenes/scene.h>
+
+#include <array>
+#include <memory>
+
+namespace coulomb_adapt
+{
+  /**
+   * The program: a scene's two bodies, solved over a sequence of cycles,
+   * in the shape of deal.II's step-40 (`run()` calling `setup_system`,
+   * `assemble_system`, `solve`, `output_results`, `refine_grid`).
+   *
+   * This version solves each body's elasticity problem with its own
+   * Dirichlet support; the coupling of the bodies through contact is the
+   * next step. A body that relies on contact for its support (the upper
+   * body of blocks, patch, hertz, punch) is reported as such before
+   * anything is solved.
+   */
+  class TwoBodyProblem
+  {
+  public:
+    TwoBodyProblem(const MPI_Comm     mpi_communicator,
+                   const Parameters & parameters,
+                   ParameterHandler & prm,
+                   const std::string &parameter_file);
+
+    void
+    run();
+
+  private:
+    void
+    setup_system();
+    void
+    assemble_system();
+    void
+    solve();
+    void
+    output_results(const unsigned int cycle);
+    void
+    refine_grid();
+
+    MPI_Comm                                  mpi_communicator;
+    const Parameters &                        parameters;
+    ConditionalOStream                        pcout;
+    TimerOutput                               computing_timer;
+    std::unique_ptr<Scene>                    scene;
+    std::array<std::unique_ptr<ElasticBody>, 2> bodies;
+    std::array<std::unique_ptr<BodyOutput>, 2>  body_outputs;
+    std::unique_ptr<RunSummary>               summary;
+    nlohmann::json                            cycle_record;
+  };
+} // namespace coulomb_adapt
+
+#endif

@@ -1,0 +1,149 @@
+#ifndef coulomb_adapt_bodies_elastic_body_h
+#define coulomb_adapt_bodies_elastic_body_h
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/distributed/tria_base.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <deal.II/base/quadrature.h>
+
+#include <coulomb_adapt/bodies/elastic_material.h>
+#include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/scenes/scene.h>
+#include <coulomb_adapt/solvers/linear_solver.h>
+
+#include <memory>
+#include <set>
+
+namespace coulomb_adapt
+{
+  /**
+   * One linear elastic body: its distributed mesh, finite element space,
+   * constraints (hanging nodes, Dirichlet data) and elasticity system.
+   *
+   * Quadrilateral meshes live in a parallel::distributed::Triangulation
+   * (p4est) and are refined in place. Triangle meshes live in a
+   * parallel::fullydistributed::Triangulation, the distributed
+   * triangulation deal.II 9.4 offers for simplices; it cannot be refined,
+   * so a refined triangle mesh is rebuilt from the serial coarse mesh.
+   * Serial runs are the one-rank case of the same code.
+   */
+  class ElasticBody
+  {
+  public:
+    /**
+     * Build the mesh of body @p body_index of @p scene: its coarse mesh,
+     * then @p global_refinements uniform refinements, then the scene's
+     * local refinement (quadrilaterals).
+     */
+    ElasticBody(const MPI_Comm                        mpi_communicator,
+                const Scene &                         scene,
+                const unsigned int                    body_index,
+                const CellType                        cell_type,
+                const unsigned int                    global_refinements,
+                const parameters::FiniteElements &    fe_parameters);
+
+    ~ElasticBody();
+
+    /** Refine every cell once. */
+    void
+    refine_uniformly();
+
+    /** Distribute DoFs, build constraints and the matrix's sparsity. */
+    void
+    setup_system();
+
+    /** Assemble stiffness matrix and load vector (tractions, body force). */
+    void
+    assemble_system();
+
+    /** Solve K u = f; the solution satisfies the constraints. */
+    LinearSolverReport
+    solve(const parameters::LinearSolver &solver_parameters);
+
+    const std::string &
+    name() const;
+    const BodyDescription &
+    description() const;
+    const ElasticMaterial &
+    material() const;
+    const Triangulation<2> &
+    triangulation() const;
+    const DoFHandler<2> &
+    dof_handler() const;
+    const Mapping<2> &
+    mapping() const;
+    const Quadrature<2> &
+    cell_quadrature() const;
+    const AffineConstraints<double> &
+    constraints() const;
+    /** The displacement, with ghost entries (locally relevant DoFs). */
+    const TrilinosWrappers::MPI::Vector &
+    solution() const;
+    const TrilinosWrappers::SparseMatrix &
+    system_matrix() const;
+    const TrilinosWrappers::MPI::Vector &
+    system_rhs() const;
+    bool
+    is_simplex_mesh() const;
+
+    /** Number of vertices of the active mesh over all ranks (hanging
+     * vertices included). */
+    types::global_dof_index
+    n_vertices() const;
+
+    /** True if the Dirichlet data and vertex constraints cannot hold the
+     * body's rigid body motions: without contact its system is singular. */
+    bool
+    is_floating() const;
+
+    /** Rigid body modes (x-translation, y-translation, rotation about the
+     * origin) at the locally owned DoFs: the near null space for AMG. */
+    std::vector<std::vector<double>>
+    rigid_body_modes() const;
+
+  private:
+    void
+    create_mesh(const unsigned int n_global_refinements);
+
+    void
+    make_constraints();
+
+    MPI_Comm                                     mpi_communicator;
+    const Scene &                                scene;
+    const unsigned int                           body_index;
+    const CellType                               cell_type;
+    const BodyDescription                        body_description;
+    const ElasticMaterial                        elastic_material;
+    bool                                         simplex;
+    unsigned int                                 n_global_refinements;
+
+    std::unique_ptr<parallel::TriangulationBase<2>> tria;
+    std::unique_ptr<FESystem<2>>                 fe;
+    std::unique_ptr<Mapping<2>>                  mapping_;
+    std::unique_ptr<Quadrature<2>>               quadrature;
+    std::unique_ptr<Quadrature<1>>               face_quadrature;
+    DoFHandler<2>                                dofs;
+
+    IndexSet                                     locally_owned_dofs;
+    IndexSet                                     locally_relevant_dofs;
+    AffineConstraints<double>                    constraints_;
+    /** DoFs fixed by Dirichlet data or vertex constraints. */
+    std::set<types::global_dof_index>            supported_dofs;
+    TrilinosWrappers::SparseMatrix               matrix;
+    TrilinosWrappers::MPI::Vector                rhs;
+    TrilinosWrappers::MPI::Vector                displacement;
+  };
+} // namespace coulomb_adapt
+
+#endif

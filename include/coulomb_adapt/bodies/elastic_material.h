@@ -1,0 +1,52 @@
+#ifndef coulomb_adapt_bodies_elastic_material_h
+#define coulomb_adapt_bodies_elastic_material_h
+
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/scenes/scene.h>
+
+namespace coulomb_adapt
+{
+  /**
+   * Hooke's law of an isotropic body reduced to 2D. Both reductions have
+   * the form sigma = lambda tr(eps) I + 2 mu eps with an effective lambda:
+   * plane strain keeps the 3D value, plane stress uses
+   * 2 mu lambda / (lambda + 2 mu).
+   */
+  class ElasticMaterial
+  {
+  public:
+    ElasticMaterial(const MaterialConstants &constants,
+                    const PlaneModel         plane_model);
+
+    /** Effective first Lamé parameter of the 2D model (MPa). */
+    double
+    lambda() const;
+
+    /** Shear modulus (MPa). */
+    double
+    mu() const;
+
+    SymmetricTensor<2, 2>
+    stress(const SymmetricTensor<2, 2> &strain) const;
+
+    /** sigma_zz: nu (sigma_xx + sigma_yy) in plane strain, 0 in plane
+     * stress. */
+    double
+    out_of_plane_stress(const SymmetricTensor<2, 2> &strain) const;
+
+    /** Von Mises stress of the 3D state (in-plane stress plus sigma_zz). */
+    static double
+    von_mises_stress(const SymmetricTensor<2, 2> &stress,
+                     const double                 sigma_zz);
+
+  private:
+    MaterialConstants constants;
+    PlaneModel        plane_model;
+    double            lambda_2d;
+    double            mu_;
+  };
+} // namespace coulomb_adapt
+
+#endif

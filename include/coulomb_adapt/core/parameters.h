@@ -1,0 +1,150 @@
+#ifndef coulomb_adapt_core_parameters_h
+#define coulomb_adapt_core_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace coulomb_adapt
+{
+  using namespace dealii;
+
+  /**
+   * The 2D reduction of the elastic bodies.
+   */
+  enum class PlaneModel
+  {
+    plane_strain,
+    plane_stress
+  };
+
+  /**
+   * The reference cell of the meshes of the built-in scenes.
+   */
+  enum class CellType
+  {
+    quadrilateral,
+    triangle
+  };
+
+  /**
+   * The parameters of the program, one struct per subsection of the
+   * parameter file (in the style of Lethe's `parameters.h`). Scene-specific
+   * entries live with the scenes (see scenes/scene_factory.h).
+   */
+  namespace parameters
+  {
+    /** Subsection `Output`. */
+    struct Output
+    {
+      std::string directory;
+      bool        write_vtu;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** Subsection `Mesh`. */
+    struct Mesh
+    {
+      CellType     cell_type;
+      unsigned int global_refinements;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** Subsection `Finite elements`. */
+    struct FiniteElements
+    {
+      unsigned int degree;
+      PlaneModel   plane_model;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** Subsection `Linear solver`. */
+    struct LinearSolver
+    {
+      /** "auto", "direct" or "amg". */
+      std::string  type;
+      unsigned int max_dofs_for_direct;
+      std::string  direct_solver;
+      double       relative_tolerance;
+      unsigned int max_iterations;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** Subsection `Contact`. */
+    struct Contact
+    {
+      double friction_coefficient;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** Subsection `Adaptation`. */
+    struct Adaptation
+    {
+      /** "uniform": every cycle refines all cells once. */
+      std::string  strategy;
+      unsigned int n_cycles;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /** Subsection `Scene`: only the name; the scenes declare their own
+     * subsections below it. */
+    struct Scene
+    {
+      std::string name;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+  } // namespace parameters
+
+  /**
+   * All parameters of a run. The ParameterHandler is kept because scenes
+   * read their own subsections from it, and because every run writes the
+   * resolved parameter set next to its results.
+   */
+  struct Parameters
+  {
+    parameters::Scene          scene;
+    parameters::Mesh           mesh;
+    parameters::FiniteElements finite_elements;
+    parameters::Contact        contact;
+    parameters::LinearSolver   linear_solver;
+    parameters::Adaptation     adaptation;
+    parameters::Output         output;
+
+    /** Declare every entry of the program, scenes included. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+    /** Read and check every entry; throws ParameterError on bad values. */
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+} // namespace coulomb_adapt
+
+#endif

@@ -1,0 +1,39 @@
+#ifndef coulomb_adapt_output_stress_postprocessor_h
+#define coulomb_adapt_output_stress_postprocessor_h
+
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <coulomb_adapt/bodies/elastic_material.h>
+
+namespace coulomb_adapt
+{
+  /**
+   * Stress fields for ParaView, computed from the displacement gradient at
+   * the output points: sigma_xx, sigma_yy, sigma_xy, sigma_zz and the von
+   * Mises stress (MPa).
+   */
+  class StressPostprocessor : public DataPostprocessor<2>
+  {
+  public:
+    StressPostprocessor(const ElasticMaterial &material);
+
+    void
+    evaluate_vector_field(
+      const DataPostprocessorInputs::Vector<2> &inputs,
+      std::vector<Vector<double>> &computed_quantities) const override;
+
+    std::vector<std::string>
+    get_names() const override;
+
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+    get_data_component_interpretation() const override;
+
+    UpdateFlags
+    get_needed_update_flags() const override;
+
+  private:
+    const ElasticMaterial material;
+  };
+} // namespace coulomb_adapt
+
+#endif

@@ -1,0 +1,48 @@
+#ifndef coulomb_adapt_scenes_gmsh_reader_h
+#define coulomb_adapt_scenes_gmsh_reader_h
+
+#include <deal.II/grid/tria.h>
+#include <deal.II/grid/tria_description.h>
+
+#include <coulomb_adapt/core/parameters.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * The coarse mesh of one body as read from a file: enough to create a
+   * Triangulation any number of times.
+   */
+  struct CoarseMeshData
+  {
+    std::vector<Point<2>>    vertices;
+    std::vector<CellData<2>> cells;
+    SubCellData              boundary_lines;
+
+    void
+    create_triangulation(Triangulation<2> &tria) const;
+  };
+
+  /**
+   * Read a two-body geometry through the gmsh API. A `.msh` file is read
+   * as it is; a `.geo` file is meshed first (triangles, or quadrilaterals
+   * by recombination when @p requested_cell_type asks for them), with
+   * element sizes scaled by @p mesh_size_factor.
+   *
+   * The file must name, as physical groups, the surfaces `body 1` (upper,
+   * slave) and `body 2` (lower, master) and the curves `dirichlet`
+   * (clamped), `traction` and `contact`; they get the boundary ids of
+   * scene_meshes.h. Any other boundary is free. Only the corner nodes of
+   * higher-order gmsh elements are used. Errors (missing file, missing
+   * group, unsupported elements) name the file and what is missing.
+   */
+  std::array<CoarseMeshData, 2>
+  read_two_body_gmsh_file(const std::string &file_name,
+                          const CellType     requested_cell_type,
+                          const double       mesh_size_factor);
+} // namespace coulomb_adapt
+
+#endif

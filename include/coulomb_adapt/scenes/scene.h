@@ -1,0 +1,123 @@
+#ifndef coulomb_adapt_scenes_scene_h
+#define coulomb_adapt_scenes_scene_h
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/fe/component_mask.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <coulomb_adapt/core/parameters.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * Isotropic linear elastic material constants of one body.
+   */
+  struct MaterialConstants
+  {
+    /** Young's modulus E (MPa). */
+    double youngs_modulus;
+    /** Poisson's ratio nu (dimensionless). */
+    double poissons_ratio;
+
+    /** Declare `Young's modulus` and `Poisson's ratio` in the current
+     * subsection, with the scene's defaults. */
+    static void
+    declare_parameters(ParameterHandler &prm,
+                       const double      default_youngs_modulus,
+                       const double      default_poissons_ratio);
+
+    /** Read and check them; @p path names the subsection for messages. */
+    void
+    parse_parameters(ParameterHandler &prm, const std::string &path);
+  };
+
+  /** A traction t(x, n) (MPa) on a boundary part, given the outward unit
+   * normal n: lets a scene prescribe sigma(x) n from a known stress. */
+  using TractionFunction =
+    std::function<Tensor<1, 2>(const Point<2> &, const Tensor<1, 2> &)>;
+
+  /** Prescribed displacement (mm) of the components in @p components on
+   * the boundary faces with id @p boundary_id. */
+  struct DirichletCondition
+  {
+    types::boundary_id                    boundary_id;
+    ComponentMask                         components;
+    std::shared_ptr<const Function<2>>    displacement;
+  };
+
+  /** Zero displacement of the components in @p components at every mesh
+   * vertex for which @p selects is true: point supports and symmetry lines
+   * that are not whole boundary parts. */
+  struct VertexConstraint
+  {
+    std::function<bool(const Point<2> &)> selects;
+    ComponentMask                         components;
+  };
+
+  struct TractionCondition
+  {
+    types::boundary_id boundary_id;
+    TractionFunction   traction;
+  };
+
+  /**
+   * Everything the solver needs to know about one body besides its mesh.
+   */
+  struct BodyDescription
+  {
+    std::string                    name;
+    MaterialConstants              material;
+    std::vector<DirichletCondition> dirichlet;
+    std::vector<VertexConstraint>  vertex_constraints;
+    std::vector<TractionCondition> tractions;
+    /** Body force per unit volume (N/mm^3); empty means none. */
+    std::function<Tensor<1, 2>(const Point<2> &)> body_force;
+    /** Boundary id of the candidate contact zone. */
+    types::boundary_id contact_boundary_id = numbers::invalid_boundary_id;
+    /** Exact displacement, when the scene knows it (for verification). */
+    std::shared_ptr<const Function<2>> exact_displacement;
+  };
+
+  /**
+   * A scene: the two bodies of a problem, kept out of the solver core (in
+   * the manner of ExaDG's applications). Body 0 is the upper, slave body
+   * (Omega^1 of theory.md), body 1 the lower, master body (Omega^2).
+   */
+  class Scene
+  {
+  public:
+    virtual ~Scene() = default;
+
+    virtual std::string
+    name() const = 0;
+
+    /** Create the coarse (level-0) mesh of body @p body in @p tria, with
+     * boundary ids and manifolds set. @p cell_type is a request: scenes
+     * read from files keep the file's cells. */
+    virtual void
+    create_coarse_mesh(const unsigned int  body,
+                       const CellType      cell_type,
+                       Triangulation<2> &  tria) const = 0;
+
+    /** Local refinement the scene wants before the first solve, applied to
+     * quadrilateral meshes after the global refinements (e.g. towards the
+     * Hertz contact point). Default: none. */
+    virtual void
+    refine_initial_mesh(const unsigned int body, Triangulation<2> &tria) const;
+
+    virtual BodyDescription
+    describe_body(const unsigned int body) const = 0;
+  };
+} // namespace coulomb_adapt
+
+#endif

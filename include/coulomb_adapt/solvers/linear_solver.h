@@ -1,0 +1,42 @@
+#ifndef coulomb_adapt_solvers_linear_solver_h
+#define coulomb_adapt_solvers_linear_solver_h
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <coulomb_adapt/core/parameters.h>
+
+#include <string>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /** What a linear solve did, for the log and summary.json. */
+  struct LinearSolverReport
+  {
+    /** "direct (Amesos_Mumps)" or "cg+amg". */
+    std::string  method;
+    unsigned int n_iterations = 0;
+  };
+
+  /**
+   * Solve the symmetric positive definite system A x = b.
+   *
+   * Small systems go to a sparse direct solver (Trilinos Amesos, which
+   * gathers the matrix in parallel); large ones to CG preconditioned by ML
+   * algebraic multigrid, whose near null space is given the rigid body
+   * modes of elasticity (@p near_null_space, one vector of locally owned
+   * values per mode): with only the translations, aggregation-based AMG
+   * converges much more slowly on elasticity.
+   *
+   * Failure to converge throws with the residual reached.
+   */
+  LinearSolverReport
+  solve_linear_system(const TrilinosWrappers::SparseMatrix &  A,
+                      TrilinosWrappers::MPI::Vector &         x,
+                      const TrilinosWrappers::MPI::Vector &   b,
+                      const std::vector<std::vector<double>> &near_null_space,
+                      const parameters::LinearSolver &        settings);
+} // namespace coulomb_adapt
+
+#endif

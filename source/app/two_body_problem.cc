@@ -1,0 +1,200 @@
+#include <deal.II/base/utilities.h>
+
+#include <coulomb_adapt/app/two_body_problem.h>
+#include <coulomb_adapt/bodies/elasticity_errors.h>
+#include <coulomb_adapt/scenes/scene_factory.h>
+
+#include <iomanip>
+#include <sstream>
+
+namespace coulomb_adapt
+{
+  TwoBodyProblem::TwoBodyProblem(const MPI_Comm     mpi_communicator,
+                                 const Parameters & parameters,
+                                 ParameterHandler & prm,
+                                 const std::string &parameter_file)
+    : mpi_communicator(mpi_communicator)
+    , parameters(parameters)
+    , pcout(std::cout,
+            Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+    , computing_timer(mpi_communicator,
+                      pcout,
+                      TimerOutput::never,
+                      TimerOutput::wall_times)
+  {
+    scene   = scenes::create_scene(parameters, prm);
+    summary = std::make_unique<RunSummary>(
+      mpi_communicator,
+      parameters.output.directory + "/summary.json",
+      scene->name(),
+      parameter_file);
+  }
+
+
+
+  void
+  TwoBodyProblem::setup_system()
+  {
+    TimerOutput::Scope t(computing_timer, "setup");
+    for (auto &body : bodies)
+      body->setup_system();
+  }
+
+
+
+  void
+  TwoBodyProblem::assemble_system()
+  {
+    TimerOutput::Scope t(computing_timer, "assembly");
+    for (auto &body : bodies)
+      body->assemble_system();
+  }
+
+
+
+  // Each body is solved on its own; a body without Dirichlet support would
+  // need contact to be held, so it is stopped here with a diagnosis rather
+  // than handed to a solver that would return garbage for a singular
+  // matrix.
+  void
+  TwoBodyProblem::solve()
+  {
+    TimerOutput::Scope t(computing_timer, "solve");
+    nlohmann::json     solver_records = nlohmann::json::array();
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        ElasticBody &body = *bodies[b];
+        AssertThrow(!body.is_floating(),
+                    ExcMessage(
+                      "Body " + std::to_string(b + 1) + " (" + body.name() +
+                      ") of scene '" + scene->name() +
+                      "' has no Dirichlet support that holds its rigid body "
+                      "motions: it is held only through contact, which this "
+                      "version of coulomb-adapt does not solve yet. Run a "
+                      "scene whose bodies are both supported (e.g. "
+                      "'manufactured')."));
+        Timer                    timer;
+        const LinearSolverReport report = body.solve(parameters.linear_solver);
+        timer.stop();
+        pcout << "  " << body.name() << ": solved by " << report.method;
+        if (report.method == "cg+amg")
+          pcout << " (" << report.n_iterations << " iterations)";
+        pcout << " in " << std::setprecision(3) << timer.wall_time() << " s"
+              << std::endl;
+        solver_records.push_back({{"method", report.method},
+                                  {"iterations", report.n_iterations}});
+      }
+    cycle_record["linear_solver"] = solver_records;
+  }
+
+
+
+  void
+  TwoBodyProblem::output_results(const unsigned int cycle)
+  {
+    TimerOutput::Scope t(computing_timer, "output");
+    if (!parameters.output.write_vtu)
+      return;
+    for (unsigned int b = 0; b < 2; ++b)
+      body_outputs[b]->write(*bodies[b], cycle);
+  }
+
+
+
+  void
+  TwoBodyProblem::refine_grid()
+  {
+    TimerOutput::Scope t(computing_timer, "refine");
+    for (auto &body : bodies)
+      body->refine_uniformly();
+  }
+
+
+
+  void
+  TwoBodyProblem::run()
+  {
+    pcout << "coulomb-adapt: scene '" << scene->name() << "', "
+          << Utilities::MPI::n_mpi_processes(mpi_communicator)
+          << " MPI rank(s), results in '" << parameters.output.directory
+          << "'" << std::endl;
+
+    {
+      TimerOutput::Scope t(computing_timer, "setup");
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          bodies[b] = std::make_unique<ElasticBody>(
+            mpi_communicator,
+            *scene,
+            b,
+            parameters.mesh.cell_type,
+            parameters.mesh.global_refinements,
+            parameters.finite_elements);
+          body_outputs[b] = std::make_unique<BodyOutput>(
+            parameters.output.directory, "body-" + std::to_string(b + 1));
+        }
+    }
+
+    for (unsigned int cycle = 0; cycle < parameters.adaptation.n_cycles;
+         ++cycle)
+      {
+        Timer cycle_timer;
+        cycle_record = {{"cycle", cycle}};
+        if (cycle > 0)
+          refine_grid();
+
+        setup_system();
+        pcout << "Cycle " << cycle << std::endl;
+        types::global_dof_index n_dofs = 0;
+        nlohmann::json          body_records = nlohmann::json::array();
+        for (const auto &body : bodies)
+          {
+            const auto n_cells    = body->triangulation().n_global_active_cells();
+            const auto n_vertices = body->n_vertices();
+            const auto n_body_dofs = body->dof_handler().n_dofs();
+            n_dofs += n_body_dofs;
+            pcout << "  " << body->name() << ": " << n_cells << " cells, "
+                  << n_vertices << " vertices, " << n_body_dofs << " DoFs ("
+                  << body->dof_handler().get_fe().get_name() << ")"
+                  << std::endl;
+            body_records.push_back({{"name", body->name()},
+                                    {"n_cells", n_cells},
+                                    {"n_vertices", n_vertices},
+                                    {"n_dofs", n_body_dofs}});
+          }
+        assemble_system();
+        solve();
+
+        for (unsigned int b = 0; b < 2; ++b)
+          if (bodies[b]->description().exact_displacement)
+            {
+              const ElasticityErrors e = compute_elasticity_errors(
+                *bodies[b], *bodies[b]->description().exact_displacement);
+              pcout << "  " << bodies[b]->name()
+                    << ": error against the exact solution: L2 "
+                    << std::scientific << std::setprecision(3) << e.l2
+                    << " mm, energy " << e.energy << " (relative "
+                    << e.energy / e.energy_of_exact << ")" << std::defaultfloat
+                    << std::endl;
+              body_records[b]["exact_error"] = {
+                {"l2", e.l2},
+                {"energy", e.energy},
+                {"relative_energy", e.energy / e.energy_of_exact}};
+            }
+        output_results(cycle);
+
+        cycle_timer.stop();
+        Utilities::System::MemoryStats memory;
+        Utilities::System::get_memory_stats(memory);
+        cycle_record["bodies"]      = body_records;
+        cycle_record["n_dofs"]      = n_dofs;
+        cycle_record["wall_time_s"] = cycle_timer.wall_time();
+        cycle_record["peak_memory_MiB"] =
+          Utilities::MPI::max(memory.VmHWM / 1024., mpi_communicator);
+        summary->add_cycle(cycle_record);
+        pcout << "  cycle " << cycle << " done in " << std::setprecision(3)
+              << cycle_timer.wall_time() << " s" << std::endl;
+      }
+    computing_timer.print_summary();
+  }
+} // namespace coulomb_adapt

@@ -1,0 +1,434 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/distributed/fully_distributed_tria.h>
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/fe/mapping_q.h>
+
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria_description.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparsity_tools.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+
+#include <map>
+
+namespace coulomb_adapt
+{
+  ElasticBody::ElasticBody(const MPI_Comm                    mpi_communicator,
+                           const Scene &                     scene,
+                           const unsigned int                body_index,
+                           const CellType                    cell_type,
+                           const unsigned int                global_refinements,
+                           const parameters::FiniteElements &fe_parameters)
+    : mpi_communicator(mpi_communicator)
+    , scene(scene)
+    , body_index(body_index)
+    , cell_type(cell_type)
+    , body_description(scene.describe_body(body_index))
+    , elastic_material(body_description.material, fe_parameters.plane_model)
+    , simplex(false)
+    , n_global_refinements(global_refinements)
+  {
+    create_mesh(n_global_refinements);
+
+    const unsigned int p = fe_parameters.degree;
+    if (simplex)
+      {
+        fe       = std::make_unique<FESystem<2>>(FE_SimplexP<2>(p), 2);
+        mapping_ = std::make_unique<MappingFE<2>>(FE_SimplexP<2>(1));
+        quadrature = std::make_unique<QGaussSimplex<2>>(p + 1);
+      }
+    else
+      {
+        fe         = std::make_unique<FESystem<2>>(FE_Q<2>(p), 2);
+        mapping_   = std::make_unique<MappingQ<2>>(p);
+        quadrature = std::make_unique<QGauss<2>>(p + 1);
+      }
+    face_quadrature = std::make_unique<QGauss<1>>(p + 1);
+  }
+
+
+
+  ElasticBody::~ElasticBody()
+  {
+    dofs.clear();
+  }
+
+
+
+  // Builds the distributed mesh. Quadrilaterals: p4est from the coarse mesh,
+  // refined in place. Triangles: the serial mesh is refined, partitioned
+  // and handed to a fully distributed triangulation (each rank keeps its
+  // cells and a ghost layer).
+  void
+  ElasticBody::create_mesh(const unsigned int n_refinements)
+  {
+    Triangulation<2> serial;
+    scene.create_coarse_mesh(body_index, cell_type, serial);
+    simplex = !serial.all_reference_cells_are_hyper_cube();
+
+    std::unique_ptr<parallel::TriangulationBase<2>> new_tria;
+    if (!simplex)
+      {
+        auto t = std::make_unique<parallel::distributed::Triangulation<2>>(
+          mpi_communicator);
+        t->copy_triangulation(serial);
+        t->refine_global(n_refinements);
+        scene.refine_initial_mesh(body_index, *t);
+        new_tria = std::move(t);
+      }
+    else
+      {
+        serial.refine_global(n_refinements);
+        GridTools::partition_triangulation(
+          Utilities::MPI::n_mpi_processes(mpi_communicator), serial);
+        const auto description = TriangulationDescription::Utilities::
+          create_description_from_triangulation(serial, mpi_communicator);
+        auto t = std::make_unique<parallel::fullydistributed::Triangulation<2>>(
+          mpi_communicator);
+        for (const auto id : serial.get_manifold_ids())
+          if (id != numbers::flat_manifold_id)
+            t->set_manifold(id, serial.get_manifold(id));
+        t->create_triangulation(description);
+        new_tria = std::move(t);
+      }
+    // The DoFHandler must let go of the old mesh before it is destroyed.
+    dofs.reinit(*new_tria);
+    tria = std::move(new_tria);
+  }
+
+
+
+  void
+  ElasticBody::refine_uniformly()
+  {
+    ++n_global_refinements;
+    if (simplex)
+      create_mesh(n_global_refinements);
+    else
+      tria->refine_global(1);
+  }
+
+
+
+  void
+  ElasticBody::setup_system()
+  {
+    dofs.distribute_dofs(*fe);
+    locally_owned_dofs = dofs.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant_dofs);
+
+    make_constraints();
+
+    DynamicSparsityPattern dsp(locally_relevant_dofs);
+    DoFTools::make_sparsity_pattern(dofs, dsp, constraints_, false);
+    SparsityTools::distribute_sparsity_pattern(dsp,
+                                               locally_owned_dofs,
+                                               mpi_communicator,
+                                               locally_relevant_dofs);
+    matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+    rhs.reinit(locally_owned_dofs, mpi_communicator);
+    displacement.reinit(locally_owned_dofs,
+                        locally_relevant_dofs,
+                        mpi_communicator);
+  }
+
+
+
+  void
+  ElasticBody::make_constraints()
+  {
+    constraints_.clear();
+    constraints_.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dofs, constraints_);
+
+    supported_dofs.clear();
+    for (const auto &d : body_description.dirichlet)
+      {
+        VectorTools::interpolate_boundary_values(*mapping_,
+                                                 dofs,
+                                                 d.boundary_id,
+                                                 *d.displacement,
+                                                 constraints_,
+                                                 d.components);
+        const IndexSet on_boundary =
+          DoFTools::extract_boundary_dofs(dofs, d.components, {d.boundary_id});
+        for (const auto i : on_boundary)
+          supported_dofs.insert(i);
+      }
+
+    std::vector<types::global_dof_index> vertex_dofs(2);
+    for (const auto &vc : body_description.vertex_constraints)
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const unsigned int v : cell->vertex_indices())
+            if (vc.selects(cell->vertex(v)))
+              for (unsigned int c = 0; c < 2; ++c)
+                if (vc.components[c])
+                  {
+                    const auto dof = cell->vertex_dof_index(v, c);
+                    supported_dofs.insert(dof);
+                    if (!constraints_.is_constrained(dof))
+                      constraints_.add_line(dof);
+                  }
+    constraints_.close();
+  }
+
+
+
+  void
+  ElasticBody::assemble_system()
+  {
+    matrix = 0;
+    rhs    = 0;
+
+    FEValues<2>     fe_values(*mapping_,
+                          *fe,
+                          *quadrature,
+                          update_values | update_gradients |
+                            update_quadrature_points | update_JxW_values);
+    FEFaceValues<2> fe_face_values(*mapping_,
+                                   *fe,
+                                   *face_quadrature,
+                                   update_values | update_quadrature_points |
+                                     update_normal_vectors | update_JxW_values);
+    const FEValuesExtractors::Vector displacement_view(0);
+
+    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
+    Vector<double>     cell_rhs(dofs_per_cell);
+    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
+    std::vector<SymmetricTensor<2, 2>>   strain(dofs_per_cell);
+    std::vector<double>                  divergence(dofs_per_cell);
+
+    const double lambda = elastic_material.lambda();
+    const double mu     = elastic_material.mu();
+
+    std::map<types::boundary_id, const TractionFunction *> traction_on;
+    for (const auto &t : body_description.tractions)
+      traction_on[t.boundary_id] = &t.traction;
+
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell_matrix = 0;
+          cell_rhs    = 0;
+          fe_values.reinit(cell);
+          const auto &fv = fe_values[displacement_view];
+
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              const double JxW = fe_values.JxW(q);
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  strain[i]     = fv.symmetric_gradient(i, q);
+                  divergence[i] = trace(strain[i]);
+                }
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                for (unsigned int j = 0; j <= i; ++j)
+                  cell_matrix(i, j) += (2. * mu * (strain[i] * strain[j]) +
+                                        lambda * divergence[i] * divergence[j]) *
+                                       JxW;
+              if (body_description.body_force)
+                {
+                  const Tensor<1, 2> f =
+                    body_description.body_force(fe_values.quadrature_point(q));
+                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                    cell_rhs(i) += fv.value(i, q) * f * JxW;
+                }
+            }
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+              cell_matrix(i, j) = cell_matrix(j, i);
+
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              {
+                const auto t = traction_on.find(face->boundary_id());
+                if (t == traction_on.end())
+                  continue;
+                fe_face_values.reinit(cell, face);
+                const auto &ffv = fe_face_values[displacement_view];
+                for (const unsigned int q :
+                     fe_face_values.quadrature_point_indices())
+                  {
+                    const Tensor<1, 2> traction =
+                      (*t->second)(fe_face_values.quadrature_point(q),
+                                   fe_face_values.normal_vector(q));
+                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                      cell_rhs(i) +=
+                        ffv.value(i, q) * traction * fe_face_values.JxW(q);
+                  }
+              }
+
+          cell->get_dof_indices(local_dof_indices);
+          constraints_.distribute_local_to_global(
+            cell_matrix, cell_rhs, local_dof_indices, matrix, rhs);
+        }
+    matrix.compress(VectorOperation::add);
+    rhs.compress(VectorOperation::add);
+  }
+
+
+
+  LinearSolverReport
+  ElasticBody::solve(const parameters::LinearSolver &solver_parameters)
+  {
+    TrilinosWrappers::MPI::Vector owned(locally_owned_dofs, mpi_communicator);
+    const LinearSolverReport      report = solve_linear_system(
+      matrix, owned, rhs, rigid_body_modes(), solver_parameters);
+    constraints_.distribute(owned);
+    displacement = owned;
+    return report;
+  }
+
+
+
+  std::vector<std::vector<double>>
+  ElasticBody::rigid_body_modes() const
+  {
+    const unsigned int               n_local = locally_owned_dofs.n_elements();
+    std::vector<std::vector<double>> modes(3, std::vector<double>(n_local));
+
+    const Quadrature<2> support_points(fe->get_unit_support_points());
+    FEValues<2>         fe_values(*mapping_,
+                          *fe,
+                          support_points,
+                          update_quadrature_points);
+    std::vector<types::global_dof_index> local_dof_indices(
+      fe->n_dofs_per_cell());
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(local_dof_indices);
+          for (unsigned int i = 0; i < local_dof_indices.size(); ++i)
+            if (locally_owned_dofs.is_element(local_dof_indices[i]))
+              {
+                const unsigned int k =
+                  locally_owned_dofs.index_within_set(local_dof_indices[i]);
+                const unsigned int c = fe->system_to_component_index(i).first;
+                const Point<2> &   x = fe_values.quadrature_point(i);
+                modes[0][k]          = (c == 0) ? 1. : 0.;
+                modes[1][k]          = (c == 1) ? 1. : 0.;
+                modes[2][k]          = (c == 0) ? -x[1] : x[0];
+              }
+        }
+    return modes;
+  }
+
+
+
+  // A body is held if the rigid modes restricted to the supported DoFs are
+  // linearly independent: their 3 x 3 Gram matrix is regular.
+  bool
+  ElasticBody::is_floating() const
+  {
+    const auto    modes = rigid_body_modes();
+    FullMatrix<double> gram(3, 3);
+    for (const auto dof : supported_dofs)
+      if (locally_owned_dofs.is_element(dof))
+        {
+          const unsigned int k = locally_owned_dofs.index_within_set(dof);
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int b = 0; b < 3; ++b)
+              gram(a, b) += modes[a][k] * modes[b][k];
+        }
+    Utilities::MPI::sum(gram, mpi_communicator, gram);
+    // Hadamard: det(G) <= G_00 G_11 G_22, with equality for orthogonal
+    // modes; a (near) zero ratio means a rigid motion is left free.
+    const double diagonal_product = gram(0, 0) * gram(1, 1) * gram(2, 2);
+    return !(diagonal_product > 0 &&
+             gram.determinant() > 1e-10 * diagonal_product);
+  }
+
+
+
+  const std::string &
+  ElasticBody::name() const
+  {
+    return body_description.name;
+  }
+  const BodyDescription &
+  ElasticBody::description() const
+  {
+    return body_description;
+  }
+  const ElasticMaterial &
+  ElasticBody::material() const
+  {
+    return elastic_material;
+  }
+  const Triangulation<2> &
+  ElasticBody::triangulation() const
+  {
+    return *tria;
+  }
+  const DoFHandler<2> &
+  ElasticBody::dof_handler() const
+  {
+    return dofs;
+  }
+  const Mapping<2> &
+  ElasticBody::mapping() const
+  {
+    return *mapping_;
+  }
+  const Quadrature<2> &
+  ElasticBody::cell_quadrature() const
+  {
+    return *quadrature;
+  }
+  const AffineConstraints<double> &
+  ElasticBody::constraints() const
+  {
+    return constraints_;
+  }
+  const TrilinosWrappers::MPI::Vector &
+  ElasticBody::solution() const
+  {
+    return displacement;
+  }
+  const TrilinosWrappers::SparseMatrix &
+  ElasticBody::system_matrix() const
+  {
+    return matrix;
+  }
+  const TrilinosWrappers::MPI::Vector &
+  ElasticBody::system_rhs() const
+  {
+    return rhs;
+  }
+  // The vertices of the active mesh are the DoFs of a scalar linear
+  // element on it, which the DoFHandler counts across ranks for us.
+  types::global_dof_index
+  ElasticBody::n_vertices() const
+  {
+    DoFHandler<2> vertex_dofs(*tria);
+    if (simplex)
+      vertex_dofs.distribute_dofs(FE_SimplexP<2>(1));
+    else
+      vertex_dofs.distribute_dofs(FE_Q<2>(1));
+    return vertex_dofs.n_dofs();
+  }
+
+
+
+  bool
+  ElasticBody::is_simplex_mesh() const
+  {
+    return simplex;
+  }
+} // namespace coulomb_adapt

@@ -1,0 +1,298 @@
+#include <coulomb_adapt/core/parameter_error.h>
+#include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/scenes/scene_factory.h>
+
+namespace coulomb_adapt
+{
+  namespace parameters
+  {
+    void
+    Output::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      {
+        prm.declare_entry("Output directory",
+                          "output",
+                          Patterns::DirectoryName(),
+                          "Directory for all results of a run (created if "
+                          "missing): VTU/PVTU/PVD files, summary.json and "
+                          "the resolved parameters.prm.");
+        prm.declare_entry("Write VTU",
+                          "true",
+                          Patterns::Bool(),
+                          "Write the per-cycle fields for ParaView. "
+                          "summary.json is always written.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Output::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Output");
+      {
+        directory = prm.get("Output directory");
+        write_vtu = prm.get_bool("Write VTU");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Mesh::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh");
+      {
+        prm.declare_entry("Cell type",
+                          "quadrilateral",
+                          Patterns::Selection("quadrilateral|triangle"),
+                          "Reference cell of the built-in scenes' meshes: "
+                          "structured quadrilaterals, or the same mesh with "
+                          "every quadrilateral split into triangles. The "
+                          "gmsh scene takes the cell type from its file.");
+        prm.declare_entry("Global refinements",
+                          "0",
+                          Patterns::Integer(0, 12),
+                          "Number of uniform refinements of the scene's "
+                          "coarse meshes before the first cycle.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Mesh::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh");
+      {
+        cell_type          = prm.get("Cell type") == "triangle" ?
+                               CellType::triangle :
+                               CellType::quadrilateral;
+        global_refinements = prm.get_integer("Global refinements");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    FiniteElements::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Finite elements");
+      {
+        prm.declare_entry("Polynomial degree",
+                          "1",
+                          Patterns::Integer(1, 2),
+                          "Degree p of the displacement elements: Q_p on "
+                          "quadrilaterals, P_p on triangles.");
+        prm.declare_entry("Plane model",
+                          "plane strain",
+                          Patterns::Selection("plane strain|plane stress"),
+                          "2D reduction of the elastic bodies. In plane "
+                          "strain sigma_zz = nu (sigma_xx + sigma_yy) enters "
+                          "the von Mises stress.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    FiniteElements::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Finite elements");
+      {
+        degree      = prm.get_integer("Polynomial degree");
+        plane_model = prm.get("Plane model") == "plane stress" ?
+                        PlaneModel::plane_stress :
+                        PlaneModel::plane_strain;
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    LinearSolver::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Linear solver");
+      {
+        prm.declare_entry("Type",
+                          "auto",
+                          Patterns::Selection("auto|direct|amg"),
+                          "direct: sparse direct factorisation (Trilinos "
+                          "Amesos). amg: conjugate gradients preconditioned "
+                          "by ML algebraic multigrid with the rigid body "
+                          "modes as near null space. auto: direct up to "
+                          "'Maximum DoFs for direct', amg above.");
+        prm.declare_entry("Maximum DoFs for direct",
+                          "200000",
+                          Patterns::Integer(0),
+                          "Largest system (number of DoFs of one body) "
+                          "that 'auto' solves directly. See "
+                          "benchmarks/elasticity for the crossover.");
+        prm.declare_entry("Direct solver",
+                          "Amesos_Mumps",
+                          Patterns::Selection("Amesos_Mumps|Amesos_Klu"),
+                          "Amesos package used by the direct solver; both "
+                          "work in parallel.");
+        prm.declare_entry("Relative tolerance",
+                          "1e-10",
+                          Patterns::Double(1e-16, 1e-1),
+                          "Iterative solver: stop when the residual norm "
+                          "has dropped by this factor (dimensionless).");
+        prm.declare_entry("Maximum iterations",
+                          "1000",
+                          Patterns::Integer(1),
+                          "Iterative solver: iteration limit; reaching it "
+                          "is an error.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    LinearSolver::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Linear solver");
+      {
+        type                = prm.get("Type");
+        max_dofs_for_direct = prm.get_integer("Maximum DoFs for direct");
+        direct_solver       = prm.get("Direct solver");
+        relative_tolerance  = prm.get_double("Relative tolerance");
+        max_iterations      = prm.get_integer("Maximum iterations");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Contact::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      {
+        prm.declare_entry("Friction coefficient",
+                          "0.3",
+                          Patterns::Double(),
+                          "Coulomb friction coefficient mu >= 0 "
+                          "(dimensionless); 0 means frictionless.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Contact::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Contact");
+      {
+        friction_coefficient = prm.get_double("Friction coefficient");
+        require_parameter(friction_coefficient >= 0,
+                          "Contact/Friction coefficient",
+                          friction_coefficient,
+                          "the friction coefficient must be >= 0");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Adaptation::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Adaptation");
+      {
+        prm.declare_entry("Strategy",
+                          "uniform",
+                          Patterns::Selection("uniform"),
+                          "How the mesh changes from one cycle to the next. "
+                          "uniform: every cell is refined once.");
+        prm.declare_entry("Number of cycles",
+                          "1",
+                          Patterns::Integer(1, 20),
+                          "Number of solve cycles; the mesh is adapted "
+                          "between two cycles.");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Adaptation::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Adaptation");
+      {
+        strategy = prm.get("Strategy");
+        n_cycles = prm.get_integer("Number of cycles");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Scene::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Scene");
+      {
+        prm.declare_entry("Name",
+                          "blocks",
+                          Patterns::Selection(scenes::scene_names()),
+                          "The problem to solve: geometry, boundary "
+                          "conditions, loads and materials of both bodies. "
+                          "Each scene reads the subsection of the same name "
+                          "below this one.");
+        scenes::declare_parameters(prm);
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    Scene::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Scene");
+      {
+        name = prm.get("Name");
+      }
+      prm.leave_subsection();
+    }
+  } // namespace parameters
+
+
+
+  void
+  Parameters::declare_parameters(ParameterHandler &prm)
+  {
+    parameters::Scene::declare_parameters(prm);
+    parameters::Mesh::declare_parameters(prm);
+    parameters::FiniteElements::declare_parameters(prm);
+    parameters::Contact::declare_parameters(prm);
+    parameters::LinearSolver::declare_parameters(prm);
+    parameters::Adaptation::declare_parameters(prm);
+    parameters::Output::declare_parameters(prm);
+  }
+
+
+
+  void
+  Parameters::parse_parameters(ParameterHandler &prm)
+  {
+    scene.parse_parameters(prm);
+    mesh.parse_parameters(prm);
+    finite_elements.parse_parameters(prm);
+    contact.parse_parameters(prm);
+    linear_solver.parse_parameters(prm);
+    adaptation.parse_parameters(prm);
+    output.parse_parameters(prm);
+  }
+} // namespace coulomb_adapt

@@ -1,0 +1,95 @@
+// coulomb-adapt: adaptive finite element analysis of 2D frictional contact.
+// main() only reads the command line and the parameters, runs, and turns
+// every error into a message and a non-zero exit code.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <coulomb_adapt/app/command_line.h>
+#include <coulomb_adapt/app/two_body_problem.h>
+#include <coulomb_adapt/core/parameter_error.h>
+#include <coulomb_adapt/core/parameters.h>
+
+#include <fstream>
+#include <iostream>
+
+int
+main(int argc, char *argv[])
+{
+  using namespace coulomb_adapt;
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm comm    = MPI_COMM_WORLD;
+  const bool     is_root = Utilities::MPI::this_mpi_process(comm) == 0;
+
+  try
+    {
+      const CommandLine command_line = parse_command_line(argc, argv);
+      ParameterHandler  prm;
+      Parameters::declare_parameters(prm);
+
+      if (command_line.help)
+        {
+          if (is_root)
+            std::cout << usage();
+          return 0;
+        }
+      if (command_line.print_parameters)
+        {
+          if (is_root)
+            prm.print_parameters(std::cout, ParameterHandler::PRM);
+          return 0;
+        }
+
+      read_parameters(command_line, prm);
+      Parameters parameters;
+      try
+        {
+          parameters.parse_parameters(prm);
+        }
+      catch (const ParameterError &e)
+        {
+          const std::string source =
+            command_line.parameter_file.empty() ?
+              "the defaults" :
+              "parameter file '" + command_line.parameter_file + "'";
+          throw ParameterError(
+            "in " + source +
+            (command_line.overrides.empty() ? "" : " (with -s overrides)") +
+            ": " + e.what());
+        }
+
+      prepare_output_directory(parameters.output.directory, comm);
+      if (is_root)
+        {
+          std::ofstream resolved(parameters.output.directory +
+                                 "/parameters.prm");
+          prm.print_parameters(resolved, ParameterHandler::ShortPRM);
+        }
+
+      TwoBodyProblem problem(comm, parameters, prm, command_line.parameter_file);
+      problem.run();
+    }
+  catch (const ParameterError &e)
+    {
+      if (is_root)
+        std::cerr << "coulomb-adapt: error: " << e.what() << std::endl;
+      return 1;
+    }
+  catch (const ExceptionBase &e)
+    {
+      if (is_root)
+        {
+          std::cerr << "coulomb-adapt: error: ";
+          e.print_info(std::cerr);
+          std::cerr << std::endl;
+        }
+      return 1;
+    }
+  catch (const std::exception &e)
+    {
+      if (is_root)
+        std::cerr << "coulomb-adapt: error: " << e.what() << std::endl;
+      return 1;
+    }
+  return 0;
+}

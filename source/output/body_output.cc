@@ -1,0 +1,62 @@
+#include <deal.II/base/data_out_base.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <coulomb_adapt/output/body_output.h>
+#include <coulomb_adapt/output/stress_postprocessor.h>
+
+#include <fstream>
+
+namespace coulomb_adapt
+{
+  BodyOutput::BodyOutput(const std::string &directory,
+                         const std::string &base_name)
+    : directory(directory)
+    , base_name(base_name)
+  {}
+
+
+
+  void
+  BodyOutput::write(const ElasticBody &body, const unsigned int cycle)
+  {
+    const Triangulation<2> &tria = body.triangulation();
+    const MPI_Comm          comm = tria.get_communicator();
+
+    DataOut<2> data_out;
+    data_out.attach_dof_handler(body.dof_handler());
+    data_out.add_data_vector(
+      body.solution(),
+      std::vector<std::string>(2, "displacement"),
+      DataOut<2>::type_dof_data,
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+        2, DataComponentInterpretation::component_is_part_of_vector));
+    const StressPostprocessor stresses(body.material());
+    data_out.add_data_vector(body.solution(), stresses);
+
+    Vector<float> material_id(tria.n_active_cells());
+    Vector<float> subdomain(tria.n_active_cells());
+    for (const auto &cell : tria.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          material_id(cell->active_cell_index()) = cell->material_id();
+          subdomain(cell->active_cell_index()) = cell->subdomain_id();
+        }
+    data_out.add_data_vector(material_id, "material_id");
+    data_out.add_data_vector(subdomain, "subdomain");
+
+    data_out.build_patches(body.mapping(),
+                           body.dof_handler().get_fe().degree,
+                           DataOut<2>::curved_inner_cells);
+
+    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
+      directory + "/", base_name, cycle, comm, 3, 0);
+
+    pvd_records.emplace_back(cycle, pvtu);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::ofstream pvd(directory + "/" + base_name + ".pvd");
+        DataOutBase::write_pvd_record(pvd, pvd_records);
+      }
+  }
+} // namespace coulomb_adapt

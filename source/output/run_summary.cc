@@ -1,0 +1,57 @@
+#include <coulomb_adapt/core/version.h>
+#include <coulomb_adapt/output/run_summary.h>
+
+#include <cstdio>
+#include <fstream>
+
+namespace coulomb_adapt
+{
+  RunSummary::RunSummary(const MPI_Comm     mpi_communicator,
+                         const std::string &file_name,
+                         const std::string &scene,
+                         const std::string &parameter_file)
+    : mpi_communicator(mpi_communicator)
+    , file_name(file_name)
+  {
+    summary["program"]        = "coulomb-adapt";
+    summary["version"]        = version();
+    summary["scene"]          = scene;
+    summary["parameter_file"] = parameter_file;
+    summary["mpi_processes"] =
+      dealii::Utilities::MPI::n_mpi_processes(mpi_communicator);
+    summary["cycles"] = nlohmann::json::array();
+    write();
+  }
+
+
+
+  void
+  RunSummary::add_cycle(const nlohmann::json &cycle)
+  {
+    summary["cycles"].push_back(cycle);
+    write();
+  }
+
+
+
+  const nlohmann::json &
+  RunSummary::data() const
+  {
+    return summary;
+  }
+
+
+
+  void
+  RunSummary::write() const
+  {
+    if (dealii::Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    const std::string temporary = file_name + ".tmp";
+    {
+      std::ofstream out(temporary);
+      out << summary.dump(2) << '\n';
+    }
+    std::rename(temporary.c_str(), file_name.c_str());
+  }
+} // namespace coulomb_adapt

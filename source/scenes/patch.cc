@@ -1,0 +1,132 @@
+#include <coulomb_adapt/scenes/patch.h>
+#include <coulomb_adapt/scenes/scene_meshes.h>
+
+namespace coulomb_adapt
+{
+  namespace scenes
+  {
+    void
+    Patch::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Patch");
+      {
+        prm.declare_entry("Width", "10", Patterns::Double(0),
+                          "Width of both blocks (mm).");
+        prm.declare_entry("Upper body height", "5", Patterns::Double(0),
+                          "Height of the upper block (mm).");
+        prm.declare_entry("Lower body height", "5", Patterns::Double(0),
+                          "Height of the lower block (mm).");
+        prm.declare_entry("Upper body subdivisions",
+                          "3, 2",
+                          Patterns::List(Patterns::Integer(1), 2, 2),
+                          "Cells of the upper block in x and y.");
+        prm.declare_entry("Lower body subdivisions",
+                          "10, 5",
+                          Patterns::List(Patterns::Integer(1), 2, 2),
+                          "Cells of the lower block in x and y; a count in "
+                          "x different from the upper block's makes the "
+                          "interface non-matching.");
+        prm.declare_entry("Pressure", "1", Patterns::Double(0),
+                          "Uniform pressure on top of the upper block "
+                          "(MPa).");
+        for (const std::string body : {"Body 1", "Body 2"})
+          {
+            prm.enter_subsection(body);
+            MaterialConstants::declare_parameters(prm, 1000., 0.3);
+            prm.leave_subsection();
+          }
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    Patch::Patch(ParameterHandler &prm, const PlaneModel)
+    {
+      prm.enter_subsection("Patch");
+      {
+        const std::string path = "Scene/Patch";
+        width                  = prm.get_double("Width");
+        heights[0]             = prm.get_double("Upper body height");
+        heights[1]             = prm.get_double("Lower body height");
+        subdivisions[0] = get_subdivisions(prm, "Upper body subdivisions", path);
+        subdivisions[1] = get_subdivisions(prm, "Lower body subdivisions", path);
+        pressure        = prm.get_double("Pressure");
+        for (unsigned int b = 0; b < 2; ++b)
+          {
+            const std::string body = "Body " + std::to_string(b + 1);
+            prm.enter_subsection(body);
+            materials[b].parse_parameters(prm, path + "/" + body);
+            prm.leave_subsection();
+          }
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    std::string
+    Patch::name() const
+    {
+      return "patch";
+    }
+
+
+
+    void
+    Patch::create_coarse_mesh(const unsigned int body,
+                              const CellType     cell_type,
+                              Triangulation<2> & tria) const
+    {
+      using namespace boundary_ids;
+      if (body == 0)
+        make_rectangle(tria,
+                       Point<2>(0, heights[1]),
+                       Point<2>(width, heights[1] + heights[0]),
+                       subdivisions[0],
+                       {{free, free, contact, traction}},
+                       cell_type);
+      else
+        make_rectangle(tria,
+                       Point<2>(0, 0),
+                       Point<2>(width, heights[1]),
+                       subdivisions[1],
+                       {{free, free, roller, contact}},
+                       cell_type);
+    }
+
+
+
+    BodyDescription
+    Patch::describe_body(const unsigned int body) const
+    {
+      BodyDescription d;
+      d.material            = materials[body];
+      d.contact_boundary_id = boundary_ids::contact;
+      if (body == 0)
+        {
+          d.name         = "upper block";
+          const double p = pressure;
+          d.tractions.push_back(
+            {boundary_ids::traction,
+             [p](const Point<2> &, const Tensor<1, 2> &) {
+               return Tensor<1, 2>({0., -p});
+             }});
+        }
+      else
+        {
+          d.name = "lower block";
+          // Rollers: no vertical displacement at the base...
+          d.dirichlet.push_back(
+            {boundary_ids::roller,
+             ComponentMask(std::vector<bool>{false, true}),
+             std::make_shared<Functions::ZeroFunction<2>>(2)});
+          // ...and the lower left corner held horizontally.
+          d.vertex_constraints.push_back(
+            {[](const Point<2> &x) { return x.norm() < 1e-10; },
+             ComponentMask(std::vector<bool>{true, false})});
+        }
+      return d;
+    }
+  } // namespace scenes
+} // namespace coulomb_adapt

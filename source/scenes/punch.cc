@@ -1,0 +1,127 @@
+#include <coulomb_adapt/scenes/punch.h>
+#include <coulomb_adapt/scenes/scene_meshes.h>
+
+namespace coulomb_adapt
+{
+  namespace scenes
+  {
+    void
+    Punch::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Punch");
+      {
+        prm.declare_entry("Punch width", "20", Patterns::Double(0),
+                          "Width w of the punch (mm).");
+        prm.declare_entry("Punch height", "10", Patterns::Double(0),
+                          "Height h of the punch (mm).");
+        prm.declare_entry("Block width", "100", Patterns::Double(0),
+                          "Width 2L of the block (mm).");
+        prm.declare_entry("Block height", "50", Patterns::Double(0),
+                          "Height H of the block (mm).");
+        prm.declare_entry("Punch subdivisions",
+                          "4, 2",
+                          Patterns::List(Patterns::Integer(1), 2, 2),
+                          "Cells of the punch in x and y.");
+        prm.declare_entry("Block subdivisions",
+                          "10, 5",
+                          Patterns::List(Patterns::Integer(1), 2, 2),
+                          "Cells of the block in x and y.");
+        prm.declare_entry("Pressure", "100", Patterns::Double(0),
+                          "Uniform pressure on top of the punch (MPa).");
+        prm.enter_subsection("Body 1");
+        MaterialConstants::declare_parameters(prm, 1300000., 0.3);
+        prm.leave_subsection();
+        prm.enter_subsection("Body 2");
+        MaterialConstants::declare_parameters(prm, 130000., 0.3);
+        prm.leave_subsection();
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    Punch::Punch(ParameterHandler &prm, const PlaneModel)
+    {
+      prm.enter_subsection("Punch");
+      {
+        const std::string path = "Scene/Punch";
+        punch_width            = prm.get_double("Punch width");
+        punch_height           = prm.get_double("Punch height");
+        block_width            = prm.get_double("Block width");
+        block_height           = prm.get_double("Block height");
+        subdivisions[0] = get_subdivisions(prm, "Punch subdivisions", path);
+        subdivisions[1] = get_subdivisions(prm, "Block subdivisions", path);
+        pressure        = prm.get_double("Pressure");
+        for (unsigned int b = 0; b < 2; ++b)
+          {
+            const std::string body = "Body " + std::to_string(b + 1);
+            prm.enter_subsection(body);
+            materials[b].parse_parameters(prm, path + "/" + body);
+            prm.leave_subsection();
+          }
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    std::string
+    Punch::name() const
+    {
+      return "punch";
+    }
+
+
+
+    void
+    Punch::create_coarse_mesh(const unsigned int body,
+                              const CellType     cell_type,
+                              Triangulation<2> & tria) const
+    {
+      using namespace boundary_ids;
+      if (body == 0)
+        make_rectangle(tria,
+                       Point<2>(-punch_width / 2, 0),
+                       Point<2>(punch_width / 2, punch_height),
+                       subdivisions[0],
+                       {{free, free, contact, traction}},
+                       cell_type);
+      else
+        make_rectangle(tria,
+                       Point<2>(-block_width / 2, -block_height),
+                       Point<2>(block_width / 2, 0),
+                       subdivisions[1],
+                       {{free, free, dirichlet, contact}},
+                       cell_type);
+    }
+
+
+
+    BodyDescription
+    Punch::describe_body(const unsigned int body) const
+    {
+      BodyDescription d;
+      d.material            = materials[body];
+      d.contact_boundary_id = boundary_ids::contact;
+      if (body == 0)
+        {
+          d.name         = "punch";
+          const double p = pressure;
+          d.tractions.push_back(
+            {boundary_ids::traction,
+             [p](const Point<2> &, const Tensor<1, 2> &) {
+               return Tensor<1, 2>({0., -p});
+             }});
+        }
+      else
+        {
+          d.name = "block";
+          d.dirichlet.push_back(
+            {boundary_ids::dirichlet,
+             ComponentMask(2, true),
+             std::make_shared<Functions::ZeroFunction<2>>(2)});
+        }
+      return d;
+    }
+  } // namespace scenes
+} // namespace coulomb_adapt

@@ -1,0 +1,93 @@
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <coulomb_adapt/solvers/linear_solver.h>
+
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+
+namespace coulomb_adapt
+{
+  namespace
+  {
+    LinearSolverReport
+    solve_direct(const TrilinosWrappers::SparseMatrix &A,
+                 TrilinosWrappers::MPI::Vector &       x,
+                 const TrilinosWrappers::MPI::Vector & b,
+                 const std::string &                   package)
+    {
+      SolverControl                       control(1, 0);
+      TrilinosWrappers::SolverDirect::AdditionalData data(false, package);
+      TrilinosWrappers::SolverDirect      solver(control, data);
+      solver.solve(A, x, b);
+      return {"direct (" + package + ")", 1};
+    }
+
+
+
+    LinearSolverReport
+    solve_amg(const TrilinosWrappers::SparseMatrix &  A,
+              TrilinosWrappers::MPI::Vector &         x,
+              const TrilinosWrappers::MPI::Vector &   b,
+              const std::vector<std::vector<double>> &near_null_space,
+              const parameters::LinearSolver &        settings)
+    {
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic              = true;
+      data.higher_order_elements = false;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+
+      // deal.II 9.4 can only hand ML constant modes; the rotation needs the
+      // mode values, so we fill ML's null space entries ourselves.
+      Teuchos::ParameterList              ml_parameters;
+      std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
+      data.set_parameters(ml_parameters, unused_constant_modes, A);
+
+      const unsigned int  n_modes = near_null_space.size();
+      const unsigned int  n_local = A.local_size();
+      std::vector<double> modes(n_modes * n_local);
+      for (unsigned int m = 0; m < n_modes; ++m)
+        {
+          AssertDimension(near_null_space[m].size(), n_local);
+          std::copy(near_null_space[m].begin(),
+                    near_null_space[m].end(),
+                    modes.begin() + m * n_local);
+        }
+      if (n_modes > 0)
+        {
+          ml_parameters.set("null space: type", "pre-computed");
+          ml_parameters.set("null space: dimension", static_cast<int>(n_modes));
+          ml_parameters.set("null space: vectors", modes.data());
+        }
+
+      TrilinosWrappers::PreconditionAMG amg;
+      amg.initialize(A, ml_parameters);
+
+      SolverControl control(settings.max_iterations,
+                            settings.relative_tolerance * b.l2_norm());
+      SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+      cg.solve(A, x, b, amg);
+      return {"cg+amg", control.last_step()};
+    }
+  } // namespace
+
+
+
+  LinearSolverReport
+  solve_linear_system(const TrilinosWrappers::SparseMatrix &  A,
+                      TrilinosWrappers::MPI::Vector &         x,
+                      const TrilinosWrappers::MPI::Vector &   b,
+                      const std::vector<std::vector<double>> &near_null_space,
+                      const parameters::LinearSolver &        settings)
+  {
+    const bool direct =
+      settings.type == "direct" ||
+      (settings.type == "auto" && A.m() <= settings.max_dofs_for_direct);
+    if (direct)
+      return solve_direct(A, x, b, settings.direct_solver);
+    return solve_amg(A, x, b, near_null_space, settings);
+  }
+} // namespace coulomb_adapt
