@@ -12,6 +12,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <memory>
 
 int
 main(int argc, char *argv[])
@@ -41,33 +42,35 @@ main(int argc, char *argv[])
         }
 
       read_parameters(command_line, prm);
-      Parameters parameters;
+
+      // Errors in values (and in the files the values name) are reported
+      // with where the values came from.
+      const std::string source =
+        (command_line.parameter_file.empty() ?
+           std::string("the default parameters") :
+           "parameter file '" + command_line.parameter_file + "'") +
+        (command_line.overrides.empty() ? "" : " with -s overrides");
+      Parameters                      parameters;
+      std::unique_ptr<TwoBodyProblem> problem;
       try
         {
           parameters.parse_parameters(prm);
+          prepare_output_directory(parameters.output.directory, comm);
+          problem = std::make_unique<TwoBodyProblem>(
+            comm, parameters, prm, command_line.parameter_file);
         }
       catch (const ParameterError &e)
         {
-          const std::string source =
-            command_line.parameter_file.empty() ?
-              "the defaults" :
-              "parameter file '" + command_line.parameter_file + "'";
-          throw ParameterError(
-            "in " + source +
-            (command_line.overrides.empty() ? "" : " (with -s overrides)") +
-            ": " + e.what());
+          throw ParameterError("in " + source + ": " + e.what());
         }
 
-      prepare_output_directory(parameters.output.directory, comm);
       if (is_root)
         {
           std::ofstream resolved(parameters.output.directory +
                                  "/parameters.prm");
           prm.print_parameters(resolved, ParameterHandler::ShortPRM);
         }
-
-      TwoBodyProblem problem(comm, parameters, prm, command_line.parameter_file);
-      problem.run();
+      problem->run();
     }
   catch (const ParameterError &e)
     {
@@ -75,20 +78,10 @@ main(int argc, char *argv[])
         std::cerr << "coulomb-adapt: error: " << e.what() << std::endl;
       return 1;
     }
-  catch (const ExceptionBase &e)
-    {
-      if (is_root)
-        {
-          std::cerr << "coulomb-adapt: error: ";
-          e.print_info(std::cerr);
-          std::cerr << std::endl;
-        }
-      return 1;
-    }
   catch (const std::exception &e)
     {
       if (is_root)
-        std::cerr << "coulomb-adapt: error: " << e.what() << std::endl;
+        std::cerr << "coulomb-adapt: error: " << user_message(e) << std::endl;
       return 1;
     }
   return 0;

@@ -1,5 +1,3 @@
-#include <deal.II/base/exceptions.h>
-
 #include <coulomb_adapt/app/command_line.h>
 #include <coulomb_adapt/core/parameter_error.h>
 
@@ -9,27 +7,6 @@
 
 namespace coulomb_adapt
 {
-  namespace
-  {
-    // The user-facing part of a deal.II exception: its "additional
-    // information", without the source location and stack trace.
-    std::string
-    user_message(const std::exception &e)
-    {
-      if (const auto *dealii_exception =
-            dynamic_cast<const ExceptionBase *>(&e))
-        {
-          std::ostringstream s;
-          dealii_exception->print_info(s);
-          std::string text = s.str();
-          while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-            text.pop_back();
-          const auto start = text.find_first_not_of(" \n");
-          return start == std::string::npos ? text : text.substr(start);
-        }
-      return e.what();
-    }
-  } // namespace
 
 
 

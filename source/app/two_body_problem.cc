@@ -17,8 +17,9 @@ namespace coulomb_adapt
     , parameters(parameters)
     , pcout(std::cout,
             Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-    , computing_timer(mpi_communicator,
-                      pcout,
+    // No communicator: the timer's destructor must not synchronise the
+    // ranks while an exception unwinds (that could deadlock).
+    , computing_timer(pcout,
                       TimerOutput::never,
                       TimerOutput::wall_times)
   {
@@ -138,7 +139,9 @@ namespace coulomb_adapt
     for (unsigned int cycle = 0; cycle < parameters.adaptation.n_cycles;
          ++cycle)
       {
-        Timer cycle_timer;
+        Timer      cycle_timer;
+        const auto times_before =
+          computing_timer.get_summary_data(TimerOutput::total_wall_time);
         cycle_record = {{"cycle", cycle}};
         if (cycle > 0)
           refine_grid();
@@ -189,8 +192,21 @@ namespace coulomb_adapt
         cycle_record["bodies"]      = body_records;
         cycle_record["n_dofs"]      = n_dofs;
         cycle_record["wall_time_s"] = cycle_timer.wall_time();
+        // Per-phase wall times of this cycle (rank 0's clock).
+        nlohmann::json timings;
+        for (const auto &[section, total] :
+             computing_timer.get_summary_data(TimerOutput::total_wall_time))
+          {
+            const auto before = times_before.find(section);
+            timings[section] =
+              total - (before == times_before.end() ? 0. : before->second);
+          }
+        cycle_record["timings_s"] = timings;
+        // Peak resident memory so far: largest rank, and all ranks together.
         cycle_record["peak_memory_MiB"] =
           Utilities::MPI::max(memory.VmHWM / 1024., mpi_communicator);
+        cycle_record["peak_memory_total_MiB"] =
+          Utilities::MPI::sum(memory.VmHWM / 1024., mpi_communicator);
         summary->add_cycle(cycle_record);
         pcout << "  cycle " << cycle << " done in " << std::setprecision(3)
               << cycle_timer.wall_time() << " s" << std::endl;

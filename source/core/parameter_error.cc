@@ -1,5 +1,7 @@
 #include <coulomb_adapt/core/parameter_error.h>
 
+#include <deal.II/base/exceptions.h>
+
 #include <sstream>
 
 namespace coulomb_adapt
@@ -31,5 +33,24 @@ namespace coulomb_adapt
         s << value;
         throw ParameterError(entry_path, s.str(), allowed);
       }
+  }
+
+
+
+  std::string
+  user_message(const std::exception &e)
+  {
+    std::string text = e.what();
+    if (const auto *dealii_exception =
+          dynamic_cast<const dealii::ExceptionBase *>(&e))
+      {
+        std::ostringstream s;
+        dealii_exception->print_info(s);
+        text = s.str();
+      }
+    const auto first = text.find_first_not_of(" \n");
+    const auto last  = text.find_last_not_of(" \n");
+    return first == std::string::npos ? "" :
+                                        text.substr(first, last - first + 1);
   }
 } // namespace coulomb_adapt

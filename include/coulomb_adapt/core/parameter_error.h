@@ -30,6 +30,14 @@ namespace coulomb_adapt
                     const std::string &entry_path,
                     const double       value,
                     const std::string &allowed);
+
+  /**
+   * The part of @p e meant for a user: for a deal.II exception its
+   * "additional information" without source location and stack trace,
+   * otherwise what().
+   */
+  std::string
+  user_message(const std::exception &e);
 } // namespace coulomb_adapt
 
 #endif
