@@ -1,0 +1,14 @@
+# Run EXE with ARGS (a ;-list); succeed only if it fails (exit code != 0)
+# and its standard error matches the regular expression EXPECTED.
+execute_process(COMMAND ${EXE} ${ARGS}
+  RESULT_VARIABLE result
+  OUTPUT_VARIABLE out
+  ERROR_VARIABLE err)
+if(result EQUAL 0)
+  message(FATAL_ERROR "expected a non-zero exit code; output:\n${out}\n${err}")
+endif()
+string(REPLACE "\n" " " err_one_line "${err}")
+if(NOT err_one_line MATCHES "${EXPECTED}")
+  message(FATAL_ERROR "exit code ${result}, but the message does not match\n  '${EXPECTED}':\n${err}")
+endif()
+message(STATUS "exit code ${result}: ${err}")

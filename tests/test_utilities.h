@@ -1,0 +1,53 @@
+// Helpers shared by the tests: parameters from a list of overrides, and
+// output from rank 0 only (so that N-rank runs print what 1 rank prints).
+#ifndef coulomb_adapt_tests_test_utilities_h
+#define coulomb_adapt_tests_test_utilities_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <coulomb_adapt/core/parameters.h>
+
+#include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  namespace testing
+  {
+    /** Declare all parameters, apply "Path/Entry" = value pairs, parse. */
+    inline Parameters
+    make_parameters(
+      ParameterHandler &                                      prm,
+      const std::vector<std::pair<std::string, std::string>> &settings)
+    {
+      Parameters::declare_parameters(prm);
+      for (const auto &[path, value] : settings)
+        {
+          auto sections = Utilities::split_string_list(path, '/');
+          const std::string entry = sections.back();
+          sections.pop_back();
+          for (const auto &s : sections)
+            prm.enter_subsection(s);
+          prm.set(entry, value);
+          for (unsigned int i = 0; i < sections.size(); ++i)
+            prm.leave_subsection();
+        }
+      Parameters parameters;
+      parameters.parse_parameters(prm);
+      return parameters;
+    }
+
+    inline ConditionalOStream
+    root_output()
+    {
+      return ConditionalOStream(
+        std::cout, Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
+    }
+  } // namespace testing
+} // namespace coulomb_adapt
+
+#endif
