@@ -67,7 +67,7 @@ public:
     d.material = {body == 0 ? 1000. : 3000., body == 0 ? 0.3 : 0.45};
     auto u     = std::make_shared<LinearDisplacement>();
     d.exact_displacement = u;
-    for (const auto id : {boundary_ids::free,
+    for (const auto id : {boundary_ids::traction_free,
                           boundary_ids::contact,
                           boundary_ids::dirichlet})
       d.dirichlet.push_back({id, ComponentMask(2, true), u});

@@ -87,14 +87,14 @@ namespace coulomb_adapt
                        Point<2>(50, 200),
                        Point<2>(150, 300),
                        upper_subdivisions,
-                       {{free, free, contact, traction}},
+                       {{traction_free, traction_free, contact, traction}},
                        cell_type);
       else
         make_rectangle(tria,
                        Point<2>(0, 0),
                        Point<2>(200, 200),
                        lower_subdivisions,
-                       {{free, free, dirichlet, contact}},
+                       {{traction_free, traction_free, dirichlet, contact}},
                        cell_type);
     }
 

@@ -106,7 +106,7 @@ namespace coulomb_adapt
                          Point<2>(-block_width / 2, -block_height),
                          Point<2>(block_width / 2, 0),
                          block_subdivisions,
-                         {{free, free, dirichlet, contact}},
+                         {{traction_free, traction_free, dirichlet, contact}},
                          cell_type);
           return;
         }

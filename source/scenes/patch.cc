@@ -84,14 +84,14 @@ namespace coulomb_adapt
                        Point<2>(0, heights[1]),
                        Point<2>(width, heights[1] + heights[0]),
                        subdivisions[0],
-                       {{free, free, contact, traction}},
+                       {{traction_free, traction_free, contact, traction}},
                        cell_type);
       else
         make_rectangle(tria,
                        Point<2>(0, 0),
                        Point<2>(width, heights[1]),
                        subdivisions[1],
-                       {{free, free, roller, contact}},
+                       {{traction_free, traction_free, roller, contact}},
                        cell_type);
     }
 

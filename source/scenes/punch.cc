@@ -84,14 +84,14 @@ namespace coulomb_adapt
                        Point<2>(-punch_width / 2, 0),
                        Point<2>(punch_width / 2, punch_height),
                        subdivisions[0],
-                       {{free, free, contact, traction}},
+                       {{traction_free, traction_free, contact, traction}},
                        cell_type);
       else
         make_rectangle(tria,
                        Point<2>(-block_width / 2, -block_height),
                        Point<2>(block_width / 2, 0),
                        subdivisions[1],
-                       {{free, free, dirichlet, contact}},
+                       {{traction_free, traction_free, dirichlet, contact}},
                        cell_type);
     }
 

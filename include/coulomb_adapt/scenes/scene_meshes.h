@@ -19,7 +19,7 @@ namespace coulomb_adapt
    */
   namespace boundary_ids
   {
-    constexpr types::boundary_id free      = 0;
+    constexpr types::boundary_id traction_free = 0;
     constexpr types::boundary_id contact   = 1;
     constexpr types::boundary_id dirichlet = 2;
     constexpr types::boundary_id traction  = 3;
