@@ -1,6 +1,7 @@
 // Convergence of the elasticity solver on the manufactured solution of the
 // 'manufactured' scene (two bodies with different materials), for Q1, Q2
-// (quadrilaterals) and P1, P2 (triangles): under uniform refinement the
+// (quadrilaterals) and P1, P2 (triangles), plane strain, and Q2 in plane
+// stress: under uniform refinement the
 // energy-norm error must converge at rate p and the L2 error at rate p+1.
 
 #include <deal.II/base/convergence_table.h>
@@ -14,14 +15,17 @@
 using namespace coulomb_adapt;
 
 void
-check(const std::string &cell_type, const unsigned int degree)
+check(const std::string &cell_type,
+      const unsigned int degree,
+      const std::string &plane_model = "plane strain")
 {
   ParameterHandler prm;
   const Parameters parameters = testing::make_parameters(
     prm,
     {{"Scene/Name", "manufactured"},
      {"Mesh/Cell type", cell_type},
-     {"Finite elements/Polynomial degree", std::to_string(degree)}});
+     {"Finite elements/Polynomial degree", std::to_string(degree)},
+     {"Finite elements/Plane model", plane_model}});
   const auto scene = scenes::create_scene(parameters, prm);
   auto       out   = testing::root_output();
 
@@ -61,7 +65,8 @@ check(const std::string &cell_type, const unsigned int degree)
       table.evaluate_convergence_rates("energy",
                                        ConvergenceTable::reduction_rate_log2);
 
-      out << (cell_type == "triangle" ? "P" : "Q") << degree << ", body "
+      out << (cell_type == "triangle" ? "P" : "Q") << degree << ", "
+          << plane_model << ", body "
           << b + 1 << " (" << body.name() << ")" << std::endl;
       if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
         table.write_text(std::cout);
@@ -87,4 +92,6 @@ main(int argc, char *argv[])
   for (const std::string cell_type : {"quadrilateral", "triangle"})
     for (const unsigned int degree : {1u, 2u})
       check(cell_type, degree);
+  // Plane stress changes the effective Lame parameter (and the body force).
+  check("quadrilateral", 2, "plane stress");
 }
