@@ -1,0 +1,107 @@
+#ifndef coulomb_adapt_contact_mortar_interface_h
+#define coulomb_adapt_contact_mortar_interface_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+
+#include <array>
+#include <map>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * The mortar discretisation of the contact interface between the slave
+   * body (body 1, the upper one) and the master body (body 2), theory.md
+   * section 2, for linear elements (Q1 / P1), whose contact boundary is a
+   * polygon of two-node segments.
+   *
+   * The Lagrange multiplier lives on the slave nodes with Wohlmuth's dual
+   * basis, psi_a = 2 phi_a - phi_b on a slave segment [a, b], so that
+   *
+   *   D_jj = int psi_j phi_j = int phi_j        (diagonal)
+   *   M_jl = int psi_j phi^2_l                  (master, on the overlaps)
+   *   g~_j = int psi_j g_0                       (weighted initial gap)
+   *
+   * M and g~ are integrated segment to segment: the master segments are
+   * projected onto each slave segment (orthogonally to it), and on the
+   * overlap Gauss points of the slave segment are projected onto the master
+   * segment along the slave segment's normal; g_0 is the distance along
+   * that normal (>= 0: separated). Meshes need not match.
+   *
+   * The interface is small (a curve in 2D), so every rank gathers all of
+   * it: each rank contributes the contact faces of its own cells.
+   */
+  class MortarInterface
+  {
+  public:
+    /** A node of the slave or master contact boundary. */
+    struct Node
+    {
+      Point<2> position;
+      /** Global DoF indices of the x and y displacement at the node. */
+      std::array<types::global_dof_index, 2> dofs;
+      /** Slave nodes: averaged outward unit normal of the slave body, and
+       * the tangent t = (-n_y, n_x). */
+      Tensor<1, 2> normal;
+      Tensor<1, 2> tangent;
+    };
+
+    /** Collect both contact boundaries and integrate D, M and g~. */
+    void
+    reinit(const ElasticBody &slave, const ElasticBody &master);
+
+    const std::vector<Node> &
+    slave_nodes() const;
+    const std::vector<Node> &
+    master_nodes() const;
+
+    /** D_jj for slave node j (mm). */
+    const std::vector<double> &
+    slave_weights() const;
+
+    /** M_jl: for slave node j, the master nodes l it couples to (mm). */
+    const std::vector<std::map<unsigned int, double>> &
+    master_coupling() const;
+
+    /** g~_j = int psi_j g_0 (mm^2). */
+    const std::vector<double> &
+    weighted_initial_gaps() const;
+
+    /** The weighted displacement jump (D u^1 - M u^2)_j at every slave
+     * node, from nodal displacements (x, y) of the slave and master nodes. */
+    std::vector<Tensor<1, 2>>
+    weighted_jump(const std::vector<Tensor<1, 2>> &slave_displacements,
+                  const std::vector<Tensor<1, 2>> &master_displacements) const;
+
+  private:
+    struct Segment
+    {
+      /** Indices into the node list of the same side. */
+      std::array<unsigned int, 2> nodes;
+      /** Outward unit normal of the body at this segment. */
+      Tensor<1, 2> normal;
+    };
+
+    static void
+    collect_contact_boundary(const ElasticBody &   body,
+                             std::vector<Node> &   nodes,
+                             std::vector<Segment> &segments);
+
+    void
+    integrate_segment_pair(const Segment &slave_segment,
+                           const Segment &master_segment);
+
+    std::vector<Node>                       slave;
+    std::vector<Node>                       master;
+    std::vector<Segment>                    slave_segments;
+    std::vector<Segment>                    master_segments;
+    std::vector<double>                     D;
+    std::vector<std::map<unsigned int, double>> M;
+    std::vector<double>                     gaps;
+  };
+} // namespace coulomb_adapt
+
+#endif

@@ -1,0 +1,142 @@
+// Mortar integrals on non-matching interfaces (theory.md section 2):
+//  - patch scene, 3 slave vs 10 master segments (quadrilaterals) and the
+//    same split into triangles: sum_j D_jj = interface length; every row
+//    of M sums to D_jj (the master basis is a partition of unity); M
+//    reproduces linear master fields, (M u)_j = D_jj u(x_j); zero gap;
+//    normals (0, -1);
+//  - hertz: the weighted initial gap g~_j / D_jj equals the disc's height
+//    above the block at the slave node, up to the tilt of the segments
+//    (relative error (x/R)^2 / 2).
+
+#include <coulomb_adapt/contact/mortar_interface.h>
+#include <coulomb_adapt/scenes/scene_factory.h>
+
+#include "test_utilities.h"
+
+#include <cmath>
+
+using namespace coulomb_adapt;
+
+void
+check_patch(const std::string &cell_type)
+{
+  ParameterHandler prm;
+  const Parameters parameters = testing::make_parameters(
+    prm,
+    {{"Scene/Name", "patch"},
+     {"Mesh/Cell type", cell_type},
+     {"Scene/Patch/Upper body subdivisions", "3, 2"},
+     {"Scene/Patch/Lower body subdivisions", "10, 4"}});
+  const auto  scene = scenes::create_scene(parameters, prm);
+  ElasticBody slave(MPI_COMM_WORLD, *scene, 0, parameters.mesh.cell_type, 0,
+                    parameters.finite_elements);
+  ElasticBody master(MPI_COMM_WORLD, *scene, 1, parameters.mesh.cell_type, 0,
+                     parameters.finite_elements);
+  slave.setup_system();
+  master.setup_system();
+  MortarInterface interface;
+  interface.reinit(slave, master);
+
+  const auto &nodes = interface.slave_nodes();
+  const auto &D     = interface.slave_weights();
+  const auto &M     = interface.master_coupling();
+  const auto &gaps  = interface.weighted_initial_gaps();
+
+  // A linear field on the master side.
+  const auto u = [](const Point<2> &x) {
+    return Tensor<1, 2>({0.3 + 0.01 * x[0] - 0.02 * x[1], -0.2 + 0.02 * x[0]});
+  };
+  std::vector<Tensor<1, 2>> master_u, slave_zero(nodes.size());
+  for (const auto &node : interface.master_nodes())
+    master_u.push_back(u(node.position));
+  const auto jump = interface.weighted_jump(slave_zero, master_u);
+
+  double sum_D = 0, row_error = 0, linear_error = 0, gap_error = 0,
+         normal_error = 0;
+  for (unsigned int j = 0; j < nodes.size(); ++j)
+    {
+      sum_D += D[j];
+      double row = 0;
+      for (const auto &[l, m] : M[j])
+        row += m;
+      row_error    = std::max(row_error, std::abs(row - D[j]) / D[j]);
+      linear_error = std::max(linear_error,
+                              (-jump[j] - D[j] * u(nodes[j].position)).norm() /
+                                (D[j] * u(nodes[j].position).norm()));
+      gap_error    = std::max(gap_error, std::abs(gaps[j]) / D[j]);
+      normal_error = std::max(
+        normal_error, (nodes[j].normal - Tensor<1, 2>({0., -1.})).norm());
+    }
+  auto out = testing::root_output();
+  out << "patch (" << cell_type << "): " << nodes.size() << " slave nodes, "
+      << interface.master_nodes().size() << " master nodes, sum D = "
+      << std::setprecision(12) << sum_D << std::endl;
+  out << "  rows of M sum to D: " << (row_error < 1e-13 ? "yes" : "no")
+      << "; M reproduces linear fields: "
+      << (linear_error < 1e-13 ? "yes" : "no")
+      << "; zero initial gap: " << (gap_error < 1e-13 ? "yes" : "no")
+      << "; normals (0,-1): " << (normal_error < 1e-14 ? "yes" : "no")
+      << std::endl;
+  AssertThrow(std::abs(sum_D - 10.) < 1e-12, ExcMessage("sum of D"));
+  AssertThrow(row_error < 1e-13 && linear_error < 1e-13 && gap_error < 1e-13 &&
+                normal_error < 1e-14,
+              ExcMessage("mortar integrals wrong: rows " +
+                         std::to_string(row_error) + ", linear " +
+                         std::to_string(linear_error) + ", gap " +
+                         std::to_string(gap_error)));
+}
+
+
+
+void
+check_hertz()
+{
+  ParameterHandler prm;
+  const Parameters parameters =
+    testing::make_parameters(prm, {{"Scene/Name", "hertz"}});
+  const auto  scene = scenes::create_scene(parameters, prm);
+  ElasticBody slave(MPI_COMM_WORLD, *scene, 0, parameters.mesh.cell_type, 0,
+                    parameters.finite_elements);
+  ElasticBody master(MPI_COMM_WORLD, *scene, 1, parameters.mesh.cell_type, 0,
+                     parameters.finite_elements);
+  slave.setup_system();
+  master.setup_system();
+  MortarInterface interface;
+  interface.reinit(slave, master);
+
+  const double R     = 100;
+  const auto & nodes = interface.slave_nodes();
+  unsigned int n_checked = 0;
+  double       worst     = 0;
+  auto         out       = testing::root_output();
+  for (unsigned int j = 0; j < nodes.size(); ++j)
+    {
+      const Point<2> &x = nodes[j].position;
+      if (std::abs(x[0]) > 5.)
+        continue;
+      const double gap = interface.weighted_initial_gaps()[j] /
+                         interface.slave_weights()[j];
+      // Relative to the height, with an absolute floor for the node at 0.
+      const double error = std::abs(gap - x[1]) / std::max(x[1], 1e-6);
+      worst              = std::max(worst, error);
+      ++n_checked;
+      AssertThrow(std::abs(gap - x[1]) <= 2e-3 * x[1] + 1e-12 * R,
+                  ExcMessage("gap at x = " + std::to_string(x[0]) + ": " +
+                             std::to_string(gap) + " vs height " +
+                             std::to_string(x[1])));
+    }
+  out << "hertz: " << n_checked
+      << " slave nodes with |x| <= 5 mm, weighted gap = height within 2e-3: "
+      << (worst <= 2e-3 ? "yes" : "no") << std::endl;
+}
+
+
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  check_patch("quadrilateral");
+  check_patch("triangle");
+  check_hertz();
+}
