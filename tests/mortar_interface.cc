@@ -89,11 +89,11 @@ check_patch(const std::string &cell_type)
 
 
 void
-check_hertz()
+check_hertz(const std::string &cell_type)
 {
   ParameterHandler prm;
-  const Parameters parameters =
-    testing::make_parameters(prm, {{"Scene/Name", "hertz"}});
+  const Parameters parameters = testing::make_parameters(
+    prm, {{"Scene/Name", "hertz"}, {"Mesh/Cell type", cell_type}});
   const auto  scene = scenes::create_scene(parameters, prm);
   ElasticBody slave(MPI_COMM_WORLD, *scene, 0, parameters.mesh.cell_type, 0,
                     parameters.finite_elements);
@@ -125,7 +125,7 @@ check_hertz()
                              std::to_string(gap) + " vs height " +
                              std::to_string(x[1])));
     }
-  out << "hertz: " << n_checked
+  out << "hertz (" << cell_type << "): " << n_checked
       << " slave nodes with |x| <= 5 mm, weighted gap = height within 2e-3: "
       << (worst <= 2e-3 ? "yes" : "no") << std::endl;
 }
@@ -138,5 +138,6 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   check_patch("quadrilateral");
   check_patch("triangle");
-  check_hertz();
+  check_hertz("quadrilateral");
+  check_hertz("triangle");
 }

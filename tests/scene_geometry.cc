@@ -5,6 +5,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/scenes/hertz.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
@@ -76,6 +77,42 @@ check(const std::string &scene_name,
     }
 }
 
+// The Hertz meshes must resolve the contact zone: at least 20 contact
+// faces of each body across [-a, a] with the default parameters.
+void
+check_hertz_resolution(const std::string &cell_type)
+{
+  ParameterHandler prm;
+  const Parameters parameters = testing::make_parameters(
+    prm, {{"Scene/Name", "hertz"}, {"Mesh/Cell type", cell_type}});
+  const auto scene = scenes::create_scene(parameters, prm);
+  const double a = dynamic_cast<const scenes::Hertz &>(*scene).contact_half_width();
+  auto out = testing::root_output();
+  for (unsigned int b = 0; b < 2; ++b)
+    {
+      ElasticBody body(MPI_COMM_WORLD, *scene, b, parameters.mesh.cell_type, 0,
+                       parameters.finite_elements);
+      double covered = 0;
+      unsigned int n_faces = 0;
+      for (const auto &cell : body.triangulation().active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() &&
+                face->boundary_id() == boundary_ids::contact &&
+                std::abs(face->center()[0]) < a)
+              {
+                ++n_faces;
+                covered += face->measure();
+              }
+      n_faces = Utilities::MPI::sum(n_faces, MPI_COMM_WORLD);
+      out << "hertz (" << cell_type << "), body " << b + 1
+          << ": at least 20 contact faces across the contact width 2a: "
+          << (n_faces >= 20 ? "yes" : "no") << std::endl;
+      AssertThrow(n_faces >= 20,
+                  ExcMessage(std::to_string(n_faces) + " contact faces in [-a, a]"));
+    }
+}
+
 int
 main(int argc, char *argv[])
 {
@@ -101,7 +138,11 @@ main(int argc, char *argv[])
   // The half disc is a polygon inscribed in the circle: its area and arc
   // length converge to pi R^2 / 2 and pi R as the mesh is refined; the
   // contact refinements resolve the arc near the contact point only.
-  check("hertz", "quadrilateral",
-        {{{pi * 1e4 / 2, {{contact, pi * 100}, {traction, 200.}}, true, 2e-2},
-          {2e4, {{contact, 200.}, {dirichlet, 200.}}, false, 1e-12}}});
+  for (const std::string cell_type : {"quadrilateral", "triangle"})
+    {
+      check("hertz", cell_type,
+            {{{pi * 1e4 / 2, {{contact, pi * 100}, {traction, 200.}}, true, 2e-2},
+              {2e4, {{contact, 200.}, {dirichlet, 200.}}, false, 1e-12}}});
+      check_hertz_resolution(cell_type);
+    }
 }

@@ -169,20 +169,34 @@ namespace coulomb_adapt
           supported_dofs.insert(i);
       }
 
-    std::vector<types::global_dof_index> vertex_dofs(2);
-    for (const auto &vc : body_description.vertex_constraints)
-      for (const auto &cell : dofs.active_cell_iterators())
-        if (!cell->is_artificial())
-          for (const unsigned int v : cell->vertex_indices())
-            if (vc.selects(cell->vertex(v)))
-              for (unsigned int c = 0; c < 2; ++c)
-                if (vc.components[c])
-                  {
-                    const auto dof = cell->vertex_dof_index(v, c);
-                    supported_dofs.insert(dof);
-                    if (!constraints_.is_constrained(dof))
-                      constraints_.add_line(dof);
-                  }
+    // Point constraints act on every DoF whose support point they select
+    // (vertices and, for degree 2, edge and cell nodes).
+    if (!body_description.point_constraints.empty())
+      {
+        const Quadrature<2> support_points(fe->get_unit_support_points());
+        FEValues<2>         fe_values(*mapping_,
+                              *fe,
+                              support_points,
+                              update_quadrature_points);
+        std::vector<types::global_dof_index> local_dof_indices(
+          fe->n_dofs_per_cell());
+        for (const auto &cell : dofs.active_cell_iterators())
+          if (!cell->is_artificial())
+            {
+              fe_values.reinit(cell);
+              cell->get_dof_indices(local_dof_indices);
+              for (unsigned int i = 0; i < local_dof_indices.size(); ++i)
+                for (const auto &pc : body_description.point_constraints)
+                  if (pc.components[fe->system_to_component_index(i).first] &&
+                      pc.selects(fe_values.quadrature_point(i)))
+                    {
+                      const auto dof = local_dof_indices[i];
+                      supported_dofs.insert(dof);
+                      if (!constraints_.is_constrained(dof))
+                        constraints_.add_line(dof);
+                    }
+            }
+      }
     constraints_.close();
   }
 

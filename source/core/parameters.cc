@@ -51,8 +51,10 @@ namespace coulomb_adapt
                           Patterns::Selection("quadrilateral|triangle"),
                           "Reference cell of the built-in scenes' meshes: "
                           "structured quadrilaterals, or the same mesh with "
-                          "every quadrilateral split into triangles. The "
-                          "gmsh scene takes the cell type from its file.");
+                          "every quadrilateral split into triangles (hertz: "
+                          "a gmsh triangle mesh). For the gmsh scene a .geo "
+                          "file is meshed with this cell type; a .msh file "
+                          "keeps its own cells.");
         prm.declare_entry("Global refinements",
                           "0",
                           Patterns::Integer(0, 12),

@@ -1,5 +1,6 @@
 #include <deal.II/base/function.h>
 
+#include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/scenes/blocks.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
@@ -31,7 +32,8 @@ namespace coulomb_adapt
                           "false",
                           Patterns::Bool(),
                           "Fix the horizontal displacement of the upper "
-                          "body's vertices on x = 100 (exact by symmetry).");
+                          "body's nodes on x = 100 (exact by symmetry). "
+                          "Needs an even number of upper cells in x.");
         for (const std::string body : {"Body 1", "Body 2"})
           {
             prm.enter_subsection(body);
@@ -55,6 +57,11 @@ namespace coulomb_adapt
           get_subdivisions(prm, "Lower body subdivisions", path);
         pressure         = prm.get_double("Pressure");
         hold_centre_line = prm.get_bool("Hold centre line");
+        if (hold_centre_line && upper_subdivisions[0] % 2 != 0)
+          throw ParameterError(path + "/Upper body subdivisions",
+                               prm.get("Upper body subdivisions"),
+                               "'Hold centre line' needs an even number of "
+                               "cells in x, so that x = 100 is a mesh line");
         for (unsigned int b = 0; b < 2; ++b)
           {
             const std::string body = "Body " + std::to_string(b + 1);
@@ -116,7 +123,7 @@ namespace coulomb_adapt
                return Tensor<1, 2>({0., -p});
              }});
           if (hold_centre_line)
-            d.vertex_constraints.push_back(
+            d.point_constraints.push_back(
               {[](const Point<2> &x) { return std::abs(x[0] - 100.) < 1e-8; },
                ComponentMask(std::vector<bool>{true, false})});
         }

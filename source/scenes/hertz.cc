@@ -5,7 +5,13 @@
 #include <coulomb_adapt/scenes/hertz.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
 
 namespace coulomb_adapt
 {
@@ -37,16 +43,20 @@ namespace coulomb_adapt
                           "2, 1",
                           Patterns::List(Patterns::Integer(1), 2, 2),
                           "Coarse cells of the block in x and y.");
-        prm.declare_entry("Contact refinements",
-                          "6",
-                          Patterns::Integer(0, 20),
-                          "Extra refinement steps of the cells near the "
-                          "first contact point (quadrilateral meshes).");
+        prm.declare_entry("Contact mesh size",
+                          "0.1",
+                          Patterns::Double(0),
+                          "Element size near the first contact point, in "
+                          "units of the Hertz half-width a (0.1: 20 "
+                          "elements across the contact width). 0 disables "
+                          "the grading. Global refinements divide it "
+                          "further.");
         prm.declare_entry("Refined zone size",
                           "1.5",
                           Patterns::Double(0),
-                          "Radius of the zone kept finest by the contact "
-                          "refinements, in units of the Hertz half-width a.");
+                          "Radius of the zone around the first contact "
+                          "point that gets the contact mesh size, in units "
+                          "of a; the mesh coarsens gradually outside it.");
         prm.enter_subsection("Body 1");
         MaterialConstants::declare_parameters(prm, 130000., 0.3);
         prm.leave_subsection();
@@ -71,7 +81,7 @@ namespace coulomb_adapt
         block_height           = prm.get_double("Block height");
         block_subdivisions =
           get_subdivisions(prm, "Block subdivisions", path);
-        contact_refinements = prm.get_integer("Contact refinements");
+        contact_mesh_factor = prm.get_double("Contact mesh size");
         refined_zone_factor = prm.get_double("Refined zone size");
         for (unsigned int b = 0; b < 2; ++b)
           {
@@ -100,6 +110,23 @@ namespace coulomb_adapt
                               Triangulation<2> & tria) const
     {
       using namespace boundary_ids;
+      // Triangles: gmsh meshes both bodies with the size field of the
+      // contact zone (simplices cannot be refined locally in deal.II 9.4).
+      if (cell_type == CellType::triangle)
+        {
+          triangle_meshes()[body].create_triangulation(tria);
+          if (body == 0)
+            {
+              tria.set_manifold(arc_manifold_id,
+                                SphericalManifold<2>(Point<2>(0, radius)));
+              for (const auto &cell : tria.active_cell_iterators())
+                for (const auto &face : cell->face_iterators())
+                  if (face->at_boundary() && face->boundary_id() == contact)
+                    face->set_manifold_id(arc_manifold_id);
+            }
+          return;
+        }
+
       if (body == 1)
         {
           make_rectangle(tria,
@@ -111,11 +138,12 @@ namespace coulomb_adapt
           return;
         }
 
-      // The half disc: deal.II's half ball (the half x > 0 of the disc)
+      // Quadrilaterals: deal.II's half ball (the half x > 0 of the disc)
       // turned by -90 degrees so that its arc points down, then lifted so
-      // that it touches the block at the origin.
-      Triangulation<2> quads;
+      // that its lowest point is the origin.
+      Triangulation<2> &quads = tria;
       const Point<2>   centre(0, radius);
+      tria.clear();
       GridGenerator::half_hyper_ball(quads, Point<2>(), radius);
       GridTools::rotate(-numbers::PI / 2, quads);
       GridTools::shift(Tensor<1, 2>({0., radius}), quads);
@@ -130,25 +158,87 @@ namespace coulomb_adapt
               if (!on_flat_top)
                 face->set_manifold_id(arc_manifold_id);
             }
-
-      tria.clear();
-      if (cell_type == CellType::quadrilateral)
-        tria.copy_triangulation(quads);
-      else
-        GridGenerator::convert_hypercube_to_simplex_mesh(quads, tria);
       tria.set_manifold(arc_manifold_id, SphericalManifold<2>(centre));
     }
 
 
 
-    void
+    // The .geo text of both bodies, with a mesh size field that is
+    // contact_mesh_size() within the refined zone around the origin and
+    // grows linearly to the coarse size away from it.
+    const std::array<CoarseMeshData, 2> &
+    Hertz::triangle_meshes() const
+    {
+      if (!gmsh_meshes)
+        {
+          const double a      = contact_half_width();
+          const double h_min  = contact_mesh_size();
+          const double h_max  = radius / 4;
+          const double zone   = refined_zone_factor * a;
+          std::ostringstream geo;
+          geo << std::setprecision(17) << "R = " << radius
+              << "; L = " << block_width / 2 << "; H = " << block_height
+              << ";\n"
+              << "Point(1) = {0, R, 0};  Point(2) = {-R, R, 0};\n"
+              << "Point(3) = {0, 0, 0};  Point(4) = {R, R, 0};\n"
+              << "Circle(1) = {2, 1, 3}; Circle(2) = {3, 1, 4};\n"
+              << "Line(3) = {4, 2};\n"
+              << "Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};\n"
+              << "Point(5) = {-L, -H, 0}; Point(6) = {L, -H, 0};\n"
+              << "Point(7) = {L, 0, 0};   Point(8) = {-L, 0, 0};\n"
+              << "Point(9) = {0, 0, 0};\n"
+              << "Line(4) = {5, 6}; Line(5) = {6, 7}; Line(6) = {7, 9};\n"
+              << "Line(7) = {9, 8}; Line(8) = {8, 5};\n"
+              << "Curve Loop(2) = {4, 5, 6, 7, 8}; Plane Surface(2) = {2};\n"
+              << "Physical Surface(\"body 1\") = {1};\n"
+              << "Physical Surface(\"body 2\") = {2};\n"
+              << "Physical Curve(\"dirichlet\") = {4};\n"
+              << "Physical Curve(\"traction\") = {3};\n"
+              << "Physical Curve(\"contact\") = {1, 2, 6, 7};\n"
+              << "Field[1] = Distance; Field[1].PointsList = {3, 9};\n"
+              << "Field[2] = Threshold; Field[2].InField = 1;\n"
+              << "Field[2].SizeMin = " << h_min << ";\n"
+              << "Field[2].SizeMax = " << h_max << ";\n"
+              << "Field[2].DistMin = " << zone << ";\n"
+              << "Field[2].DistMax = " << zone + 4 * (h_max - h_min) << ";\n"
+              << "Background Field = 2;\n"
+              << "Mesh.MeshSizeExtendFromBoundary = 0;\n"
+              << "Mesh.MeshSizeFromPoints = 0;\n"
+              << "Mesh.MeshSizeFromCurvature = 0;\n";
+          const std::string file =
+            (std::filesystem::temp_directory_path() /
+             ("coulomb-adapt-hertz-" + std::to_string(::getpid()) + ".geo"))
+              .string();
+          {
+            std::ofstream out(file);
+            out << geo.str();
+          }
+          gmsh_meshes = std::make_shared<std::array<CoarseMeshData, 2>>(
+            read_two_body_gmsh_file(file, CellType::triangle, 1.0));
+          std::filesystem::remove(file);
+        }
+      return *gmsh_meshes;
+    }
+
+
+
+    double
+    Hertz::contact_mesh_size() const
+    {
+      return contact_mesh_factor * contact_half_width();
+    }
+
+
+
+  void
     Hertz::refine_initial_mesh(const unsigned int,
                                Triangulation<2> &tria) const
     {
-      refine_towards_point(tria,
-                           Point<2>(),
-                           refined_zone_factor * contact_half_width(),
-                           contact_refinements);
+      if (contact_mesh_factor > 0)
+        refine_towards_point(tria,
+                             Point<2>(),
+                             refined_zone_factor * contact_half_width(),
+                             contact_mesh_size());
     }
 
 

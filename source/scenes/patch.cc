@@ -122,7 +122,7 @@ namespace coulomb_adapt
              ComponentMask(std::vector<bool>{false, true}),
              std::make_shared<Functions::ZeroFunction<2>>(2)});
           // ...and the lower left corner held horizontally.
-          d.vertex_constraints.push_back(
+          d.point_constraints.push_back(
             {[](const Point<2> &x) { return x.norm() < 1e-10; },
              ComponentMask(std::vector<bool>{true, false})});
         }

@@ -9,11 +9,13 @@ namespace coulomb_adapt
                                         const double default_poissons_ratio)
   {
     prm.declare_entry("Young's modulus",
-                      std::to_string(default_youngs_modulus),
+                      Patterns::Tools::Convert<double>::to_string(
+                        default_youngs_modulus),
                       Patterns::Double(),
                       "Young's modulus E of this body (MPa), E > 0.");
     prm.declare_entry("Poisson's ratio",
-                      std::to_string(default_poissons_ratio),
+                      Patterns::Tools::Convert<double>::to_string(
+                        default_poissons_ratio),
                       Patterns::Double(),
                       "Poisson's ratio nu of this body (dimensionless), "
                       "-1 < nu < 0.5.");

@@ -51,17 +51,32 @@ namespace coulomb_adapt
 
 
   void
-  refine_towards_point(Triangulation<2> & tria,
-                       const Point<2> &   point,
-                       const double       radius,
-                       const unsigned int n_steps)
+  refine_towards_point(Triangulation<2> &tria,
+                       const Point<2> &  point,
+                       const double      radius,
+                       const double      target_size)
   {
-    for (unsigned int step = 0; step < n_steps; ++step)
+    // Refine until the edges of the cells near the point are no longer
+    // than the target.
+    const auto longest_edge = [](const auto &cell) {
+      double h = 0;
+      for (const auto &face : cell->face_iterators())
+        h = std::max(h, face->measure());
+      return h;
+    };
+    for (unsigned int step = 0; step < 30; ++step)
       {
+        bool any = false;
         for (const auto &cell : tria.active_cell_iterators())
           if (cell->is_locally_owned() &&
-              cell->center().distance(point) < radius + cell->diameter())
-            cell->set_refine_flag();
+              cell->center().distance(point) < radius + cell->diameter() &&
+              longest_edge(cell) > target_size)
+            {
+              cell->set_refine_flag();
+              any = true;
+            }
+        if (Utilities::MPI::logical_or(any, tria.get_communicator()) == false)
+          break;
         tria.execute_coarsening_and_refinement();
       }
   }

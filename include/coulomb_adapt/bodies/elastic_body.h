@@ -102,7 +102,7 @@ namespace coulomb_adapt
     types::global_dof_index
     n_vertices() const;
 
-    /** True if the Dirichlet data and vertex constraints cannot hold the
+    /** True if the Dirichlet data and point constraints cannot hold the
      * body's rigid body motions: without contact its system is singular. */
     bool
     is_floating() const;
@@ -138,7 +138,7 @@ namespace coulomb_adapt
     IndexSet                                     locally_owned_dofs;
     IndexSet                                     locally_relevant_dofs;
     AffineConstraints<double>                    constraints_;
-    /** DoFs fixed by Dirichlet data or vertex constraints. */
+    /** DoFs fixed by Dirichlet data or point constraints. */
     std::set<types::global_dof_index>            supported_dofs;
     TrilinosWrappers::SparseMatrix               matrix;
     TrilinosWrappers::MPI::Vector                rhs;

@@ -1,7 +1,10 @@
 #ifndef coulomb_adapt_scenes_hertz_h
 #define coulomb_adapt_scenes_hertz_h
 
+#include <coulomb_adapt/scenes/gmsh_reader.h>
 #include <coulomb_adapt/scenes/scene.h>
+
+#include <memory>
 
 namespace coulomb_adapt
 {
@@ -12,8 +15,10 @@ namespace coulomb_adapt
      * radius R, centre (0, R), loaded by a uniform traction on its flat top
      * (total P' per unit thickness), resting on the block [-L, L] x [-H, 0]
      * clamped at its base. First contact at the origin. The meshes are
-     * refined towards the origin so that the contact half-width
-     * a = sqrt(4 P' R / (pi E*)) is resolved; keep a << R, L, H.
+     * graded towards the origin so that the contact half-width
+     * a = sqrt(4 P' R / (pi E*)) is resolved (`Contact mesh size`):
+     * quadrilaterals by local refinement (hanging nodes), triangles by a
+     * gmsh size field. Keep a << R, L, H.
      */
     class Hertz : public Scene
     {
@@ -42,16 +47,25 @@ namespace coulomb_adapt
       double
       contact_half_width() const;
 
+      /** Target element size near the first contact point (mm). */
+      double
+      contact_mesh_size() const;
+
       /** Hertz's peak pressure p0 = 2 P' / (pi a) (MPa). */
       double
       peak_pressure() const;
 
     private:
+      /** Both bodies meshed by gmsh with triangles (made once). */
+      const std::array<CoarseMeshData, 2> &
+      triangle_meshes() const;
+
+      mutable std::shared_ptr<std::array<CoarseMeshData, 2>> gmsh_meshes;
       double                    radius;
       double                    line_load;
       double                    block_width, block_height;
       std::vector<unsigned int> block_subdivisions;
-      unsigned int              contact_refinements;
+      double                    contact_mesh_factor;
       double                    refined_zone_factor;
       PlaneModel                plane_model;
       MaterialConstants         materials[2];

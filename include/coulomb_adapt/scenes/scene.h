@@ -55,10 +55,11 @@ namespace coulomb_adapt
     std::shared_ptr<const Function<2>>    displacement;
   };
 
-  /** Zero displacement of the components in @p components at every mesh
-   * vertex for which @p selects is true: point supports and symmetry lines
-   * that are not whole boundary parts. */
-  struct VertexConstraint
+  /** Zero displacement of the components in @p components at every DoF
+   * support point (vertices, and edge nodes for degree 2) for which
+   * @p selects is true: point supports and symmetry lines that are not
+   * whole boundary parts. */
+  struct PointConstraint
   {
     std::function<bool(const Point<2> &)> selects;
     ComponentMask                         components;
@@ -78,7 +79,7 @@ namespace coulomb_adapt
     std::string                    name;
     MaterialConstants              material;
     std::vector<DirichletCondition> dirichlet;
-    std::vector<VertexConstraint>  vertex_constraints;
+    std::vector<PointConstraint>  point_constraints;
     std::vector<TractionCondition> tractions;
     /** Body force per unit volume (N/mm^3); empty means none. */
     std::function<Tensor<1, 2>(const Point<2> &)> body_force;

@@ -50,15 +50,15 @@ namespace coulomb_adapt
                    const std::string &path);
 
   /**
-   * Refine, @p n_steps times, the cells of @p tria closer than
-   * @p radius + (cell diameter) to @p point: a mesh graded towards a
-   * contact point, with a fine zone of the given radius.
+   * Refine the cells of @p tria closer than @p radius + (cell diameter) to
+   * @p point until their edges are no longer than @p target_size: a mesh
+   * graded towards a contact point.
    */
   void
   refine_towards_point(Triangulation<2> &tria,
                        const Point<2> &  point,
                        const double      radius,
-                       const unsigned int n_steps);
+                       const double      target_size);
 } // namespace coulomb_adapt
 
 #endif
