@@ -2,6 +2,7 @@
 
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/bodies/elasticity_errors.h>
+#include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 
 #include <iomanip>
@@ -60,6 +61,65 @@ namespace coulomb_adapt
   void
   TwoBodyProblem::solve()
   {
+    if (has_contact())
+      solve_contact();
+    else
+      solve_separately();
+  }
+
+
+
+  bool
+  TwoBodyProblem::has_contact() const
+  {
+    return bodies[0]->description().contact_boundary_id !=
+             numbers::invalid_boundary_id &&
+           bodies[1]->description().contact_boundary_id !=
+             numbers::invalid_boundary_id;
+  }
+
+
+
+  // Both bodies coupled through the mortar contact interface.
+  void
+  TwoBodyProblem::solve_contact()
+  {
+    TimerOutput::Scope t(computing_timer, "contact solve");
+    pcout << "  contact: " << (parameters.contact.friction_coefficient > 0 ?
+                                 "Coulomb friction, mu = " +
+                                   Patterns::Tools::Convert<double>::to_string(
+                                     parameters.contact.friction_coefficient) :
+                                 std::string("frictionless (mu = 0): no "
+                                             "stick/slip sets"))
+          << std::endl;
+    contact_solver = std::make_unique<ContactSolver>(*bodies[0],
+                                                     *bodies[1],
+                                                     parameters.contact,
+                                                     parameters.linear_solver,
+                                                     pcout);
+    const ContactSolverReport report = contact_solver->solve();
+    pcout << "  contact: " << report.newton_iterations
+          << " Newton steps, " << report.n_active << " active nodes, "
+          << "contact force (" << report.contact_force[0] << ", "
+          << report.contact_force[1] << ") N/mm, max pressure "
+          << report.max_contact_pressure << " MPa" << std::endl;
+    cycle_record["newton_iterations"] = report.newton_iterations;
+    cycle_record["converged"]         = report.converged;
+    cycle_record["active_nodes"]      = report.n_active;
+    cycle_record["stick_nodes"]       = report.n_stick;
+    cycle_record["slip_nodes"]        = report.n_slip;
+    cycle_record["contact_force"] = {report.contact_force[0],
+                                     report.contact_force[1]};
+    cycle_record["max_contact_pressure"] = report.max_contact_pressure;
+    cycle_record["frictionless"]         = report.frictionless;
+    cycle_record["residual_history"]     = report.residual_history;
+  }
+
+
+
+  void
+  TwoBodyProblem::solve_separately()
+  {
     TimerOutput::Scope t(computing_timer, "solve");
     nlohmann::json     solver_records = nlohmann::json::array();
     for (unsigned int b = 0; b < 2; ++b)
@@ -98,6 +158,8 @@ namespace coulomb_adapt
       return;
     for (unsigned int b = 0; b < 2; ++b)
       body_outputs[b]->write(*bodies[b], cycle);
+    if (contact_solver)
+      contact_output->write(contact_solver->node_states(), cycle);
   }
 
 
@@ -134,6 +196,8 @@ namespace coulomb_adapt
           body_outputs[b] = std::make_unique<BodyOutput>(
             parameters.output.directory, "body-" + std::to_string(b + 1));
         }
+      contact_output = std::make_unique<ContactOutput>(
+        parameters.output.directory, mpi_communicator);
     }
 
     for (unsigned int cycle = 0; cycle < parameters.adaptation.n_cycles;

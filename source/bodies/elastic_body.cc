@@ -310,6 +310,32 @@ namespace coulomb_adapt
 
 
 
+  void
+  ElasticBody::set_solution(const TrilinosWrappers::MPI::Vector &owned_values)
+  {
+    TrilinosWrappers::MPI::Vector owned(owned_values);
+    constraints_.distribute(owned);
+    displacement = owned;
+  }
+
+
+
+  const IndexSet &
+  ElasticBody::locally_owned_dof_set() const
+  {
+    return locally_owned_dofs;
+  }
+
+
+
+  const IndexSet &
+  ElasticBody::locally_relevant_dof_set() const
+  {
+    return locally_relevant_dofs;
+  }
+
+
+
   std::vector<std::vector<double>>
   ElasticBody::rigid_body_modes() const
   {

@@ -189,6 +189,17 @@ namespace coulomb_adapt
 
 
 
+  bool
+  MortarInterface::is_covered(const unsigned int j) const
+  {
+    double row_sum = 0;
+    for (const auto &[l, m] : M[j])
+      row_sum += m;
+    return std::abs(row_sum - D[j]) <= 1e-8 * D[j];
+  }
+
+
+
   std::vector<Tensor<1, 2>>
   MortarInterface::weighted_jump(
     const std::vector<Tensor<1, 2>> &slave_displacements,

@@ -183,7 +183,30 @@ namespace coulomb_adapt
                           "0.3",
                           Patterns::Double(),
                           "Coulomb friction coefficient mu >= 0 "
-                          "(dimensionless); 0 means frictionless.");
+                          "(dimensionless); 0 means frictionless (no "
+                          "stick/slip sets).");
+        prm.declare_entry("Complementarity scale",
+                          "1",
+                          Patterns::Double(0),
+                          "The constants c_n = c_t of the complementarity "
+                          "functions are this factor times E / h at each "
+                          "slave node (E of the slave body, h the node's "
+                          "mortar weight). The converged solution does not "
+                          "depend on it; it changes the path of the active "
+                          "set iteration. Must be > 0.");
+        prm.declare_entry("Maximum Newton iterations",
+                          "40",
+                          Patterns::Integer(1),
+                          "Semismooth Newton (primal-dual active set) "
+                          "iteration limit; reaching it stops the run with "
+                          "a diagnosis.");
+        prm.declare_entry("Tolerance",
+                          "1e-10",
+                          Patterns::Double(0),
+                          "Newton has converged when the active, stick and "
+                          "slip sets no longer change and the residual of "
+                          "the complementarity conditions, relative to the "
+                          "largest contact pressure, is below this.");
       }
       prm.leave_subsection();
     }
@@ -195,7 +218,14 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Contact");
       {
-        friction_coefficient = prm.get_double("Friction coefficient");
+        friction_coefficient  = prm.get_double("Friction coefficient");
+        complementarity_scale = prm.get_double("Complementarity scale");
+        max_newton_iterations = prm.get_integer("Maximum Newton iterations");
+        tolerance             = prm.get_double("Tolerance");
+        require_parameter(complementarity_scale > 0,
+                          "Contact/Complementarity scale",
+                          complementarity_scale,
+                          "the scale must be > 0");
         require_parameter(friction_coefficient >= 0,
                           "Contact/Friction coefficient",
                           friction_coefficient,

@@ -5,8 +5,10 @@
 #include <deal.II/base/timer.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/output/body_output.h>
+#include <coulomb_adapt/output/contact_output.h>
 #include <coulomb_adapt/output/run_summary.h>
 #include <coulomb_adapt/scenes/scene.h>
 
@@ -20,11 +22,10 @@ namespace coulomb_adapt
    * in the shape of deal.II's step-40 (`run()` calling `setup_system`,
    * `assemble_system`, `solve`, `output_results`, `refine_grid`).
    *
-   * This version solves each body's elasticity problem with its own
-   * Dirichlet support; the coupling of the bodies through contact is the
-   * next step. A body that relies on contact for its support (the upper
-   * body of blocks, patch, hertz, punch) is reported as such before
-   * anything is solved.
+   * Scenes with a contact interface are solved by the ContactSolver (mortar
+   * + semismooth Newton); scenes without one (manufactured) solve each
+   * body on its own, and a body without Dirichlet support is reported as
+   * such before anything is solved.
    */
   class TwoBodyProblem
   {
@@ -44,6 +45,12 @@ namespace coulomb_adapt
     assemble_system();
     void
     solve();
+    bool
+    has_contact() const;
+    void
+    solve_contact();
+    void
+    solve_separately();
     void
     output_results(const unsigned int cycle);
     void
@@ -57,6 +64,8 @@ namespace coulomb_adapt
     std::array<std::unique_ptr<ElasticBody>, 2> bodies;
     std::array<std::unique_ptr<BodyOutput>, 2>  body_outputs;
     std::unique_ptr<RunSummary>               summary;
+    std::unique_ptr<ContactSolver>            contact_solver;
+    std::unique_ptr<ContactOutput>            contact_output;
     nlohmann::json                            cycle_record;
   };
 } // namespace coulomb_adapt

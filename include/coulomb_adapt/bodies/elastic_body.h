@@ -67,6 +67,16 @@ namespace coulomb_adapt
     void
     assemble_system();
 
+    /** Set the displacement from the locally owned values @p owned_values
+     * (constraints are applied, ghosts updated). */
+    void
+    set_solution(const TrilinosWrappers::MPI::Vector &owned_values);
+
+    const IndexSet &
+    locally_owned_dof_set() const;
+    const IndexSet &
+    locally_relevant_dof_set() const;
+
     /** Solve K u = f; the solution satisfies the constraints. */
     LinearSolverReport
     solve(const parameters::LinearSolver &solver_parameters);

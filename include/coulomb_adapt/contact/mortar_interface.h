@@ -70,6 +70,12 @@ namespace coulomb_adapt
     const std::vector<double> &
     weighted_initial_gaps() const;
 
+    /** Whether the master surface covers slave node j's support
+     * completely (sum_l M_jl = D_jj): only such nodes can come into
+     * contact; the others lie beyond the master's edge. */
+    bool
+    is_covered(const unsigned int j) const;
+
     /** The weighted displacement jump (D u^1 - M u^2)_j at every slave
      * node, from nodal displacements (x, y) of the slave and master nodes. */
     std::vector<Tensor<1, 2>>

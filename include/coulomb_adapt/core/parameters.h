@@ -89,7 +89,12 @@ namespace coulomb_adapt
     /** Subsection `Contact`. */
     struct Contact
     {
-      double friction_coefficient;
+      double       friction_coefficient;
+      /** c_n = c_t = scale * E / h at each slave node (dimensionless). */
+      double       complementarity_scale;
+      unsigned int max_newton_iterations;
+      /** Relative residual of the complementarity functions. */
+      double       tolerance;
 
       static void
       declare_parameters(ParameterHandler &prm);

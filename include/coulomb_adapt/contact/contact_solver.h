@@ -1,0 +1,162 @@
+#ifndef coulomb_adapt_contact_contact_solver_h
+#define coulomb_adapt_contact_contact_solver_h
+
+#include <deal.II/base/conditional_ostream.h>
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/mortar_interface.h>
+#include <coulomb_adapt/core/parameters.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  enum class ContactStatus
+  {
+    open,
+    stick,
+    slip
+  };
+
+  std::string
+  to_string(const ContactStatus status);
+
+  /** The contact state at one slave node after the solve. */
+  struct ContactNodeState
+  {
+    Point<2>      position;
+    Tensor<1, 2>  normal;
+    Tensor<1, 2>  tangent;
+    /** Mortar weight D_jj (mm). */
+    double        weight;
+    /** lambda_n = -R_n >= 0 (MPa). */
+    double        pressure;
+    /** lambda_t = -R_t (MPa): the traction body 2 receives from body 1
+     * along t; body 1 receives its opposite. */
+    double        tangential_traction;
+    /** Normal gap (mm), >= 0 when open. */
+    double        gap;
+    /** Tangential jump W_t = (u^1 - u^2) . t (mm). */
+    double        slip;
+    ContactStatus status;
+    /** Sign of the slip direction (slip nodes). */
+    int           slip_sign;
+  };
+
+  /** What a contact solve did, for the log and summary.json. */
+  struct ContactSolverReport
+  {
+    unsigned int        newton_iterations = 0;
+    bool                converged         = false;
+    unsigned int        n_active = 0, n_stick = 0, n_slip = 0;
+    /** Force of body 2 on body 1, sum of D_jj R_j (N/mm). */
+    Tensor<1, 2>        contact_force;
+    double              max_contact_pressure = 0;
+    std::vector<double> residual_history;
+    bool                frictionless = false;
+  };
+
+  /**
+   * Static two-body Coulomb contact, theory.md section 2: the mortar
+   * interface with Wohlmuth's dual multiplier basis, and the semismooth
+   * Newton method of Hüeber, Stadler and Wohlmuth in its primal-dual active
+   * set form. In 2D, with the sets (open / stick / slip, and the slip
+   * direction) fixed, the conditions are linear:
+   *
+   *   open:  lambda_j = 0
+   *   stick: g~_j = 0,  (D u^1 - M u^2)_j . t_j = 0
+   *   slip:  g~_j = 0,  lambda_t,j = mu s_j lambda_n,j
+   *
+   * and the multipliers are condensed: the dual basis makes D diagonal, so
+   * lambda_j = (f^1 - K^1 u^1)_j / D_jj. The unknowns are the displacements
+   * of both bodies only; the slave node rows of body 1 are replaced by the
+   * conditions of their set and the master rows receive
+   * M^T D^-1 (f^1 - K^1 u^1). The system is not symmetric.
+   *
+   * The sets are updated from the complementarity functions (c_n = c_t =
+   * scale E / D_jj) until they no longer change. mu = 0 takes the
+   * frictionless path: active nodes carry no tangential traction, there are
+   * no stick or slip sets.
+   */
+  class ContactSolver
+  {
+  public:
+    ContactSolver(ElasticBody &                   slave,
+                  ElasticBody &                   master,
+                  const parameters::Contact &     contact_parameters,
+                  const parameters::LinearSolver &solver_parameters,
+                  const ConditionalOStream &      pcout);
+
+    /** Solve; the bodies' solutions are set. Throws with a diagnosis when
+     * the iteration does not converge. The bodies' systems must be
+     * assembled. */
+    ContactSolverReport
+    solve();
+
+    const std::vector<ContactNodeState> &
+    node_states() const;
+
+    const MortarInterface &
+    mortar_interface() const;
+
+  private:
+    /** A row of K^1 at a slave DoF, with its load. */
+    struct SlaveRow
+    {
+      std::vector<types::global_dof_index> columns;
+      std::vector<double>                  values;
+      double                               rhs = 0;
+    };
+
+    void
+    setup();
+    void
+    initialize_sets();
+    void
+    assemble_newton_system();
+    void
+    solve_newton_system();
+    void
+    evaluate_contact_state();
+    unsigned int
+    update_sets();
+    double
+    complementarity_residual() const;
+    std::string
+    set_signature() const;
+
+    ElasticBody &                    slave;
+    ElasticBody &                    master;
+    const parameters::Contact        contact_parameters;
+    const parameters::LinearSolver   solver_parameters;
+    const ConditionalOStream &       pcout;
+    const MPI_Comm                   mpi_communicator;
+    const double                     mu;
+
+    MortarInterface                  mortar;
+    types::global_dof_index          offset; // n_dofs of body 1
+    IndexSet                         owned;
+    std::vector<std::array<SlaveRow, 2>> slave_rows;
+    /** Slave nodes whose rows this rank owns. */
+    std::vector<unsigned int>        owned_slave_nodes;
+    /** For a master DoF: its node and component. */
+    std::map<types::global_dof_index, std::pair<unsigned int, unsigned int>>
+                                     master_dof_node;
+    /** For a master node: the slave nodes coupled to it with M_jl. */
+    std::vector<std::vector<std::pair<unsigned int, double>>> master_to_slave;
+    std::vector<double>              complementarity_constant;
+    double                           row_scale;
+
+    TrilinosWrappers::SparseMatrix   matrix;
+    TrilinosWrappers::MPI::Vector    rhs;
+
+    std::vector<ContactNodeState>    states;
+  };
+} // namespace coulomb_adapt
+
+#endif

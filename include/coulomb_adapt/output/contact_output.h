@@ -1,0 +1,36 @@
+#ifndef coulomb_adapt_output_contact_output_h
+#define coulomb_adapt_output_contact_output_h
+
+#include <coulomb_adapt/contact/contact_solver.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * The contact interface's nodal results per cycle:
+   * `contact_<cycle>.csv` (one row per slave node, sorted along the
+   * interface) and `contact_<cycle>.vtu`, a polyline through the slave
+   * nodes with the same fields as point data, indexed by `contact.pvd` so
+   * that ParaView shows it beside the bodies. Written by rank 0 (every rank
+   * holds the whole interface).
+   */
+  class ContactOutput
+  {
+  public:
+    ContactOutput(const std::string &directory, const MPI_Comm comm);
+
+    void
+    write(const std::vector<ContactNodeState> &states,
+          const unsigned int                   cycle);
+
+  private:
+    const std::string                           directory;
+    const MPI_Comm                              mpi_communicator;
+    std::vector<std::pair<double, std::string>> pvd_records;
+  };
+} // namespace coulomb_adapt
+
+#endif

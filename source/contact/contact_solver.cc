@@ -1,0 +1,659 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/core/parameter_error.h>
+#include <coulomb_adapt/solvers/linear_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <set>
+#include <sstream>
+
+namespace coulomb_adapt
+{
+  std::string
+  to_string(const ContactStatus status)
+  {
+    switch (status)
+      {
+        case ContactStatus::open:
+          return "open";
+        case ContactStatus::stick:
+          return "stick";
+        default:
+          return "slip";
+      }
+  }
+
+
+
+  ContactSolver::ContactSolver(
+    ElasticBody &                   slave,
+    ElasticBody &                   master,
+    const parameters::Contact &     contact_parameters,
+    const parameters::LinearSolver &solver_parameters,
+    const ConditionalOStream &      pcout)
+    : slave(slave)
+    , master(master)
+    , contact_parameters(contact_parameters)
+    , solver_parameters(solver_parameters)
+    , pcout(pcout)
+    , mpi_communicator(slave.triangulation().get_communicator())
+    , mu(contact_parameters.friction_coefficient)
+  {}
+
+
+
+  // The mortar integrals, the K^1 rows of the slave DoFs (gathered on all
+  // ranks: the master rows need them) and the sparsity of the condensed
+  // system, which does not depend on the sets.
+  void
+  ContactSolver::setup()
+  {
+    mortar.reinit(slave, master);
+    const auto &nodes = mortar.slave_nodes();
+    const auto &D     = mortar.slave_weights();
+    const auto &M     = mortar.master_coupling();
+    const unsigned int n_slave = nodes.size();
+    AssertThrow(n_slave > 0,
+                ExcMessage("The contact boundary of body 1 is empty."));
+
+    const IndexSet &owned_1 = slave.locally_owned_dof_set();
+    const IndexSet &owned_2 = master.locally_owned_dof_set();
+    offset                  = slave.dof_handler().n_dofs();
+    owned.clear();
+    owned.set_size(offset + master.dof_handler().n_dofs());
+    owned.add_indices(owned_1);
+    owned.add_indices(owned_2, offset);
+    owned.compress();
+
+    // Rows of K^1 and f^1 at the slave DoFs, packed as
+    // [node, component, rhs, n, col_0, value_0, ...].
+    std::vector<double> packed;
+    owned_slave_nodes.clear();
+    const auto &K1 = slave.system_matrix();
+    const auto &f1 = slave.system_rhs();
+    for (unsigned int j = 0; j < n_slave; ++j)
+      if (owned_1.is_element(nodes[j].dofs[0]))
+        {
+          owned_slave_nodes.push_back(j);
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              const auto row = nodes[j].dofs[c];
+              AssertThrow(!slave.constraints().is_constrained(row),
+                          ExcMessage("A contact node of body 1 at (" +
+                                     std::to_string(nodes[j].position[0]) +
+                                     ", " +
+                                     std::to_string(nodes[j].position[1]) +
+                                     ") has a Dirichlet condition; contact "
+                                     "nodes must be free."));
+              packed.push_back(j);
+              packed.push_back(c);
+              packed.push_back(f1(row));
+              packed.push_back(K1.row_length(row));
+              for (auto it = K1.begin(row); it != K1.end(row); ++it)
+                {
+                  packed.push_back(it->column());
+                  packed.push_back(it->value());
+                }
+            }
+        }
+    slave_rows.assign(n_slave, {});
+    for (const auto &values :
+         Utilities::MPI::all_gather(mpi_communicator, packed))
+      for (std::size_t i = 0; i < values.size();)
+        {
+          SlaveRow &row = slave_rows[static_cast<unsigned int>(values[i])]
+                                    [static_cast<unsigned int>(values[i + 1])];
+          row.rhs              = values[i + 2];
+          const auto n_entries = static_cast<std::size_t>(values[i + 3]);
+          i += 4;
+          for (std::size_t e = 0; e < n_entries; ++e, i += 2)
+            {
+              row.columns.push_back(
+                static_cast<types::global_dof_index>(values[i]));
+              row.values.push_back(values[i + 1]);
+            }
+        }
+
+    master_dof_node.clear();
+    const auto &master_nodes = mortar.master_nodes();
+    for (unsigned int l = 0; l < master_nodes.size(); ++l)
+      for (unsigned int c = 0; c < 2; ++c)
+        master_dof_node[master_nodes[l].dofs[c]] = {l, c};
+    master_to_slave.assign(master_nodes.size(), {});
+    for (unsigned int j = 0; j < n_slave; ++j)
+      for (const auto &[l, m] : M[j])
+        master_to_slave[l].emplace_back(j, m);
+
+    const double E = slave.description().material.youngs_modulus;
+    complementarity_constant.resize(n_slave);
+    for (unsigned int j = 0; j < n_slave; ++j)
+      complementarity_constant[j] =
+        contact_parameters.complementarity_scale * E / D[j];
+    row_scale = E;
+
+    // Sparsity: K^1 and K^2 (shifted), the slave rows (both K^1 rows of the
+    // node, the node's own DoFs and the coupled master DoFs), and in the
+    // master rows the K^1 rows of the coupled slave nodes.
+    DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
+    const auto &K2 = master.system_matrix();
+    for (const auto row : owned_1)
+      for (auto it = K1.begin(row); it != K1.end(row); ++it)
+        dsp.add(row, it->column());
+    for (const unsigned int j : owned_slave_nodes)
+      for (unsigned int c = 0; c < 2; ++c)
+        {
+          const auto row = nodes[j].dofs[c];
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              dsp.add_entries(row,
+                              slave_rows[j][d].columns.begin(),
+                              slave_rows[j][d].columns.end());
+              dsp.add(row, nodes[j].dofs[d]);
+              for (const auto &[l, m] : M[j])
+                dsp.add(row, offset + master_nodes[l].dofs[d]);
+            }
+        }
+    for (const auto row : owned_2)
+      {
+        for (auto it = K2.begin(row); it != K2.end(row); ++it)
+          dsp.add(offset + row, offset + it->column());
+        const auto node = master_dof_node.find(row);
+        if (node != master_dof_node.end() &&
+            !master.constraints().is_constrained(row))
+          for (const auto &[j, m] : master_to_slave[node->second.first])
+            dsp.add_entries(offset + row,
+                            slave_rows[j][node->second.second].columns.begin(),
+                            slave_rows[j][node->second.second].columns.end());
+      }
+    matrix.reinit(owned, owned, dsp, mpi_communicator);
+    rhs.reinit(owned, mpi_communicator);
+
+    states.assign(n_slave, {});
+    for (unsigned int j = 0; j < n_slave; ++j)
+      {
+        states[j].position = nodes[j].position;
+        states[j].normal   = nodes[j].normal;
+        states[j].tangent  = nodes[j].tangent;
+        states[j].weight   = D[j];
+      }
+  }
+
+
+
+  // Nodes that touch in the initial configuration start active: stuck if
+  // there is friction, which holds a floating body 1 in the first step.
+  void
+  ContactSolver::initialize_sets()
+  {
+    const auto &gaps = mortar.weighted_initial_gaps();
+    const auto &D    = mortar.slave_weights();
+    // The interface's extent: the same on every rank.
+    double size = 0;
+    for (const auto &s : states)
+      size = std::max(size, s.position.distance(states.front().position));
+    for (unsigned int j = 0; j < states.size(); ++j)
+      {
+        const bool touching =
+          mortar.is_covered(j) && gaps[j] / D[j] <= 1e-10 * size;
+        states[j].status    = !touching ? ContactStatus::open :
+                              mu > 0    ? ContactStatus::stick :
+                                          ContactStatus::slip;
+        states[j].slip_sign = 1;
+      }
+  }
+
+
+
+  void
+  ContactSolver::assemble_newton_system()
+  {
+    matrix = 0;
+    rhs    = 0;
+    const auto &nodes        = mortar.slave_nodes();
+    const auto &master_nodes = mortar.master_nodes();
+    const auto &D            = mortar.slave_weights();
+    const auto &M            = mortar.master_coupling();
+    const auto &gaps         = mortar.weighted_initial_gaps();
+    const auto &K1           = slave.system_matrix();
+    const auto &K2           = master.system_matrix();
+    const auto &f1           = slave.system_rhs();
+    const auto &f2           = master.system_rhs();
+
+    std::vector<types::global_dof_index> columns;
+    std::vector<double>                  values;
+    const auto add_row = [&](const types::global_dof_index row,
+                             const double                  right_hand_side) {
+      matrix.add(row, columns.size(), columns.data(), values.data());
+      rhs(row) += right_hand_side;
+      columns.clear();
+      values.clear();
+    };
+
+    std::set<types::global_dof_index> slave_dofs;
+    for (const unsigned int j : owned_slave_nodes)
+      for (unsigned int c = 0; c < 2; ++c)
+        slave_dofs.insert(nodes[j].dofs[c]);
+
+    // Body 1 away from the contact nodes, and body 2: the stiffness rows.
+    for (const auto row : slave.locally_owned_dof_set())
+      if (slave_dofs.count(row) == 0)
+        {
+          for (auto it = K1.begin(row); it != K1.end(row); ++it)
+            {
+              columns.push_back(it->column());
+              values.push_back(it->value());
+            }
+          add_row(row, f1(row));
+        }
+    for (const auto row : master.locally_owned_dof_set())
+      {
+        for (auto it = K2.begin(row); it != K2.end(row); ++it)
+          {
+            columns.push_back(offset + it->column());
+            values.push_back(it->value());
+          }
+        double     right_hand_side = f2(row);
+        const auto node            = master_dof_node.find(row);
+        // Master rows receive M^T lambda = M^T D^-1 (f^1 - K^1 u^1).
+        if (node != master_dof_node.end() &&
+            !master.constraints().is_constrained(row))
+          for (const auto &[j, m] : master_to_slave[node->second.first])
+            {
+              const SlaveRow &k = slave_rows[j][node->second.second];
+              for (unsigned int e = 0; e < k.columns.size(); ++e)
+                {
+                  columns.push_back(k.columns[e]);
+                  values.push_back(m / D[j] * k.values[e]);
+                }
+              right_hand_side += m / D[j] * k.rhs;
+            }
+        add_row(offset + row, right_hand_side);
+      }
+
+    // Slave nodes: the conditions of their set.
+    for (const unsigned int j : owned_slave_nodes)
+      {
+        const ContactStatus status = states[j].status;
+        const Tensor<1, 2> &n      = nodes[j].normal;
+        const Tensor<1, 2> &t      = nodes[j].tangent;
+
+        // v . (D u^1 - M u^2)_j = value, scaled to the size of K.
+        const auto add_jump_row = [&](const types::global_dof_index row,
+                                      const Tensor<1, 2> &          v,
+                                      const double                  value) {
+          const double scale = row_scale / D[j];
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              columns.push_back(nodes[j].dofs[d]);
+              values.push_back(scale * D[j] * v[d]);
+              for (const auto &[l, m] : M[j])
+                {
+                  columns.push_back(offset + master_nodes[l].dofs[d]);
+                  values.push_back(-scale * m * v[d]);
+                }
+            }
+          add_row(row, scale * value);
+        };
+        // w . (K^1 u^1)_j = w . f^1_j, i.e. w . lambda_j = 0.
+        const auto add_traction_row = [&](const types::global_dof_index row,
+                                          const Tensor<1, 2> &          w) {
+          double right_hand_side = 0;
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              const SlaveRow &k = slave_rows[j][d];
+              for (unsigned int e = 0; e < k.columns.size(); ++e)
+                {
+                  columns.push_back(k.columns[e]);
+                  values.push_back(w[d] * k.values[e]);
+                }
+              right_hand_side += w[d] * k.rhs;
+            }
+          add_row(row, right_hand_side);
+        };
+
+        const auto row_x = nodes[j].dofs[0], row_y = nodes[j].dofs[1];
+        if (status == ContactStatus::open)
+          {
+            add_traction_row(row_x, Tensor<1, 2>({1., 0.}));
+            add_traction_row(row_y, Tensor<1, 2>({0., 1.}));
+          }
+        else
+          {
+            add_jump_row(row_x, n, gaps[j]);
+            if (status == ContactStatus::stick)
+              add_jump_row(row_y, t, 0.);
+            else
+              add_traction_row(row_y, t - mu * states[j].slip_sign * n);
+          }
+      }
+    matrix.compress(VectorOperation::add);
+    rhs.compress(VectorOperation::add);
+  }
+
+
+
+  void
+  ContactSolver::solve_newton_system()
+  {
+    TrilinosWrappers::MPI::Vector solution(owned, mpi_communicator);
+    parameters::LinearSolver      settings = solver_parameters;
+    // The condensed contact system is not symmetric: no CG.
+    settings.type = "direct";
+    solve_linear_system(matrix, solution, rhs, {}, settings);
+
+    TrilinosWrappers::MPI::Vector u1(slave.locally_owned_dof_set(),
+                                     mpi_communicator);
+    TrilinosWrappers::MPI::Vector u2(master.locally_owned_dof_set(),
+                                     mpi_communicator);
+    for (const auto i : slave.locally_owned_dof_set())
+      u1(i) = solution(i);
+    for (const auto i : master.locally_owned_dof_set())
+      u2(i) = solution(offset + i);
+    u1.compress(VectorOperation::insert);
+    u2.compress(VectorOperation::insert);
+    slave.set_solution(u1);
+    master.set_solution(u2);
+  }
+
+
+
+  // lambda_j = (f^1 - K^1 u^1)_j / D_jj at the owned slave nodes, the nodal
+  // displacements of the interface, gaps and slips; everything gathered.
+  void
+  ContactSolver::evaluate_contact_state()
+  {
+    const auto &nodes        = mortar.slave_nodes();
+    const auto &master_nodes = mortar.master_nodes();
+    const auto &D            = mortar.slave_weights();
+    const auto &u1           = slave.solution();
+    const auto &u2           = master.solution();
+
+    // [j, lambda_x, lambda_y, u_x, u_y] for owned slave nodes,
+    // [l, u_x, u_y] for owned master nodes.
+    std::vector<double> slave_packed, master_packed;
+    for (const unsigned int j : owned_slave_nodes)
+      {
+        Tensor<1, 2> lambda;
+        for (unsigned int c = 0; c < 2; ++c)
+          {
+            const SlaveRow &k = slave_rows[j][c];
+            double          Ku = 0;
+            for (unsigned int e = 0; e < k.columns.size(); ++e)
+              Ku += k.values[e] * u1(k.columns[e]);
+            lambda[c] = (k.rhs - Ku) / D[j];
+          }
+        slave_packed.insert(slave_packed.end(),
+                            {double(j),
+                             lambda[0],
+                             lambda[1],
+                             u1(nodes[j].dofs[0]),
+                             u1(nodes[j].dofs[1])});
+      }
+    for (unsigned int l = 0; l < master_nodes.size(); ++l)
+      if (master.locally_owned_dof_set().is_element(master_nodes[l].dofs[0]))
+        master_packed.insert(master_packed.end(),
+                             {double(l),
+                              u2(master_nodes[l].dofs[0]),
+                              u2(master_nodes[l].dofs[1])});
+
+    std::vector<Tensor<1, 2>> lambda(nodes.size()), slave_u(nodes.size()),
+      master_u(master_nodes.size());
+    for (const auto &v :
+         Utilities::MPI::all_gather(mpi_communicator, slave_packed))
+      for (std::size_t i = 0; i < v.size(); i += 5)
+        {
+          const auto j = static_cast<unsigned int>(v[i]);
+          lambda[j]    = Tensor<1, 2>({v[i + 1], v[i + 2]});
+          slave_u[j]   = Tensor<1, 2>({v[i + 3], v[i + 4]});
+        }
+    for (const auto &v :
+         Utilities::MPI::all_gather(mpi_communicator, master_packed))
+      for (std::size_t i = 0; i < v.size(); i += 3)
+        master_u[static_cast<unsigned int>(v[i])] =
+          Tensor<1, 2>({v[i + 1], v[i + 2]});
+
+    const auto jump = mortar.weighted_jump(slave_u, master_u);
+    const auto &gaps = mortar.weighted_initial_gaps();
+    for (unsigned int j = 0; j < nodes.size(); ++j)
+      {
+        states[j].pressure            = lambda[j] * nodes[j].normal;
+        states[j].tangential_traction = lambda[j] * nodes[j].tangent;
+        states[j].gap  = (gaps[j] - jump[j] * nodes[j].normal) / D[j];
+        states[j].slip = jump[j] * nodes[j].tangent / D[j];
+      }
+  }
+
+
+
+  // The primal-dual active set rule: the sets the complementarity
+  // functions C_n, C_t of theory.md section 2 select at the current iterate.
+  unsigned int
+  ContactSolver::update_sets()
+  {
+    unsigned int n_changed = 0;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      {
+        ContactNodeState &s      = states[j];
+        const double      c      = complementarity_constant[j];
+        const double      normal = s.pressure - c * s.gap;
+        ContactStatus     status;
+        int               sign = s.slip_sign;
+        if (normal <= 0 || !mortar.is_covered(j))
+          status = ContactStatus::open;
+        else if (mu == 0)
+          status = ContactStatus::slip;
+        else
+          {
+            const double trial = s.tangential_traction + c * s.slip;
+            if (std::abs(trial) < mu * normal)
+              status = ContactStatus::stick;
+            else
+              {
+                status = ContactStatus::slip;
+                sign   = trial >= 0 ? 1 : -1;
+              }
+          }
+        if (status != s.status ||
+            (status == ContactStatus::slip && mu > 0 && sign != s.slip_sign))
+          ++n_changed;
+        s.status    = status;
+        s.slip_sign = sign;
+      }
+    return n_changed;
+  }
+
+
+
+  // max_j |C_n,j| / p and max_j |C_t,j| / p^2, p the largest pressure: zero
+  // exactly when the contact conditions hold.
+  double
+  ContactSolver::complementarity_residual() const
+  {
+    double p = 0;
+    for (const auto &s : states)
+      p = std::max(p, std::abs(s.pressure));
+    if (p == 0)
+      p = 1;
+    double residual = 0;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      {
+        const auto & s      = states[j];
+        const double c      = complementarity_constant[j];
+        const double normal = s.pressure - c * s.gap;
+        if (!mortar.is_covered(j))
+          continue; // no contact possible: lambda_j = 0 by construction
+        const double C_n    = s.pressure - std::max(0., normal);
+        residual            = std::max(residual, std::abs(C_n) / p);
+        const double trial  = s.tangential_traction + c * s.slip;
+        const double C_t =
+          (mu == 0) ? s.tangential_traction * p :
+                      std::max(mu * normal, std::abs(trial)) *
+                          s.tangential_traction -
+                        mu * std::max(0., normal) * trial;
+        residual = std::max(residual, std::abs(C_t) / (p * p));
+      }
+    return residual;
+  }
+
+
+
+  std::string
+  ContactSolver::set_signature() const
+  {
+    std::string signature;
+    for (const auto &s : states)
+      signature += s.status == ContactStatus::open  ? 'o' :
+                   s.status == ContactStatus::stick ? 't' :
+                   s.slip_sign > 0                  ? '+' :
+                                                      '-';
+    return signature;
+  }
+
+
+
+  ContactSolverReport
+  ContactSolver::solve()
+  {
+    setup();
+    initialize_sets();
+
+    ContactSolverReport report;
+    report.frictionless = (mu == 0);
+    std::vector<std::string> history = {set_signature()};
+    std::vector<std::vector<unsigned int>> changed_nodes;
+
+    for (unsigned int k = 1; k <= contact_parameters.max_newton_iterations;
+         ++k)
+      {
+        assemble_newton_system();
+        try
+          {
+            solve_newton_system();
+          }
+        catch (const std::exception &e)
+          {
+            AssertThrow(false,
+                        ExcMessage(
+                          "Newton step " + std::to_string(k) +
+                          ": the linear solve failed with these contact sets "
+                          "(" + std::to_string(report.n_active) +
+                          " active nodes). The most likely cause is that "
+                          "body 1 is not held: all its contact nodes are "
+                          "open or slipping in the same direction, and no "
+                          "Dirichlet data holds it (a load beyond the "
+                          "friction limit, or mu = 0 without a lateral "
+                          "support). Solver message: " + user_message(e)));
+          }
+        evaluate_contact_state();
+        const std::string before    = set_signature();
+        const unsigned int n_changed = update_sets();
+        const double residual  = complementarity_residual();
+        report.residual_history.push_back(residual);
+        report.newton_iterations = k;
+
+        std::vector<unsigned int> changed;
+        const std::string after = set_signature();
+        for (unsigned int j = 0; j < after.size(); ++j)
+          if (after[j] != before[j])
+            changed.push_back(j);
+        changed_nodes.push_back(changed);
+
+        report.n_active = report.n_stick = report.n_slip = 0;
+        for (const auto &s : states)
+          if (s.status != ContactStatus::open)
+            {
+              ++report.n_active;
+              (s.status == ContactStatus::stick ? report.n_stick :
+                                                  report.n_slip)++;
+            }
+        pcout << "    Newton " << std::setw(2) << k << ": " << std::setw(4)
+              << report.n_active << " active";
+        if (mu > 0)
+          pcout << " (" << report.n_stick << " stick, " << report.n_slip
+                << " slip)";
+        pcout << ", " << n_changed << " changed, residual " << std::scientific
+              << std::setprecision(2) << residual << std::defaultfloat
+              << std::endl;
+
+        if (n_changed == 0 && residual <= contact_parameters.tolerance)
+          {
+            report.converged = true;
+            break;
+          }
+        // A set configuration seen before, other than the last one: the
+        // iteration cycles and will not converge.
+        const auto seen = std::find(history.begin(), history.end(), after);
+        AssertThrow(
+          n_changed == 0 || seen == history.end(),
+          ExcMessage("The semismooth Newton iteration cycles: after step " +
+                     std::to_string(k) + " the contact sets repeat those of "
+                     "step " + std::to_string(seen - history.begin()) +
+                     ". Last residuals: " +
+                     [&]() {
+                       std::ostringstream s;
+                       for (const double r : report.residual_history)
+                         s << r << ' ';
+                       return s.str();
+                     }() +
+                     "; nodes that flipped in the last step: " +
+                     [&]() {
+                       std::ostringstream s;
+                       for (unsigned int i = 0;
+                            i < std::min<std::size_t>(changed.size(), 10);
+                            ++i)
+                         s << '(' << states[changed[i]].position[0] << ", "
+                           << states[changed[i]].position[1] << ") ";
+                       return s.str();
+                     }() +
+                     ". Try another 'Contact/Complementarity scale'."));
+        history.push_back(after);
+      }
+
+    if (!report.converged)
+      {
+        std::ostringstream s;
+        s << "The semismooth Newton iteration did not converge in "
+          << contact_parameters.max_newton_iterations
+          << " steps. Residual history:";
+        for (const double r : report.residual_history)
+          s << ' ' << r;
+        s << ". Nodes that changed set in the last step:";
+        for (unsigned int i = 0;
+             i < std::min<std::size_t>(changed_nodes.back().size(), 10);
+             ++i)
+          s << " (" << states[changed_nodes.back()[i]].position[0] << ", "
+            << states[changed_nodes.back()[i]].position[1] << ")";
+        AssertThrow(false, ExcMessage(s.str()));
+      }
+
+    for (const auto &s : states)
+      {
+        report.contact_force -= s.weight * (s.pressure * s.normal +
+                                            s.tangential_traction * s.tangent);
+        report.max_contact_pressure =
+          std::max(report.max_contact_pressure, s.pressure);
+      }
+    return report;
+  }
+
+
+
+  const std::vector<ContactNodeState> &
+  ContactSolver::node_states() const
+  {
+    return states;
+  }
+
+
+
+  const MortarInterface &
+  ContactSolver::mortar_interface() const
+  {
+    return mortar;
+  }
+} // namespace coulomb_adapt
