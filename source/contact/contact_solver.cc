@@ -209,6 +209,52 @@ namespace coulomb_adapt
 
 
 
+  // With the current sets, is body 1 held? Without stick nodes nothing
+  // resists a rigid slide along the interface, and without active nodes
+  // nothing holds it at all, unless its own Dirichlet data do: the system
+  // would be singular, and the static problem has no solution.
+  void
+  ContactSolver::check_support(const unsigned int step) const
+  {
+    unsigned int n_active = 0, n_stick = 0;
+    for (const auto &s : states)
+      if (s.status != ContactStatus::open)
+        {
+          ++n_active;
+          n_stick += (s.status == ContactStatus::stick);
+        }
+    const std::string where =
+      "Newton step " + std::to_string(step) + ": body 1 (" + slave.name() +
+      ") ";
+    AssertThrow(n_active > 0 || !slave.is_floating(),
+                ExcMessage(where + "has no active contact node and no "
+                                   "Dirichlet support: nothing holds it "
+                                   "(is it loaded towards body 2?)."));
+    if (n_stick == 0 && n_active > 0)
+      {
+        Tensor<1, 2> tangent;
+        for (const auto &s : states)
+          if (s.status != ContactStatus::open)
+            tangent += s.tangent;
+        tangent /= tangent.norm();
+        AssertThrow(
+          slave.holds_translation(tangent),
+          ExcMessage(
+            where +
+            (mu == 0 ?
+               "can slide freely along the frictionless interface: nothing "
+               "holds it tangentially. Hold it with the scene's symmetry "
+               "option (e.g. 'Hold centre line' / 'Hold axis') or use "
+               "friction." :
+               "slides: every active contact node slips (the tangential "
+               "load exceeds mu times the normal load?) and no Dirichlet "
+               "data hold it tangentially, so the static problem has no "
+               "equilibrium.")));
+      }
+  }
+
+
+
   void
   ContactSolver::assemble_newton_system()
   {
@@ -530,6 +576,7 @@ namespace coulomb_adapt
     for (unsigned int k = 1; k <= contact_parameters.max_newton_iterations;
          ++k)
       {
+        check_support(k);
         assemble_newton_system();
         try
           {

@@ -59,8 +59,8 @@ namespace coulomb_adapt
             {
               Node node;
               node.position = Point<2>(values[i + 4 * v], values[i + 4 * v + 1]);
-              node.dofs     = {static_cast<types::global_dof_index>(values[i + 4 * v + 2]),
-                               static_cast<types::global_dof_index>(values[i + 4 * v + 3])};
+              node.dofs     = {{static_cast<types::global_dof_index>(values[i + 4 * v + 2]),
+                                static_cast<types::global_dof_index>(values[i + 4 * v + 3])}};
               ends[v]       = node.dofs[0];
               unique_nodes.emplace(node.dofs[0], node);
             }
@@ -82,8 +82,8 @@ namespace coulomb_adapt
 
     segments.clear();
     for (unsigned int s = 0; s < segment_dofs.size(); ++s)
-      segments.push_back({{index_of[segment_dofs[s][0]],
-                           index_of[segment_dofs[s][1]]},
+      segments.push_back({{{index_of[segment_dofs[s][0]],
+                            index_of[segment_dofs[s][1]]}},
                           segment_normals[s]});
     // Segments in the order of their first node, for reproducible sums.
     std::sort(segments.begin(), segments.end(),

@@ -35,6 +35,13 @@ namespace coulomb_adapt
                           "Total load P' per unit thickness pressing the "
                           "disc down (N/mm), applied as a uniform traction "
                           "P'/(2R) on its flat top.");
+        prm.declare_entry("Hold axis",
+                          "true",
+                          Patterns::Bool(),
+                          "Fix the horizontal displacement of the disc's "
+                          "nodes on its axis x = 0 (exact by symmetry); "
+                          "needed without friction, where nothing else "
+                          "holds the disc sideways.");
         prm.declare_entry("Block width", "200", Patterns::Double(0),
                           "Width 2L of the block (mm).");
         prm.declare_entry("Block height", "100", Patterns::Double(0),
@@ -77,6 +84,7 @@ namespace coulomb_adapt
         const std::string path = "Scene/Hertz";
         radius                 = prm.get_double("Radius");
         line_load              = prm.get_double("Line load");
+        hold_axis              = prm.get_bool("Hold axis");
         block_width            = prm.get_double("Block width");
         block_height           = prm.get_double("Block height");
         block_subdivisions =
@@ -258,6 +266,13 @@ namespace coulomb_adapt
              [t](const Point<2> &, const Tensor<1, 2> &) {
                return Tensor<1, 2>({0., -t});
              }});
+          if (hold_axis)
+            d.point_constraints.push_back(
+              // The axis above the contact point (contact nodes stay free).
+              {[r = radius](const Point<2> &x) {
+                 return std::abs(x[0]) < 1e-10 * r && x[1] > 1e-10 * r;
+               },
+               ComponentMask(std::vector<bool>{true, false})});
         }
       else
         {

@@ -29,6 +29,13 @@ namespace coulomb_adapt
         prm.declare_entry("Pressure", "1", Patterns::Double(0),
                           "Uniform pressure on top of the upper block "
                           "(MPa).");
+        prm.declare_entry("Hold upper body",
+                          "true",
+                          Patterns::Bool(),
+                          "Fix the horizontal displacement of the upper "
+                          "block's nodes on x = 0, where the exact solution "
+                          "has none: needed without friction, where nothing "
+                          "else holds the block sideways.");
         for (const std::string body : {"Body 1", "Body 2"})
           {
             prm.enter_subsection(body);
@@ -52,6 +59,7 @@ namespace coulomb_adapt
         subdivisions[0] = get_subdivisions(prm, "Upper body subdivisions", path);
         subdivisions[1] = get_subdivisions(prm, "Lower body subdivisions", path);
         pressure        = prm.get_double("Pressure");
+        hold_upper_body = prm.get_bool("Hold upper body");
         for (unsigned int b = 0; b < 2; ++b)
           {
             const std::string body = "Body " + std::to_string(b + 1);
@@ -112,6 +120,14 @@ namespace coulomb_adapt
              [p](const Point<2> &, const Tensor<1, 2> &) {
                return Tensor<1, 2>({0., -p});
              }});
+          if (hold_upper_body)
+            d.point_constraints.push_back(
+              // The left edge above the contact face (contact nodes stay
+              // free).
+              {[y0 = heights[1]](const Point<2> &x) {
+                 return std::abs(x[0]) < 1e-10 && x[1] > y0 * (1 + 1e-10);
+               },
+               ComponentMask(std::vector<bool>{true, false})});
         }
       else
         {

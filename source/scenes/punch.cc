@@ -1,3 +1,4 @@
+#include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/scenes/punch.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
@@ -28,6 +29,12 @@ namespace coulomb_adapt
                           "Cells of the block in x and y.");
         prm.declare_entry("Pressure", "100", Patterns::Double(0),
                           "Uniform pressure on top of the punch (MPa).");
+        prm.declare_entry("Hold centre line",
+                          "true",
+                          Patterns::Bool(),
+                          "Fix the horizontal displacement of the punch's "
+                          "nodes on x = 0 (exact by symmetry); needs an "
+                          "even number of punch cells in x.");
         prm.enter_subsection("Body 1");
         MaterialConstants::declare_parameters(prm, 1300000., 0.3);
         prm.leave_subsection();
@@ -52,6 +59,12 @@ namespace coulomb_adapt
         subdivisions[0] = get_subdivisions(prm, "Punch subdivisions", path);
         subdivisions[1] = get_subdivisions(prm, "Block subdivisions", path);
         pressure        = prm.get_double("Pressure");
+        hold_centre_line = prm.get_bool("Hold centre line");
+        if (hold_centre_line && subdivisions[0][0] % 2 != 0)
+          throw ParameterError(path + "/Punch subdivisions",
+                               prm.get("Punch subdivisions"),
+                               "'Hold centre line' needs an even number of "
+                               "cells in x, so that x = 0 is a mesh line");
         for (unsigned int b = 0; b < 2; ++b)
           {
             const std::string body = "Body " + std::to_string(b + 1);
@@ -112,6 +125,14 @@ namespace coulomb_adapt
              [p](const Point<2> &, const Tensor<1, 2> &) {
                return Tensor<1, 2>({0., -p});
              }});
+          if (hold_centre_line)
+            d.point_constraints.push_back(
+              // The centre line above the contact face (contact nodes stay
+              // free).
+              {[](const Point<2> &x) {
+                 return std::abs(x[0]) < 1e-10 && x[1] > 1e-10;
+               },
+               ComponentMask(std::vector<bool>{true, false})});
         }
       else
         {

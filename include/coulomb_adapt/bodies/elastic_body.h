@@ -117,6 +117,12 @@ namespace coulomb_adapt
     bool
     is_floating() const;
 
+    /** True if the Dirichlet data or point constraints fix some
+     * displacement component along @p direction (a unit vector), so that
+     * a rigid translation along it is held. */
+    bool
+    holds_translation(const Tensor<1, 2> &direction) const;
+
     /** Rigid body modes (x-translation, y-translation, rotation about the
      * origin) at the locally owned DoFs: the near null space for AMG. */
     std::vector<std::vector<double>>

@@ -118,6 +118,8 @@ namespace coulomb_adapt
     void
     initialize_sets();
     void
+    check_support(const unsigned int step) const;
+    void
     assemble_newton_system();
     void
     solve_newton_system();

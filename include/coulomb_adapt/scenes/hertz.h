@@ -63,6 +63,7 @@ namespace coulomb_adapt
       mutable std::shared_ptr<std::array<CoarseMeshData, 2>> gmsh_meshes;
       double                    radius;
       double                    line_load;
+      bool                      hold_axis;
       double                    block_width, block_height;
       std::vector<unsigned int> block_subdivisions;
       double                    contact_mesh_factor;

@@ -38,6 +38,7 @@ namespace coulomb_adapt
       double                    heights[2];
       std::vector<unsigned int> subdivisions[2];
       double                    pressure;
+      bool                      hold_upper_body;
       MaterialConstants         materials[2];
     };
   } // namespace scenes

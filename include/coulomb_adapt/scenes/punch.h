@@ -37,6 +37,7 @@ namespace coulomb_adapt
       double                    block_width, block_height;
       std::vector<unsigned int> subdivisions[2];
       double                    pressure;
+      bool                      hold_centre_line;
       MaterialConstants         materials[2];
     };
   } // namespace scenes
