@@ -85,8 +85,10 @@ namespace coulomb_adapt
         auto t = std::make_unique<parallel::distributed::Triangulation<2>>(
           mpi_communicator);
         t->copy_triangulation(serial);
-        t->refine_global(n_refinements);
+        // The scene's grading first, so that global refinements divide its
+        // element sizes too.
         scene.refine_initial_mesh(body_index, *t);
+        t->refine_global(n_refinements);
         new_tria = std::move(t);
       }
     else

@@ -1,6 +1,9 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <Epetra_CrsMatrix.h>
 
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/core/parameter_error.h>
@@ -27,6 +30,32 @@ namespace coulomb_adapt
           return "slip";
       }
   }
+
+
+
+  namespace
+  {
+    // Calls f(column, value) for the entries of a locally owned row,
+    // through Epetra's row view: deal.II's Trilinos matrix iterators copy
+    // the row at every step, which made the assembly quadratic.
+    template <typename Function>
+    void
+    for_each_entry(const TrilinosWrappers::SparseMatrix &matrix,
+                   const types::global_dof_index         row,
+                   const Function &                      f)
+    {
+      const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
+      const int local_row       = A.RowMap().LID(static_cast<int>(row));
+      Assert(local_row >= 0, ExcInternalError());
+      int     n_entries;
+      double *values;
+      int *   local_columns;
+      A.ExtractMyRowView(local_row, n_entries, values, local_columns);
+      for (int e = 0; e < n_entries; ++e)
+        f(static_cast<types::global_dof_index>(A.ColMap().GID(local_columns[e])),
+          values[e]);
+    }
+  } // namespace
 
 
 
@@ -94,11 +123,10 @@ namespace coulomb_adapt
               packed.push_back(c);
               packed.push_back(f1(row));
               packed.push_back(K1.row_length(row));
-              for (auto it = K1.begin(row); it != K1.end(row); ++it)
-                {
-                  packed.push_back(it->column());
-                  packed.push_back(it->value());
-                }
+              for_each_entry(K1, row, [&](const auto column, const double value) {
+                packed.push_back(column);
+                packed.push_back(value);
+              });
             }
         }
     slave_rows.assign(n_slave, {});
@@ -142,8 +170,9 @@ namespace coulomb_adapt
     DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
     const auto &K2 = master.system_matrix();
     for (const auto row : owned_1)
-      for (auto it = K1.begin(row); it != K1.end(row); ++it)
-        dsp.add(row, it->column());
+      for_each_entry(K1, row, [&](const auto column, const double) {
+        dsp.add(row, column);
+      });
     for (const unsigned int j : owned_slave_nodes)
       for (unsigned int c = 0; c < 2; ++c)
         {
@@ -160,8 +189,9 @@ namespace coulomb_adapt
         }
     for (const auto row : owned_2)
       {
-        for (auto it = K2.begin(row); it != K2.end(row); ++it)
-          dsp.add(offset + row, offset + it->column());
+        for_each_entry(K2, row, [&](const auto column, const double) {
+          dsp.add(offset + row, offset + column);
+        });
         const auto node = master_dof_node.find(row);
         if (node != master_dof_node.end() &&
             !master.constraints().is_constrained(row))
@@ -289,20 +319,18 @@ namespace coulomb_adapt
     for (const auto row : slave.locally_owned_dof_set())
       if (slave_dofs.count(row) == 0)
         {
-          for (auto it = K1.begin(row); it != K1.end(row); ++it)
-            {
-              columns.push_back(it->column());
-              values.push_back(it->value());
-            }
+          for_each_entry(K1, row, [&](const auto column, const double value) {
+            columns.push_back(column);
+            values.push_back(value);
+          });
           add_row(row, f1(row));
         }
     for (const auto row : master.locally_owned_dof_set())
       {
-        for (auto it = K2.begin(row); it != K2.end(row); ++it)
-          {
-            columns.push_back(offset + it->column());
-            values.push_back(it->value());
-          }
+        for_each_entry(K2, row, [&](const auto column, const double value) {
+          columns.push_back(offset + column);
+          values.push_back(value);
+        });
         double     right_hand_side = f2(row);
         const auto node            = master_dof_node.find(row);
         // Master rows receive M^T lambda = M^T D^-1 (f^1 - K^1 u^1).
@@ -516,10 +544,13 @@ namespace coulomb_adapt
 
 
   // max_j |C_n,j| / p and max_j |C_t,j| / p^2, p the largest pressure: zero
-  // exactly when the contact conditions hold.
+  // exactly when the contact conditions hold. Evaluated with the natural
+  // constants c = E / D_jj, whatever scale drives the set update, so that
+  // the tolerance means the same for every scale.
   double
   ContactSolver::complementarity_residual() const
   {
+    const double E = slave.description().material.youngs_modulus;
     double p = 0;
     for (const auto &s : states)
       p = std::max(p, std::abs(s.pressure));
@@ -529,7 +560,7 @@ namespace coulomb_adapt
     for (unsigned int j = 0; j < states.size(); ++j)
       {
         const auto & s      = states[j];
-        const double c      = complementarity_constant[j];
+        const double c      = E / s.weight;
         const double normal = s.pressure - c * s.gap;
         if (!mortar.is_covered(j))
           continue; // no contact possible: lambda_j = 0 by construction
@@ -577,7 +608,10 @@ namespace coulomb_adapt
          ++k)
       {
         check_support(k);
+        Timer assembly_timer;
         assemble_newton_system();
+        assembly_timer.stop();
+        Timer solve_timer;
         try
           {
             solve_newton_system();
@@ -596,6 +630,7 @@ namespace coulomb_adapt
                           "friction limit, or mu = 0 without a lateral "
                           "support). Solver message: " + user_message(e)));
           }
+        solve_timer.stop();
         evaluate_contact_state();
         const std::string before    = set_signature();
         const unsigned int n_changed = update_sets();
@@ -625,13 +660,26 @@ namespace coulomb_adapt
                 << " slip)";
         pcout << ", " << n_changed << " changed, residual " << std::scientific
               << std::setprecision(2) << residual << std::defaultfloat
-              << std::endl;
+              << " (assembly " << std::setprecision(2)
+              << assembly_timer.wall_time() << " s, solve "
+              << solve_timer.wall_time() << " s)" << std::endl;
 
         if (n_changed == 0 && residual <= contact_parameters.tolerance)
           {
             report.converged = true;
             break;
           }
+        // Same sets again: the next step would solve the same system.
+        AssertThrow(n_changed > 0,
+                    ExcMessage("The contact sets have converged after " +
+                               std::to_string(k) +
+                               " Newton steps, but the complementarity "
+                               "residual " + std::to_string(residual) +
+                               " stays above the tolerance " +
+                               std::to_string(contact_parameters.tolerance) +
+                               ": the linear solver is not accurate enough "
+                               "for it (ill-conditioned system?). Relax "
+                               "'Contact/Tolerance' or check the data."));
         // A set configuration seen before, other than the last one: the
         // iteration cycles and will not converge.
         const auto seen = std::find(history.begin(), history.end(), after);

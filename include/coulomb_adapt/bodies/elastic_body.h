@@ -43,8 +43,8 @@ namespace coulomb_adapt
   public:
     /**
      * Build the mesh of body @p body_index of @p scene: its coarse mesh,
-     * then @p global_refinements uniform refinements, then the scene's
-     * local refinement (quadrilaterals).
+     * the scene's local refinement (quadrilaterals), then
+     * @p global_refinements uniform refinements.
      */
     ElasticBody(const MPI_Comm                        mpi_communicator,
                 const Scene &                         scene,

@@ -111,7 +111,7 @@ namespace coulomb_adapt
                        Triangulation<2> &  tria) const = 0;
 
     /** Local refinement the scene wants before the first solve, applied to
-     * quadrilateral meshes after the global refinements (e.g. towards the
+     * quadrilateral meshes before the global refinements (e.g. towards the
      * Hertz contact point). Default: none. */
     virtual void
     refine_initial_mesh(const unsigned int body, Triangulation<2> &tria) const;
