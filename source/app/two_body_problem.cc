@@ -97,7 +97,29 @@ namespace coulomb_adapt
                                                      parameters.contact,
                                                      parameters.linear_solver,
                                                      pcout);
-    const ContactSolverReport report = contact_solver->solve();
+    // The scene's load path: one step for the static problem, several for
+    // a quasi-static one (the solver keeps the stick/slip history).
+    const unsigned int  n_steps = scene->n_load_steps();
+    ContactSolverReport report;
+    unsigned int        total_newton_iterations = 0;
+    for (unsigned int step = 1; step <= n_steps; ++step)
+      {
+        if (n_steps > 1)
+          {
+            pcout << "  load step " << step << "/" << n_steps << std::endl;
+            scene->set_load_step(step);
+            // Dirichlet data may follow the load path: new constraints.
+            for (auto &body : bodies)
+              {
+                body->setup_system();
+                body->assemble_system();
+              }
+          }
+        report = contact_solver->solve();
+        total_newton_iterations += report.newton_iterations;
+      }
+    report.newton_iterations = total_newton_iterations;
+    cycle_record["load_steps"] = n_steps;
     pcout << "  contact: " << report.newton_iterations
           << " Newton steps, " << report.n_active << " active nodes, "
           << "contact force (" << report.contact_force[0] << ", "
@@ -154,12 +176,15 @@ namespace coulomb_adapt
   TwoBodyProblem::output_results(const unsigned int cycle)
   {
     TimerOutput::Scope t(computing_timer, "output");
+    // The contact CSV is small and always written; VTU on request.
+    if (contact_solver)
+      contact_output->write(contact_solver->node_states(),
+                            cycle,
+                            parameters.output.write_vtu);
     if (!parameters.output.write_vtu)
       return;
     for (unsigned int b = 0; b < 2; ++b)
       body_outputs[b]->write(*bodies[b], cycle);
-    if (contact_solver)
-      contact_output->write(contact_solver->node_states(), cycle);
   }
 
 
@@ -229,6 +254,8 @@ namespace coulomb_adapt
                                     {"n_vertices", n_vertices},
                                     {"n_dofs", n_body_dofs}});
           }
+        if (scene->n_load_steps() > 1)
+          scene->set_load_step(1);
         assemble_system();
         solve();
 

@@ -112,7 +112,10 @@ namespace coulomb_adapt
           for (unsigned int c = 0; c < 2; ++c)
             {
               const auto row = nodes[j].dofs[c];
-              AssertThrow(!slave.constraints().is_constrained(row),
+              // (Nodes beyond the master's edge never touch: they may be
+              // supported, their rows stay those of K^1.)
+              AssertThrow(!mortar.is_covered(j) ||
+                            !slave.constraints().is_constrained(row),
                           ExcMessage("A contact node of body 1 at (" +
                                      std::to_string(nodes[j].position[0]) +
                                      ", " +
@@ -203,7 +206,14 @@ namespace coulomb_adapt
     matrix.reinit(owned, owned, dsp, mpi_communicator);
     rhs.reinit(owned, mpi_communicator);
 
-    states.assign(n_slave, {});
+    // The states (sets and slip history) persist from one load step to the
+    // next on the same mesh.
+    const bool first_step = states.size() != n_slave;
+    if (first_step)
+      {
+        states.assign(n_slave, {});
+        previous_weighted_slip.assign(n_slave, 0.);
+      }
     for (unsigned int j = 0; j < n_slave; ++j)
       {
         states[j].position = nodes[j].position;
@@ -211,6 +221,8 @@ namespace coulomb_adapt
         states[j].tangent  = nodes[j].tangent;
         states[j].weight   = D[j];
       }
+    if (first_step)
+      initialize_sets();
   }
 
 
@@ -399,8 +411,9 @@ namespace coulomb_adapt
         else
           {
             add_jump_row(row_x, n, gaps[j]);
+            // Stick: no tangential slip in this load step.
             if (status == ContactStatus::stick)
-              add_jump_row(row_y, t, 0.);
+              add_jump_row(row_y, t, previous_weighted_slip[j]);
             else
               add_traction_row(row_y, t - mu * states[j].slip_sign * n);
           }
@@ -459,7 +472,7 @@ namespace coulomb_adapt
             double          Ku = 0;
             for (unsigned int e = 0; e < k.columns.size(); ++e)
               Ku += k.values[e] * u1(k.columns[e]);
-            lambda[c] = (k.rhs - Ku) / D[j];
+            lambda[c] = mortar.is_covered(j) ? (k.rhs - Ku) / D[j] : 0.;
           }
         slave_packed.insert(slave_packed.end(),
                             {double(j),
@@ -523,7 +536,8 @@ namespace coulomb_adapt
           status = ContactStatus::slip;
         else
           {
-            const double trial = s.tangential_traction + c * s.slip;
+            const double trial =
+              s.tangential_traction + c * slip_increment(j);
             if (std::abs(trial) < mu * normal)
               status = ContactStatus::stick;
             else
@@ -566,7 +580,7 @@ namespace coulomb_adapt
           continue; // no contact possible: lambda_j = 0 by construction
         const double C_n    = s.pressure - std::max(0., normal);
         residual            = std::max(residual, std::abs(C_n) / p);
-        const double trial  = s.tangential_traction + c * s.slip;
+        const double trial  = s.tangential_traction + c * slip_increment(j);
         const double C_t =
           (mu == 0) ? s.tangential_traction * p :
                       std::max(mu * normal, std::abs(trial)) *
@@ -575,6 +589,14 @@ namespace coulomb_adapt
         residual = std::max(residual, std::abs(C_t) / (p * p));
       }
     return residual;
+  }
+
+
+
+  double
+  ContactSolver::slip_increment(const unsigned int j) const
+  {
+    return states[j].slip - previous_weighted_slip[j] / states[j].weight;
   }
 
 
@@ -597,7 +619,6 @@ namespace coulomb_adapt
   ContactSolver::solve()
   {
     setup();
-    initialize_sets();
 
     ContactSolverReport report;
     report.frictionless = (mu == 0);
@@ -725,6 +746,9 @@ namespace coulomb_adapt
             << states[changed_nodes.back()[i]].position[1] << ")";
         AssertThrow(false, ExcMessage(s.str()));
       }
+
+    for (unsigned int j = 0; j < states.size(); ++j)
+      previous_weighted_slip[j] = states[j].slip * states[j].weight;
 
     for (const auto &s : states)
       {

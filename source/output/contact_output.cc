@@ -19,7 +19,8 @@ namespace coulomb_adapt
 
   void
   ContactOutput::write(const std::vector<ContactNodeState> &states,
-                       const unsigned int                   cycle)
+                       const unsigned int                   cycle,
+                       const bool                           write_vtu)
   {
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
@@ -37,6 +38,9 @@ namespace coulomb_adapt
             << ',' << s.tangential_traction << ',' << s.gap << ',' << s.slip
             << ',' << to_string(s.status) << '\n';
     }
+
+    if (!write_vtu)
+      return;
 
     // One 1D patch per pair of consecutive slave nodes (the nodes are
     // sorted along the interface).

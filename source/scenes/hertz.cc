@@ -72,19 +72,61 @@ namespace coulomb_adapt
         prm.leave_subsection();
       }
       prm.leave_subsection();
+
+      prm.enter_subsection("Cattaneo");
+      {
+        prm.declare_entry("Normal displacement",
+                          "0.044",
+                          Patterns::Double(0),
+                          "Downward displacement of the disc's top (mm), "
+                          "imposed in load step 1 by a rigid holder that "
+                          "keeps the disc from rotating. The default gives "
+                          "a normal load P' of about 1000 N/mm with the "
+                          "Hertz defaults; the solver reports P' and Q as "
+                          "the contact force.");
+        prm.declare_entry("Tangential displacement",
+                          "0.011",
+                          Patterns::Double(),
+                          "Sideways displacement of the disc's top (mm) at "
+                          "the end of the load path, reached in "
+                          "'Tangential load steps' equal steps after the "
+                          "normal one. The default gives Q of about "
+                          "0.6 mu P' for mu = 0.3.");
+        prm.declare_entry("Tangential load steps",
+                          "5",
+                          Patterns::Integer(1, 1000),
+                          "Number of quasi-static steps in which the "
+                          "tangential load grows to Q.");
+      }
+      prm.leave_subsection();
     }
 
 
 
-    Hertz::Hertz(ParameterHandler &prm, const PlaneModel plane_model)
+    Hertz::Hertz(ParameterHandler &prm,
+                 const PlaneModel  plane_model,
+                 const bool        cattaneo)
       : plane_model(plane_model)
+      , cattaneo(cattaneo)
+      , normal_displacement(0)
+      , tangential_displacement(0)
+      , n_tangential_steps(0)
     {
+      if (cattaneo)
+        {
+          prm.enter_subsection("Cattaneo");
+          normal_displacement     = prm.get_double("Normal displacement");
+          tangential_displacement = prm.get_double("Tangential displacement");
+          n_tangential_steps = prm.get_integer("Tangential load steps");
+          prm.leave_subsection();
+        }
       prm.enter_subsection("Hertz");
       {
         const std::string path = "Scene/Hertz";
         radius                 = prm.get_double("Radius");
         line_load              = prm.get_double("Line load");
-        hold_axis              = prm.get_bool("Hold axis");
+        // A tangential load must not be carried by a support on the axis.
+        hold_axis = prm.get_bool("Hold axis") && !cattaneo;
         block_width            = prm.get_double("Block width");
         block_height           = prm.get_double("Block height");
         block_subdivisions =
@@ -107,8 +149,28 @@ namespace coulomb_adapt
     std::string
     Hertz::name() const
     {
-      return "hertz";
+      return cattaneo ? "cattaneo" : "hertz";
     }
+
+
+
+    unsigned int
+    Hertz::n_load_steps() const
+    {
+      return 1 + n_tangential_steps;
+    }
+
+
+
+    void
+    Hertz::set_load_step(const unsigned int step) const
+    {
+      tangential_fraction =
+        n_tangential_steps == 0 ? 0. : double(step - 1) / n_tangential_steps;
+    }
+
+
+
 
 
 
@@ -260,12 +322,26 @@ namespace coulomb_adapt
       if (body == 0)
         {
           d.name         = "half disc";
-          const double t = line_load / (2. * radius);
-          d.tractions.push_back(
-            {boundary_ids::traction,
-             [t](const Point<2> &, const Tensor<1, 2> &) {
-               return Tensor<1, 2>({0., -t});
-             }});
+          if (cattaneo)
+            // The disc's top is moved by a rigid holder: down by the normal
+            // displacement, then sideways in steps. The holder keeps the
+            // disc from rotating (a shear load on its free top would tip it
+            // over: its moment Q R dwarfs what the contact zone resists).
+            d.dirichlet.push_back(
+              {boundary_ids::traction,
+               ComponentMask(2, true),
+               std::make_shared<FunctionFromFunctionObjects<2>>(
+                 std::vector<std::function<double(const Point<2> &)>>{
+                   [this](const Point<2> &) {
+                     return tangential_fraction * tangential_displacement;
+                   },
+                   [this](const Point<2> &) { return -normal_displacement; }})});
+          else
+            d.tractions.push_back(
+              {boundary_ids::traction,
+               [this](const Point<2> &, const Tensor<1, 2> &) {
+                 return Tensor<1, 2>({0., -line_load / (2. * radius)});
+               }});
           if (hold_axis)
             d.point_constraints.push_back(
               // The axis above the contact point (contact nodes stay free).

@@ -45,4 +45,18 @@ namespace coulomb_adapt
   void
   Scene::refine_initial_mesh(const unsigned int, Triangulation<2> &) const
   {}
+
+
+
+  unsigned int
+  Scene::n_load_steps() const
+  {
+    return 1;
+  }
+
+
+
+  void
+  Scene::set_load_step(const unsigned int) const
+  {}
 } // namespace coulomb_adapt

@@ -13,7 +13,7 @@ namespace coulomb_adapt
     std::string
     scene_names()
     {
-      return "blocks|patch|hertz|punch|gmsh|manufactured";
+      return "blocks|patch|hertz|cattaneo|punch|gmsh|manufactured";
     }
 
 
@@ -46,6 +46,8 @@ namespace coulomb_adapt
             scene = std::make_unique<Patch>(prm, model);
           else if (name == "hertz")
             scene = std::make_unique<Hertz>(prm, model);
+          else if (name == "cattaneo")
+            scene = std::make_unique<Hertz>(prm, model, true);
           else if (name == "punch")
             scene = std::make_unique<Punch>(prm, model);
           else if (name == "gmsh")

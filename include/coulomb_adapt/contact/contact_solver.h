@@ -69,7 +69,7 @@ namespace coulomb_adapt
    * direction) fixed, the conditions are linear:
    *
    *   open:  lambda_j = 0
-   *   stick: g~_j = 0,  (D u^1 - M u^2)_j . t_j = 0
+   *   stick: g~_j = 0,  (D u^1 - M u^2)_j . t_j = (its previous value)
    *   slip:  g~_j = 0,  lambda_t,j = mu s_j lambda_n,j
    *
    * and the multipliers are condensed: the dual basis makes D diagonal, so
@@ -92,9 +92,13 @@ namespace coulomb_adapt
                   const parameters::LinearSolver &solver_parameters,
                   const ConditionalOStream &      pcout);
 
-    /** Solve; the bodies' solutions are set. Throws with a diagnosis when
-     * the iteration does not converge. The bodies' systems must be
-     * assembled. */
+    /** Solve one load step; the bodies' solutions are set. Throws with a
+     * diagnosis when the iteration does not converge. The bodies' systems
+     * must be assembled (with the loads of this step). Called again for
+     * the next load step on the same meshes, it starts from the sets of
+     * the previous step, and stick means no slip *in this step*: the
+     * quasi-static, incremental form of Coulomb's law. A single call is the
+     * static problem of the seed. */
     ContactSolverReport
     solve();
 
@@ -131,6 +135,9 @@ namespace coulomb_adapt
     complementarity_residual() const;
     std::string
     set_signature() const;
+    /** Tangential slip of node j in the current load step (mm). */
+    double
+    slip_increment(const unsigned int j) const;
 
     ElasticBody &                    slave;
     ElasticBody &                    master;
@@ -158,6 +165,8 @@ namespace coulomb_adapt
     TrilinosWrappers::MPI::Vector    rhs;
 
     std::vector<ContactNodeState>    states;
+    /** Weighted tangential jump at the end of the previous load step. */
+    std::vector<double>              previous_weighted_slip;
   };
 } // namespace coulomb_adapt
 

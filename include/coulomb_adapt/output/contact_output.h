@@ -22,9 +22,11 @@ namespace coulomb_adapt
   public:
     ContactOutput(const std::string &directory, const MPI_Comm comm);
 
+    /** Write the CSV, and with @p write_vtu the VTU and PVD record. */
     void
     write(const std::vector<ContactNodeState> &states,
-          const unsigned int                   cycle);
+          const unsigned int                   cycle,
+          const bool                           write_vtu);
 
   private:
     const std::string                           directory;

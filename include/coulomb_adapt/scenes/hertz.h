@@ -19,6 +19,12 @@ namespace coulomb_adapt
      * a = sqrt(4 P' R / (pi E*)) is resolved (`Contact mesh size`):
      * quadrilaterals by local refinement (hanging nodes), triangles by a
      * gmsh size field. Keep a << R, L, H.
+     *
+     * The scene `cattaneo` (Cattaneo-Mindlin) is this geometry loaded
+     * through a rigid holder on the disc's top (which keeps the disc from
+     * rotating): load step 1 pushes it down, steps 2 ... N+1 move it
+     * sideways. P' and Q are the resulting contact force; for Q < mu P' the
+     * stick zone shrinks to |x| < c = a sqrt(1 - Q / (mu P')).
      */
     class Hertz : public Scene
     {
@@ -26,7 +32,11 @@ namespace coulomb_adapt
       static void
       declare_parameters(ParameterHandler &prm);
 
-      Hertz(ParameterHandler &prm, const PlaneModel plane_model);
+      /** With @p cattaneo, the scene `cattaneo`: the same geometry, then a
+       * tangential load after the normal one (subsection `Cattaneo`). */
+      Hertz(ParameterHandler &prm,
+            const PlaneModel  plane_model,
+            const bool        cattaneo = false);
 
       std::string
       name() const override;
@@ -42,6 +52,12 @@ namespace coulomb_adapt
 
       BodyDescription
       describe_body(const unsigned int body) const override;
+
+      unsigned int
+      n_load_steps() const override;
+
+      void
+      set_load_step(const unsigned int step) const override;
 
       /** Hertz's contact half-width a (mm). */
       double
@@ -64,6 +80,12 @@ namespace coulomb_adapt
       double                    radius;
       double                    line_load;
       bool                      hold_axis;
+      bool                      cattaneo;
+      double                    normal_displacement;
+      double                    tangential_displacement;
+      unsigned int              n_tangential_steps;
+      /** Fraction of the tangential displacement applied in this step. */
+      mutable double            tangential_fraction = 0;
       double                    block_width, block_height;
       std::vector<unsigned int> block_subdivisions;
       double                    contact_mesh_factor;

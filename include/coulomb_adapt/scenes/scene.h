@@ -118,6 +118,16 @@ namespace coulomb_adapt
 
     virtual BodyDescription
     describe_body(const unsigned int body) const = 0;
+
+    /** Number of load steps of the scene's quasi-static load path; 1 (the
+     * default) is the static problem. */
+    virtual unsigned int
+    n_load_steps() const;
+
+    /** Put the loads of step @p step (1 ... n_load_steps()) in place: the
+     * traction functions of describe_body() follow it. */
+    virtual void
+    set_load_step(const unsigned int step) const;
   };
 } // namespace coulomb_adapt
 
