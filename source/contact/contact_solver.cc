@@ -581,12 +581,15 @@ namespace coulomb_adapt
         const double C_n    = s.pressure - std::max(0., normal);
         residual            = std::max(residual, std::abs(C_n) / p);
         const double trial  = s.tangential_traction + c * slip_increment(j);
+        // C_t is homogeneous of degree 2 in (lambda, c u): scale it by p
+        // and by the size of its trial traction.
         const double C_t =
           (mu == 0) ? s.tangential_traction * p :
                       std::max(mu * normal, std::abs(trial)) *
                           s.tangential_traction -
                         mu * std::max(0., normal) * trial;
-        residual = std::max(residual, std::abs(C_t) / (p * p));
+        residual = std::max(residual,
+                            std::abs(C_t) / (p * std::max(p, std::abs(trial))));
       }
     return residual;
   }
@@ -695,9 +698,9 @@ namespace coulomb_adapt
                     ExcMessage("The contact sets have converged after " +
                                std::to_string(k) +
                                " Newton steps, but the complementarity "
-                               "residual " + std::to_string(residual) +
+                               "residual " + Utilities::to_string(residual) +
                                " stays above the tolerance " +
-                               std::to_string(contact_parameters.tolerance) +
+                               Utilities::to_string(contact_parameters.tolerance) +
                                ": the linear solver is not accurate enough "
                                "for it (ill-conditioned system?). Relax "
                                "'Contact/Tolerance' or check the data."));

@@ -29,6 +29,12 @@ namespace coulomb_adapt
         prm.declare_entry("Pressure", "1", Patterns::Double(0),
                           "Uniform pressure on top of the upper block "
                           "(MPa).");
+        prm.declare_entry("Shear traction", "0", Patterns::Double(),
+                          "Uniform tangential traction (+x) on top of the "
+                          "upper block (MPa): a block pushed sideways. "
+                          "Beyond mu times the pressure the block slides "
+                          "(and the static problem has no equilibrium "
+                          "unless 'Hold upper body' holds it).");
         prm.declare_entry("Hold upper body",
                           "true",
                           Patterns::Bool(),
@@ -60,6 +66,7 @@ namespace coulomb_adapt
         subdivisions[1] = get_subdivisions(prm, "Lower body subdivisions", path);
         pressure        = prm.get_double("Pressure");
         hold_upper_body = prm.get_bool("Hold upper body");
+        shear_traction  = prm.get_double("Shear traction");
         for (unsigned int b = 0; b < 2; ++b)
           {
             const std::string body = "Body " + std::to_string(b + 1);
@@ -114,11 +121,11 @@ namespace coulomb_adapt
       if (body == 0)
         {
           d.name         = "upper block";
-          const double p = pressure;
+          const double p = pressure, tau = shear_traction;
           d.tractions.push_back(
             {boundary_ids::traction,
-             [p](const Point<2> &, const Tensor<1, 2> &) {
-               return Tensor<1, 2>({0., -p});
+             [p, tau](const Point<2> &, const Tensor<1, 2> &) {
+               return Tensor<1, 2>({tau, -p});
              }});
           if (hold_upper_body)
             d.point_constraints.push_back(

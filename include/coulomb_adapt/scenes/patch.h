@@ -39,6 +39,7 @@ namespace coulomb_adapt
       std::vector<unsigned int> subdivisions[2];
       double                    pressure;
       bool                      hold_upper_body;
+      double                    shear_traction;
       MaterialConstants         materials[2];
     };
   } // namespace scenes
