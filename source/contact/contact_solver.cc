@@ -2,6 +2,7 @@
 #include <deal.II/base/timer.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_control.h>
 
 #include <Epetra_CrsMatrix.h>
 
@@ -402,20 +403,26 @@ namespace coulomb_adapt
           add_row(row, right_hand_side);
         };
 
-        const auto row_x = nodes[j].dofs[0], row_y = nodes[j].dofs[1];
+        // The normal condition goes into the row of the displacement
+        // component most aligned with n, so that it has a large diagonal
+        // entry (pivoting, iterative solvers).
+        const unsigned int normal_component =
+          std::abs(n[1]) >= std::abs(n[0]) ? 1 : 0;
+        const auto row_n = nodes[j].dofs[normal_component];
+        const auto row_t = nodes[j].dofs[1 - normal_component];
         if (status == ContactStatus::open)
           {
-            add_traction_row(row_x, Tensor<1, 2>({1., 0.}));
-            add_traction_row(row_y, Tensor<1, 2>({0., 1.}));
+            add_traction_row(nodes[j].dofs[0], Tensor<1, 2>({1., 0.}));
+            add_traction_row(nodes[j].dofs[1], Tensor<1, 2>({0., 1.}));
           }
         else
           {
-            add_jump_row(row_x, n, gaps[j]);
+            add_jump_row(row_n, n, gaps[j]);
             // Stick: no tangential slip in this load step.
             if (status == ContactStatus::stick)
-              add_jump_row(row_y, t, previous_weighted_slip[j]);
+              add_jump_row(row_t, t, previous_weighted_slip[j]);
             else
-              add_traction_row(row_y, t - mu * states[j].slip_sign * n);
+              add_traction_row(row_t, t - mu * states[j].slip_sign * n);
           }
       }
     matrix.compress(VectorOperation::add);
@@ -428,10 +435,20 @@ namespace coulomb_adapt
   ContactSolver::solve_newton_system()
   {
     TrilinosWrappers::MPI::Vector solution(owned, mpi_communicator);
-    parameters::LinearSolver      settings = solver_parameters;
-    // The condensed contact system is not symmetric: no CG.
-    settings.type = "direct";
-    solve_linear_system(matrix, solution, rhs, {}, settings);
+    // The condensed contact system is not symmetric. 'auto' solves it
+    // directly at every size: GMRES + AMG (Type = amg) needs many
+    // iterations on the rows the contact conditions replace, and an
+    // inexact solve can make the active set iteration cycle, so it is only
+    // used on request (experimental; see doc/contact.md).
+    parameters::LinearSolver settings = solver_parameters;
+    if (settings.type == "auto")
+      settings.type = "direct";
+    last_linear_solve = solve_linear_system(matrix,
+                                            solution,
+                                            rhs,
+                                            rigid_body_modes(),
+                                            settings,
+                                            /*symmetric=*/false);
 
     TrilinosWrappers::MPI::Vector u1(slave.locally_owned_dof_set(),
                                      mpi_communicator);
@@ -618,6 +635,28 @@ namespace coulomb_adapt
 
 
 
+  // Near null space of the combined system for AMG: the rigid modes of
+  // each body, zero on the other.
+  std::vector<std::vector<double>>
+  ContactSolver::rigid_body_modes() const
+  {
+    const auto modes_1 = slave.rigid_body_modes();
+    const auto modes_2 = master.rigid_body_modes();
+    std::vector<std::vector<double>> modes(6);
+    for (unsigned int m = 0; m < 3; ++m)
+      {
+        modes[m] = modes_1[m];
+        modes[m].resize(modes_1[m].size() + modes_2[m].size(), 0.);
+        modes[3 + m].assign(modes_1[m].size(), 0.);
+        modes[3 + m].insert(modes[3 + m].end(),
+                            modes_2[m].begin(),
+                            modes_2[m].end());
+      }
+    return modes;
+  }
+
+
+
   ContactSolverReport
   ContactSolver::solve()
   {
@@ -639,6 +678,18 @@ namespace coulomb_adapt
         try
           {
             solve_newton_system();
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            AssertThrow(false,
+                        ExcMessage(
+                          "Newton step " + std::to_string(k) +
+                          ": the iterative linear solver did not converge (" +
+                          std::to_string(e.last_step) +
+                          " iterations, residual " +
+                          Utilities::to_string(e.last_residual) +
+                          "). Use 'Linear solver/Type = direct' for the "
+                          "contact system."));
           }
         catch (const std::exception &e)
           {

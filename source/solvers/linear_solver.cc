@@ -1,4 +1,5 @@
 #include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
@@ -32,10 +33,11 @@ namespace coulomb_adapt
               TrilinosWrappers::MPI::Vector &         x,
               const TrilinosWrappers::MPI::Vector &   b,
               const std::vector<std::vector<double>> &near_null_space,
-              const parameters::LinearSolver &        settings)
+              const parameters::LinearSolver &        settings,
+              const bool                              symmetric)
     {
       TrilinosWrappers::PreconditionAMG::AdditionalData data;
-      data.elliptic              = true;
+      data.elliptic              = symmetric;
       data.higher_order_elements = false;
       data.smoother_sweeps       = 2;
       data.aggregation_threshold = 0.02;
@@ -68,9 +70,17 @@ namespace coulomb_adapt
 
       SolverControl control(settings.max_iterations,
                             settings.relative_tolerance * b.l2_norm());
-      SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-      cg.solve(A, x, b, amg);
-      return {"cg+amg", control.last_step()};
+      if (symmetric)
+        {
+          SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+          cg.solve(A, x, b, amg);
+          return {"cg+amg", control.last_step()};
+        }
+      SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+        control,
+        SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(100));
+      gmres.solve(A, x, b, amg);
+      return {"gmres+amg", control.last_step()};
     }
   } // namespace
 
@@ -81,13 +91,14 @@ namespace coulomb_adapt
                       TrilinosWrappers::MPI::Vector &         x,
                       const TrilinosWrappers::MPI::Vector &   b,
                       const std::vector<std::vector<double>> &near_null_space,
-                      const parameters::LinearSolver &        settings)
+                      const parameters::LinearSolver &        settings,
+                      const bool                              symmetric)
   {
     const bool direct =
       settings.type == "direct" ||
       (settings.type == "auto" && A.m() <= settings.max_dofs_for_direct);
     if (direct)
       return solve_direct(A, x, b, settings.direct_solver);
-    return solve_amg(A, x, b, near_null_space, settings);
+    return solve_amg(A, x, b, near_null_space, settings, symmetric);
   }
 } // namespace coulomb_adapt

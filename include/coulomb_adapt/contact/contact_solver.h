@@ -9,6 +9,7 @@
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/mortar_interface.h>
 #include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/solvers/linear_solver.h>
 
 #include <array>
 #include <string>
@@ -123,6 +124,8 @@ namespace coulomb_adapt
     initialize_sets();
     void
     check_support(const unsigned int step) const;
+    std::vector<std::vector<double>>
+    rigid_body_modes() const;
     void
     assemble_newton_system();
     void
@@ -162,6 +165,7 @@ namespace coulomb_adapt
     double                           row_scale;
 
     TrilinosWrappers::SparseMatrix   matrix;
+    LinearSolverReport               last_linear_solve;
     TrilinosWrappers::MPI::Vector    rhs;
 
     std::vector<ContactNodeState>    states;

@@ -14,17 +14,19 @@ namespace coulomb_adapt
   /** What a linear solve did, for the log and summary.json. */
   struct LinearSolverReport
   {
-    /** "direct (Amesos_Mumps)" or "cg+amg". */
+    /** "direct (Amesos_Mumps)", "cg+amg" or "gmres+amg". */
     std::string  method;
     unsigned int n_iterations = 0;
   };
 
   /**
-   * Solve the symmetric positive definite system A x = b.
+   * Solve A x = b: symmetric positive definite (elasticity) or, with
+   * @p symmetric false, a general system (the condensed contact system).
    *
    * Small systems go to a sparse direct solver (Trilinos Amesos, which
-   * gathers the matrix in parallel); large ones to CG preconditioned by ML
-   * algebraic multigrid, whose near null space is given the rigid body
+   * gathers the matrix in parallel); large ones to CG (GMRES if not
+   * symmetric) preconditioned by ML algebraic multigrid, whose near null
+   * space is given the rigid body
    * modes of elasticity (@p near_null_space, one vector of locally owned
    * values per mode): with only the translations, aggregation-based AMG
    * converges much more slowly on elasticity.
@@ -36,7 +38,8 @@ namespace coulomb_adapt
                       TrilinosWrappers::MPI::Vector &         x,
                       const TrilinosWrappers::MPI::Vector &   b,
                       const std::vector<std::vector<double>> &near_null_space,
-                      const parameters::LinearSolver &        settings);
+                      const parameters::LinearSolver &        settings,
+                      const bool                              symmetric = true);
 } // namespace coulomb_adapt
 
 #endif
