@@ -30,6 +30,10 @@ namespace coulomb_adapt
       parameters.output.directory + "/summary.json",
       scene->name(),
       parameter_file);
+    if (!scene->reference_values().empty())
+      summary->set("reference", scene->reference_values());
+    summary->set("friction_coefficient",
+                 parameters.contact.friction_coefficient);
   }
 
 

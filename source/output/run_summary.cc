@@ -26,6 +26,15 @@ namespace coulomb_adapt
 
 
   void
+  RunSummary::set(const std::string &key, const nlohmann::json &value)
+  {
+    summary[key] = value;
+    write();
+  }
+
+
+
+  void
   RunSummary::add_cycle(const nlohmann::json &cycle)
   {
     summary["cycles"].push_back(cycle);

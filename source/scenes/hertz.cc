@@ -154,6 +154,17 @@ namespace coulomb_adapt
 
 
 
+    std::map<std::string, double>
+    Hertz::reference_values() const
+    {
+      return {{"hertz_half_width", contact_half_width()},
+              {"hertz_peak_pressure", peak_pressure()},
+              {"line_load", line_load},
+              {"radius", radius}};
+    }
+
+
+
     unsigned int
     Hertz::n_load_steps() const
     {

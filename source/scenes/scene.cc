@@ -48,6 +48,14 @@ namespace coulomb_adapt
 
 
 
+  std::map<std::string, double>
+  Scene::reference_values() const
+  {
+    return {};
+  }
+
+
+
   unsigned int
   Scene::n_load_steps() const
   {

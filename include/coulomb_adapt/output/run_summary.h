@@ -23,6 +23,10 @@ namespace coulomb_adapt
                const std::string &scene,
                const std::string &parameter_file);
 
+    /** Set a top-level entry and rewrite the file. */
+    void
+    set(const std::string &key, const nlohmann::json &value);
+
     /** Append a cycle's record and rewrite the file. */
     void
     add_cycle(const nlohmann::json &cycle);

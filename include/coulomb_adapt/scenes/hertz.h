@@ -53,6 +53,11 @@ namespace coulomb_adapt
       BodyDescription
       describe_body(const unsigned int body) const override;
 
+      /** hertz_half_width a, hertz_peak_pressure p0, line_load P',
+       * radius R, friction_coefficient is not known here. */
+      std::map<std::string, double>
+      reference_values() const override;
+
       unsigned int
       n_load_steps() const override;
 

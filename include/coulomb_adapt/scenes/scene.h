@@ -13,6 +13,7 @@
 #include <coulomb_adapt/core/parameters.h>
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -118,6 +119,12 @@ namespace coulomb_adapt
 
     virtual BodyDescription
     describe_body(const unsigned int body) const = 0;
+
+    /** Analytic reference values the scene knows (e.g. Hertz's a and p0),
+     * by name; written to summary.json for plots and comparisons.
+     * Default: none. */
+    virtual std::map<std::string, double>
+    reference_values() const;
 
     /** Number of load steps of the scene's quasi-static load path; 1 (the
      * default) is the static problem. */
