@@ -124,6 +124,10 @@ namespace coulomb_adapt
       }
     report.newton_iterations = total_newton_iterations;
     cycle_record["load_steps"] = n_steps;
+    cycle_record["linear_solver"] = {
+      {{"method", contact_solver->last_linear_solver_report().method},
+       {"iterations",
+        contact_solver->last_linear_solver_report().n_iterations}}};
     pcout << "  contact: " << report.newton_iterations
           << " Newton steps, " << report.n_active << " active nodes, "
           << "contact force (" << report.contact_force[0] << ", "
@@ -156,10 +160,8 @@ namespace coulomb_adapt
                       "Body " + std::to_string(b + 1) + " (" + body.name() +
                       ") of scene '" + scene->name() +
                       "' has no Dirichlet support that holds its rigid body "
-                      "motions: it is held only through contact, which this "
-                      "version of coulomb-adapt does not solve yet. Run a "
-                      "scene whose bodies are both supported (e.g. "
-                      "'manufactured')."));
+                      "motions, and the scene has no contact zone that "
+                      "could hold it."));
         Timer                    timer;
         const LinearSolverReport report = body.solve(parameters.linear_solver);
         timer.stop();

@@ -286,9 +286,9 @@ namespace coulomb_adapt
             where +
             (mu == 0 ?
                "can slide freely along the frictionless interface: nothing "
-               "holds it tangentially. Hold it with the scene's symmetry "
-               "option (e.g. 'Hold centre line' / 'Hold axis') or use "
-               "friction." :
+               "holds it tangentially. Hold it with the scene's hold option "
+               "(blocks, punch: 'Hold centre line'; hertz: 'Hold axis'; "
+               "patch: 'Hold upper body') or use friction." :
                "slides: every active contact node slips (the tangential "
                "load exceeds mu times the normal load?) and no Dirichlet "
                "data hold it tangentially, so the static problem has no "
@@ -780,7 +780,12 @@ namespace coulomb_adapt
                            << states[changed[i]].position[1] << ") ";
                        return s.str();
                      }() +
-                     ". Try another 'Contact/Complementarity scale'."));
+                     ". Try another 'Contact/Complementarity scale'" +
+                     (solver_parameters.type == "amg" ?
+                        ", or 'Linear solver/Type = direct' (an inexact "
+                        "iterative solve can make the sets cycle)" :
+                        std::string()) +
+                     "."));
         history.push_back(after);
       }
 
@@ -812,6 +817,14 @@ namespace coulomb_adapt
           std::max(report.max_contact_pressure, s.pressure);
       }
     return report;
+  }
+
+
+
+  const LinearSolverReport &
+  ContactSolver::last_linear_solver_report() const
+  {
+    return last_linear_solve;
   }
 
 

@@ -127,10 +127,14 @@ namespace coulomb_adapt
                           "auto",
                           Patterns::Selection("auto|direct|amg"),
                           "direct: sparse direct factorisation (Trilinos "
-                          "Amesos). amg: conjugate gradients preconditioned "
-                          "by ML algebraic multigrid with the rigid body "
-                          "modes as near null space. auto: direct up to "
-                          "'Maximum DoFs for direct', amg above.");
+                          "Amesos). amg: Krylov solver preconditioned by ML "
+                          "algebraic multigrid with the rigid body modes as "
+                          "near null space: CG for elasticity, GMRES for the "
+                          "non-symmetric contact system (experimental: it "
+                          "may fail to converge there). auto: for "
+                          "elasticity direct up to 'Maximum DoFs for "
+                          "direct' and amg above; for contact always "
+                          "direct.");
         prm.declare_entry("Maximum DoFs for direct",
                           "200000",
                           Patterns::Integer(0),

@@ -124,7 +124,11 @@ namespace coulomb_adapt
              }});
           if (hold_centre_line)
             d.point_constraints.push_back(
-              {[](const Point<2> &x) { return std::abs(x[0] - 100.) < 1e-8; },
+              // The centre line above the contact face (contact nodes stay
+              // free).
+              {[](const Point<2> &x) {
+                 return std::abs(x[0] - 100.) < 1e-8 && x[1] > 200. + 1e-8;
+               },
                ComponentMask(std::vector<bool>{true, false})});
         }
       else

@@ -103,6 +103,10 @@ namespace coulomb_adapt
     ContactSolverReport
     solve();
 
+    /** The last linear solve of the Newton iteration. */
+    const LinearSolverReport &
+    last_linear_solver_report() const;
+
     const std::vector<ContactNodeState> &
     node_states() const;
 
