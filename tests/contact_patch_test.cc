@@ -1,5 +1,5 @@
 // Contact patch test (theory.md section 6) on non-matching meshes (3 upper
-// vs 10 lower cells across the interface, ratio 1:3.3), Q1 and P1:
+// vs 10 lower cells across the interface, ratio 1:3.3), Q1, P1, Q2, P2:
 //  - same material, mu = 0 and mu = 0.3: the contact pressure equals the
 //    applied pressure p at every slave node (1e-8 relative);
 //  - mu = 0.3 and different nu on the two bodies (the upper block then
@@ -17,12 +17,14 @@ main(int argc, char *argv[])
   auto                             out = testing::root_output();
   const double                     p = 2.5, width = 10;
 
+  for (const std::string degree : {"1", "2"})
   for (const std::string cell_type : {"quadrilateral", "triangle"})
     for (const std::string mu : {"0", "0.3"})
       {
         const auto problem = testing::solve_contact(
           {{"Scene/Name", "patch"},
            {"Mesh/Cell type", cell_type},
+           {"Finite elements/Polynomial degree", degree},
            {"Scene/Patch/Pressure", "2.5"},
            {"Scene/Patch/Upper body subdivisions", "3, 2"},
            {"Scene/Patch/Lower body subdivisions", "10, 4"},
@@ -30,7 +32,8 @@ main(int argc, char *argv[])
         double worst = 0;
         for (const auto &s : problem->solver->node_states())
           worst = std::max(worst, std::abs(s.pressure - p) / p);
-        out << "patch, " << cell_type << ", mu = " << mu << ": "
+        out << "patch, degree " << degree << ", " << cell_type
+            << ", mu = " << mu << ": "
             << problem->solver->node_states().size()
             << " slave nodes, all active: "
             << (problem->report.n_active ==

@@ -1,6 +1,7 @@
 // Mortar integrals on non-matching interfaces (theory.md section 2):
 //  - patch scene, 3 slave vs 10 master segments (quadrilaterals) and the
-//    same split into triangles: sum_j D_jj = interface length; every row
+//    same split into triangles, degrees 1 and 2 (three-node segments with
+//    the quadratic dual basis): sum_j D_jj = interface length; every row
 //    of M sums to D_jj (the master basis is a partition of unity); M
 //    reproduces linear master fields, (M u)_j = D_jj u(x_j); zero gap;
 //    normals (0, -1);
@@ -18,13 +19,14 @@
 using namespace coulomb_adapt;
 
 void
-check_patch(const std::string &cell_type)
+check_patch(const std::string &cell_type, const std::string &degree = "1")
 {
   ParameterHandler prm;
   const Parameters parameters = testing::make_parameters(
     prm,
     {{"Scene/Name", "patch"},
      {"Mesh/Cell type", cell_type},
+     {"Finite elements/Polynomial degree", degree},
      {"Scene/Patch/Upper body subdivisions", "3, 2"},
      {"Scene/Patch/Lower body subdivisions", "10, 4"}});
   const auto  scene = scenes::create_scene(parameters, prm);
@@ -68,7 +70,8 @@ check_patch(const std::string &cell_type)
         normal_error, (nodes[j].normal - Tensor<1, 2>({0., -1.})).norm());
     }
   auto out = testing::root_output();
-  out << "patch (" << cell_type << "): " << nodes.size() << " slave nodes, "
+  out << "patch (" << cell_type << ", degree " << degree
+      << "): " << nodes.size() << " slave nodes, "
       << interface.master_nodes().size() << " master nodes, sum D = "
       << std::setprecision(12) << sum_D << std::endl;
   out << "  rows of M sum to D: " << (row_error < 1e-13 ? "yes" : "no")
@@ -138,6 +141,8 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   check_patch("quadrilateral");
   check_patch("triangle");
+  check_patch("quadrilateral", "2");
+  check_patch("triangle", "2");
   check_hertz("quadrilateral");
   check_hertz("triangle");
 }

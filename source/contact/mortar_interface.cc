@@ -1,6 +1,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
+#include <deal.II/lac/full_matrix.h>
+
 #include <coulomb_adapt/contact/mortar_interface.h>
 
 #include <algorithm>
@@ -8,19 +10,73 @@
 
 namespace coulomb_adapt
 {
-  void
+  namespace
+  {
+    // Shape functions of a contact segment of degree 1 or 2 in the
+    // parameter xi in [0, 1] along its chord: the two end nodes, then (for
+    // degree 2) the middle node.
+    std::vector<double>
+    segment_shape_values(const unsigned int degree, const double xi)
+    {
+      if (degree == 1)
+        return {1 - xi, xi};
+      return {(1 - xi) * (1 - 2 * xi), xi * (2 * xi - 1), 4 * xi * (1 - xi)};
+    }
+
+    // int_segment phi_i / h: the diagonal of D on one segment.
+    std::vector<double>
+    segment_weights(const unsigned int degree)
+    {
+      if (degree == 1)
+        return {1. / 2, 1. / 2};
+      return {1. / 6, 1. / 6, 2. / 3};
+    }
+
+    // Wohlmuth's dual basis psi_i = sum_k A_ik phi_k, biorthogonal to the
+    // phi: int psi_i phi_k = delta_ik int phi_k. A = D_e M_e^-1 with the
+    // segment's mass matrix M_e and D_e = diag(int phi_i). For degree 1
+    // this is psi_a = 2 phi_a - phi_b.
+    FullMatrix<double>
+    dual_basis_coefficients(const unsigned int degree)
+    {
+      const unsigned int n = degree + 1;
+      FullMatrix<double> mass(n, n);
+      const QGauss<1>    gauss(degree + 1);
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        {
+          const auto phi = segment_shape_values(degree, gauss.point(q)[0]);
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int k = 0; k < n; ++k)
+              mass(i, k) += phi[i] * phi[k] * gauss.weight(q);
+        }
+      FullMatrix<double> inverse(n, n);
+      inverse.invert(mass);
+      const auto         w = segment_weights(degree);
+      FullMatrix<double> A(n, n);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int k = 0; k < n; ++k)
+          A(i, k) = w[i] * inverse(i, k);
+      return A;
+    }
+  } // namespace
+
+
+
+  unsigned int
   MortarInterface::collect_contact_boundary(const ElasticBody &   body,
                                             std::vector<Node> &   nodes,
                                             std::vector<Segment> &segments)
   {
     const DoFHandler<2> &dof_handler = body.dof_handler();
-    AssertThrow(dof_handler.get_fe().degree == 1,
-                ExcMessage("The mortar contact interface supports linear "
-                           "elements (Q1/P1) so far; set 'Finite "
-                           "elements/Polynomial degree = 1'."));
+    const unsigned int   degree      = dof_handler.get_fe().degree;
+    AssertThrow(degree <= 2,
+                ExcMessage("The mortar contact interface supports degrees 1 "
+                           "and 2."));
+    const unsigned int n_face_nodes = degree + 1;
     const types::boundary_id contact_id = body.description().contact_boundary_id;
 
-    // Per local contact face: 2 x (x, y, dof_x, dof_y) and the normal.
+    // Per local contact face: for each node (x, y, dof_x, dof_y), then the
+    // outward normal of the face's chord.
     std::vector<double> local;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -33,11 +89,21 @@ namespace coulomb_adapt
               if ((face->center() - cell->center()) * normal < 0)
                 normal = -normal;
               for (unsigned int v = 0; v < 2; ++v)
+                local.insert(local.end(),
+                             {face->vertex(v)[0],
+                              face->vertex(v)[1],
+                              double(face->vertex_dof_index(v, 0)),
+                              double(face->vertex_dof_index(v, 1))});
+              if (degree == 2)
                 {
-                  local.push_back(face->vertex(v)[0]);
-                  local.push_back(face->vertex(v)[1]);
-                  local.push_back(face->vertex_dof_index(v, 0));
-                  local.push_back(face->vertex_dof_index(v, 1));
+                  // The edge node, on the boundary's manifold (where the
+                  // element's mapping puts it).
+                  const Point<2> middle = face->center(true);
+                  local.insert(local.end(),
+                               {middle[0],
+                                middle[1],
+                                double(face->dof_index(0)),
+                                double(face->dof_index(1))});
                 }
               local.push_back(normal[0]);
               local.push_back(normal[1]);
@@ -48,25 +114,28 @@ namespace coulomb_adapt
     // Nodes are identified by their x DoF, and numbered in lexicographic
     // order of their positions, so that the numbering does not depend on
     // the number of ranks.
-    std::map<types::global_dof_index, Node> unique_nodes;
-    std::vector<std::array<types::global_dof_index, 2>> segment_dofs;
-    std::vector<Tensor<1, 2>>                             segment_normals;
+    const unsigned int record = 4 * n_face_nodes + 2;
+    std::map<types::global_dof_index, Node>           unique_nodes;
+    std::vector<std::vector<types::global_dof_index>> segment_dofs;
+    std::vector<Tensor<1, 2>>                         segment_normals;
     for (const auto &values : gathered)
-      for (std::size_t i = 0; i < values.size(); i += 10)
+      for (std::size_t i = 0; i < values.size(); i += record)
         {
-          std::array<types::global_dof_index, 2> ends;
-          for (unsigned int v = 0; v < 2; ++v)
+          std::vector<types::global_dof_index> face_nodes;
+          for (unsigned int v = 0; v < n_face_nodes; ++v)
             {
               Node node;
-              node.position = Point<2>(values[i + 4 * v], values[i + 4 * v + 1]);
-              node.dofs     = {{static_cast<types::global_dof_index>(values[i + 4 * v + 2]),
-                                static_cast<types::global_dof_index>(values[i + 4 * v + 3])}};
-              ends[v]       = node.dofs[0];
+              node.position =
+                Point<2>(values[i + 4 * v], values[i + 4 * v + 1]);
+              node.dofs = {
+                {static_cast<types::global_dof_index>(values[i + 4 * v + 2]),
+                 static_cast<types::global_dof_index>(values[i + 4 * v + 3])}};
+              face_nodes.push_back(node.dofs[0]);
               unique_nodes.emplace(node.dofs[0], node);
             }
-          segment_dofs.push_back(ends);
+          segment_dofs.push_back(face_nodes);
           segment_normals.emplace_back(
-            Tensor<1, 2>({values[i + 8], values[i + 9]}));
+            Tensor<1, 2>({values[i + record - 2], values[i + record - 1]}));
         }
 
     nodes.clear();
@@ -82,9 +151,13 @@ namespace coulomb_adapt
 
     segments.clear();
     for (unsigned int s = 0; s < segment_dofs.size(); ++s)
-      segments.push_back({{{index_of[segment_dofs[s][0]],
-                            index_of[segment_dofs[s][1]]}},
-                          segment_normals[s]});
+      {
+        Segment segment;
+        for (const auto dof : segment_dofs[s])
+          segment.nodes.push_back(index_of[dof]);
+        segment.normal = segment_normals[s];
+        segments.push_back(segment);
+      }
     // Segments in the order of their first node, for reproducible sums.
     std::sort(segments.begin(), segments.end(),
               [](const Segment &a, const Segment &b) {
@@ -103,6 +176,7 @@ namespace coulomb_adapt
         node.normal /= node.normal.norm();
         node.tangent = Tensor<1, 2>({-node.normal[1], node.normal[0]});
       }
+    return degree;
   }
 
 
@@ -111,21 +185,24 @@ namespace coulomb_adapt
   MortarInterface::reinit(const ElasticBody &slave_body,
                           const ElasticBody &master_body)
   {
-    collect_contact_boundary(slave_body, slave, slave_segments);
-    collect_contact_boundary(master_body, master, master_segments);
+    slave_degree  = collect_contact_boundary(slave_body, slave, slave_segments);
+    master_degree = collect_contact_boundary(master_body, master, master_segments);
+    dual_coefficients = dual_basis_coefficients(slave_degree);
 
     D.assign(slave.size(), 0.);
     M.assign(slave.size(), {});
     gaps.assign(slave.size(), 0.);
 
-    // D is diagonal with the dual basis: int psi_a phi_a = h / 2 on each
-    // adjacent segment.
+    // D is diagonal with the dual basis: D_jj = int phi_j (h / 2 at a
+    // vertex of a linear segment; h / 6 at a vertex and 2 h / 3 at the
+    // middle node of a quadratic one).
+    const auto weights = segment_weights(slave_degree);
     for (const auto &segment : slave_segments)
       {
         const double h = slave[segment.nodes[0]].position.distance(
           slave[segment.nodes[1]].position);
-        for (const unsigned int n : segment.nodes)
-          D[n] += h / 2;
+        for (unsigned int i = 0; i < segment.nodes.size(); ++i)
+          D[segment.nodes[i]] += weights[i] * h;
       }
 
     for (const auto &slave_segment : slave_segments)
@@ -164,7 +241,11 @@ namespace coulomb_adapt
     if (std::abs(det) < 1e-12 * cd.norm())
       return;
 
-    const QGauss<1> gauss(3);
+    // Exact for the products of the (dual) slave and master shape
+    // functions on straight segments.
+    const QGauss<1>    gauss(std::max(slave_degree, master_degree) + 2);
+    const unsigned int n_slave_nodes = slave_segment.nodes.size();
+    std::vector<double> psi(n_slave_nodes);
     for (unsigned int q = 0; q < gauss.size(); ++q)
       {
         const double   xi = begin + (end - begin) * gauss.point(q)[0];
@@ -175,12 +256,18 @@ namespace coulomb_adapt
         const double eta = (-r[0] * n[1] + r[1] * n[0]) / det;
         const double t   = (cd[0] * r[1] - cd[1] * r[0]) / det;
 
-        const double psi[2]      = {2 - 3 * xi, 3 * xi - 1};
-        const double phi_m[2]    = {1 - eta, eta};
-        for (unsigned int i = 0; i < 2; ++i)
+        const auto phi_s = segment_shape_values(slave_degree, xi);
+        const auto phi_m = segment_shape_values(master_degree, eta);
+        for (unsigned int i = 0; i < n_slave_nodes; ++i)
+          {
+            psi[i] = 0;
+            for (unsigned int k = 0; k < n_slave_nodes; ++k)
+              psi[i] += dual_coefficients(i, k) * phi_s[k];
+          }
+        for (unsigned int i = 0; i < n_slave_nodes; ++i)
           {
             const unsigned int j = slave_segment.nodes[i];
-            for (unsigned int k = 0; k < 2; ++k)
+            for (unsigned int k = 0; k < phi_m.size(); ++k)
               M[j][master_segment.nodes[k]] += psi[i] * phi_m[k] * w;
             gaps[j] += psi[i] * t * w;
           }

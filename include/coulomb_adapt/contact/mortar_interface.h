@@ -4,6 +4,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <deal.II/lac/full_matrix.h>
+
 #include <coulomb_adapt/bodies/elastic_body.h>
 
 #include <array>
@@ -15,11 +17,15 @@ namespace coulomb_adapt
   /**
    * The mortar discretisation of the contact interface between the slave
    * body (body 1, the upper one) and the master body (body 2), theory.md
-   * section 2, for linear elements (Q1 / P1), whose contact boundary is a
-   * polygon of two-node segments.
+   * section 2, for elements of degree 1 (Q1 / P1: two-node segments) and
+   * 2 (Q2 / P2: three-node segments, the middle node on the boundary's
+   * manifold; the integrals use the straight chord).
    *
    * The Lagrange multiplier lives on the slave nodes with Wohlmuth's dual
-   * basis, psi_a = 2 phi_a - phi_b on a slave segment [a, b], so that
+   * basis (psi_a = 2 phi_a - phi_b on a linear slave segment [a, b]; for
+   * quadratic segments psi = D_e M_e^-1 phi, which is well defined in 2D
+   * because every quadratic shape function has a positive integral), so
+   * that
    *
    *   D_jj = int psi_j phi_j = int phi_j        (diagonal)
    *   M_jl = int psi_j phi^2_l                  (master, on the overlaps)
@@ -85,13 +91,15 @@ namespace coulomb_adapt
   private:
     struct Segment
     {
-      /** Indices into the node list of the same side. */
-      std::array<unsigned int, 2> nodes;
+      /** Indices into the node list of the same side: the two ends, then
+       * (degree 2) the middle node. */
+      std::vector<unsigned int> nodes;
       /** Outward unit normal of the body at this segment. */
       Tensor<1, 2> normal;
     };
 
-    static void
+    /** Returns the degree of the body's elements. */
+    static unsigned int
     collect_contact_boundary(const ElasticBody &   body,
                              std::vector<Node> &   nodes,
                              std::vector<Segment> &segments);
@@ -107,6 +115,10 @@ namespace coulomb_adapt
     std::vector<double>                     D;
     std::vector<std::map<unsigned int, double>> M;
     std::vector<double>                     gaps;
+    unsigned int                            slave_degree  = 1;
+    unsigned int                            master_degree = 1;
+    /** Dual basis of the slave segments: psi_i = sum_k A_ik phi_k. */
+    FullMatrix<double>                      dual_coefficients;
   };
 } // namespace coulomb_adapt
 
