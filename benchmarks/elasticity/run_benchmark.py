@@ -23,6 +23,7 @@ import json
 import math
 import os
 import re
+import resource
 import shutil
 import statistics
 import subprocess
@@ -53,8 +54,18 @@ FIELDS = [
     "process_wall_s", "peak_memory_MiB", "peak_memory_total_MiB",
     "iterations_body1", "iterations_body2", "method",
     "rel_energy_error_body1", "rel_energy_error_body2", "loadavg_1min",
-    "version", "message",
+    "busy_cores_before", "other_cpu_s", "clean", "version", "message",
 ]
+
+# A run counts as 'clean' if the other processes on the machine used less
+# than this many CPU seconds per second of the run (plus a small allowance).
+CLEAN_OTHER_CPU_FRACTION = 0.1
+CLEAN_OTHER_CPU_ALLOWANCE_S = 0.05
+
+
+def is_clean(other_cpu_s, process_wall_s):
+    return other_cpu_s < (CLEAN_OTHER_CPU_FRACTION * process_wall_s +
+                          CLEAN_OTHER_CPU_ALLOWANCE_S)
 
 SOLVE_LINE = re.compile(
     r"^\s*(?P<body>.+?): solved by (?P<method>.+?)"
@@ -66,6 +77,73 @@ def expected_dofs(subdivisions, refinements):
     return 4 * (n + 1) ** 2
 
 
+def busy_jiffies():
+    """CPU time (all cores) spent non-idle since boot, in seconds."""
+    with open("/proc/stat") as f:
+        v = [int(x) for x in f.readline().split()[1:]]
+    # user nice system idle iowait irq softirq steal (guest is in user)
+    busy = v[0] + v[1] + v[2] + v[5] + v[6] + (v[7] if len(v) > 7 else 0)
+    return busy / os.sysconf("SC_CLK_TCK")
+
+
+def children_cpu():
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
+
+
+def busy_cores(window=1.0):
+    """Average number of busy cores over 'window' seconds (this process
+    sleeps meanwhile)."""
+    b0, t0 = busy_jiffies(), time.perf_counter()
+    time.sleep(window)
+    return (busy_jiffies() - b0) / (time.perf_counter() - t0)
+
+
+def wait_for_quiet(threshold, max_wait):
+    """Waits until the machine is idle (other processes use less than
+    'threshold' cores), at most 'max_wait' seconds; returns the last
+    measurement."""
+    start = time.perf_counter()
+    load = busy_cores()
+    announced = False
+    while load > threshold and time.perf_counter() - start < max_wait:
+        if not announced:
+            print("    machine busy (%.2f cores used by other processes); "
+                  "waiting up to %.0f s" % (load, max_wait), flush=True)
+            announced = True
+        time.sleep(4)
+        load = busy_cores()
+    return load
+
+
+def snapshot_executable(exe):
+    """Copies the executable and the shared libraries it loads from its own
+    directory (the project library) to a private directory, so that a
+    rebuild during the sweep cannot change or crash the runs. Returns the
+    copied executable and the LD_LIBRARY_PATH to use."""
+    exe = os.path.abspath(exe)
+    exe_dir = os.path.dirname(exe)
+    target = tempfile.mkdtemp(prefix="coulomb-elasticity-bin-")
+    shutil.copy2(exe, target)
+    try:
+        # Libraries next to the executable win (as they will in the runs).
+        env = dict(os.environ, LD_LIBRARY_PATH=exe_dir + (
+            ":" + os.environ["LD_LIBRARY_PATH"]
+            if os.environ.get("LD_LIBRARY_PATH") else ""))
+        ldd = subprocess.run(["ldd", exe], stdout=subprocess.PIPE, env=env,
+                             stderr=subprocess.DEVNULL, text=True).stdout
+    except OSError:
+        ldd = ""
+    for line in ldd.splitlines():
+        parts = line.split("=>")
+        if len(parts) == 2:
+            path = parts[1].split("(")[0].strip()
+            if path and os.path.dirname(os.path.realpath(path)) == \
+                    os.path.realpath(exe_dir):
+                shutil.copy2(path, target)
+    return os.path.join(target, os.path.basename(exe)), target
+
+
 def loadavg():
     try:
         with open("/proc/loadavg") as f:
@@ -74,7 +152,8 @@ def loadavg():
         return float("nan")
 
 
-def run_one(exe, solver, ranks, subdivisions, refinements, timeout, keep):
+def run_one(exe, solver, ranks, subdivisions, refinements, timeout, keep,
+            lib_dir=None, busy_before=float("nan")):
     """Runs one configuration; returns a dict with the FIELDS (minus
     'repeat')."""
     out_dir = tempfile.mkdtemp(prefix="coulomb-elasticity-bench-")
@@ -99,12 +178,17 @@ def run_one(exe, solver, ranks, subdivisions, refinements, timeout, keep):
     env.update({"OMPI_ALLOW_RUN_AS_ROOT": "1",
                 "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
                 "OMP_NUM_THREADS": "1"})
+    if lib_dir:
+        env["LD_LIBRARY_PATH"] = lib_dir + (
+            ":" + env["LD_LIBRARY_PATH"] if env.get("LD_LIBRARY_PATH")
+            else "")
 
     row = {k: "" for k in FIELDS if k != "repeat"}
     row.update(solver=solver, ranks=ranks, subdivisions=subdivisions,
                refinements=refinements,
                n_dofs=expected_dofs(subdivisions, refinements),
-               loadavg_1min=loadavg())
+               loadavg_1min=loadavg(), busy_cores_before=round(busy_before, 3))
+    cpu0, busy0 = children_cpu(), busy_jiffies()
     start = time.perf_counter()
     try:
         proc = subprocess.run(args, env=env, stdout=subprocess.PIPE,
@@ -117,6 +201,10 @@ def run_one(exe, solver, ranks, subdivisions, refinements, timeout, keep):
             shutil.rmtree(out_dir, ignore_errors=True)
         return row
     row["process_wall_s"] = round(time.perf_counter() - start, 3)
+    # CPU time used on the machine during the run by anything but this run.
+    other = (busy_jiffies() - busy0) - (children_cpu() - cpu0)
+    row["other_cpu_s"] = round(max(other, 0.), 2)
+    row["clean"] = int(is_clean(other, row["process_wall_s"]))
 
     if proc.returncode != 0:
         text = (proc.stderr.strip() or proc.stdout.strip()).splitlines()
@@ -178,10 +266,26 @@ def sweep(opts):
                  "--ranks")
     if not os.access(opts.exe, os.X_OK):
         sys.exit("executable not found: %s (use --exe)" % opts.exe)
+    exe, lib_dir = opts.exe, None
+    if not opts.no_snapshot:
+        exe, lib_dir = snapshot_executable(opts.exe)
+        print("running a private copy of %s in %s" % (opts.exe, lib_dir))
 
     # The CSV is rewritten after every run so that an interrupted sweep
-    # keeps what it measured.
+    # keeps what it measured. With --append the new runs are added to the
+    # existing rows (numbered after the repeats already there).
     rows = []
+    first_repeat = 0
+    if opts.append and os.path.exists(opts.csv):
+        with open(opts.csv, newline="") as f:
+            rows = [dict(r) for r in csv.DictReader(f)]
+        for r in rows:
+            r["ranks"] = int(r["ranks"])
+            r["n_dofs"] = int(r["n_dofs"])
+            first_repeat = max(first_repeat, int(r["repeat"]) + 1)
+        old_failures = [r for r in rows if r["status"] != "ok"]
+    else:
+        old_failures = []
 
     def flush():
         tmp = opts.csv + ".tmp"
@@ -195,12 +299,17 @@ def sweep(opts):
     broken = {}  # config -> first failing size: larger sizes are skipped
     # Repeats are the outer loop so that a slow phase of the machine does
     # not hit all repeats of one configuration.
-    for rep in range(opts.repeats):
+    for x in old_failures:
+        key = (x["solver"], x["ranks"])
+        broken[key] = min(broken.get(key, x["n_dofs"]), x["n_dofs"])
+    for rep in range(first_repeat, first_repeat + opts.repeats):
         for s, r in ladder:
             for sv, nr in configs:
                 n = expected_dofs(s, r)
                 if (sv, nr) in broken and n > broken[(sv, nr)]:
-                    if rep == 0:
+                    if rep == first_repeat and not any(
+                            x["solver"] == sv and x["ranks"] == nr
+                            and x["n_dofs"] == n for x in rows):
                         row = {k: "" for k in FIELDS}
                         row.update(repeat=rep, solver=sv, ranks=nr,
                                    subdivisions=s, refinements=r, n_dofs=n,
@@ -209,29 +318,35 @@ def sweep(opts):
                         rows.append(row)
                         flush()
                     continue
-                if rep > 0 and any(
-                        x["status"] not in ("ok",) and x["solver"] == sv
+                if any(x["status"] != "ok" and x["solver"] == sv
                         and x["ranks"] == nr and x["n_dofs"] == n
                         for x in rows):
                     continue  # do not repeat a failure or a timeout
-                row = run_one(opts.exe, sv, nr, s, r, opts.timeout,
-                              opts.keep)
+                busy = (wait_for_quiet(opts.quiet_threshold,
+                                       opts.quiet_wait)
+                        if opts.quiet_wait > 0 else float("nan"))
+                row = run_one(exe, sv, nr, s, r, opts.timeout, opts.keep,
+                              lib_dir, busy)
                 row["repeat"] = rep
                 rows.append(row)
                 flush()
                 if row["status"] != "ok":
                     broken[(sv, nr)] = n
                 print("[%7.1f s] repeat %d  %-6s %d rank(s)  %9d DoFs  %s"
-                      "  solve %s s  wall %s s  mem %s MiB  its %s/%s" %
+                      "  solve %s s  wall %s s  mem %s MiB  its %s/%s"
+                      "  other CPU %s s" %
                       (time.perf_counter() - t0, rep, sv, nr, row["n_dofs"],
                        row["status"], fmt(row["solve_s"]),
                        fmt(row["process_wall_s"]),
                        fmt(row["peak_memory_MiB"]), row["iterations_body1"],
-                       row["iterations_body2"]), flush=True)
+                       row["iterations_body2"], fmt(row["other_cpu_s"], 2)),
+                      flush=True)
                 if row["status"] != "ok":
                     print("    " + row["message"], flush=True)
     print("sweep done in %.0f s; results in %s" %
           (time.perf_counter() - t0, opts.csv))
+    if lib_dir:
+        shutil.rmtree(lib_dir, ignore_errors=True)
 
 
 def fmt(x, digits=3):
@@ -257,15 +372,22 @@ def read_rows(path):
                   "solve_body2_s", "cycle_wall_s", "process_wall_s",
                   "peak_memory_MiB", "peak_memory_total_MiB",
                   "n_dofs_body1", "n_dofs_body2", "iterations_body1",
-                  "iterations_body2"):
+                  "iterations_body2", "other_cpu_s"):
             row[k] = float(row[k]) if row.get(k, "") != "" else None
+        # Recomputed, so that the criterion can be changed afterwards.
+        if row["other_cpu_s"] is not None and row["process_wall_s"]:
+            row["clean"] = is_clean(row["other_cpu_s"],
+                                    row["process_wall_s"])
+        else:
+            row["clean"] = row.get("clean", "1") in ("1", "")
     return rows
 
 
 def aggregate(rows):
     """(solver, ranks) -> sorted list of per-size records. Times: minimum
-    over the repeats (interference from other processes only adds time);
-    memory and iterations: median. Sizes without a successful run keep
+    over the repeats (interference from other processes only adds time),
+    taken over the clean runs (no other load on the machine) if there are
+    any; memory and iterations: median. Sizes without a successful run keep
     their status."""
     groups = {}
     for row in rows:
@@ -274,7 +396,11 @@ def aggregate(rows):
     series = {}
     for (sv, nr, n), rs in groups.items():
         ok = [x for x in rs if x["status"] == "ok"]
-        rec = {"n_dofs": n, "n_runs": len(ok),
+        n_ok = len(ok)
+        if any(x["clean"] for x in ok):
+            ok = [x for x in ok if x["clean"]]
+        rec = {"n_dofs": n, "n_runs": n_ok, "n_clean": sum(
+            1 for x in ok if x["clean"]),
                "status": "ok" if ok else rs[0]["status"],
                "message": "" if ok else rs[0]["message"]}
         if ok:
@@ -288,6 +414,12 @@ def aggregate(rows):
                       "n_dofs_body1", "n_dofs_body2"):
                 vals = [x[k] for x in ok if x[k] is not None]
                 rec[k] = statistics.median(vals) if vals else None
+            # Other processes' load (cores) during the fastest run.
+            fastest = min(ok, key=lambda x: x["solve_s"] or float("inf"))
+            rec["other_load"] = ((fastest["other_cpu_s"] or 0.) /
+                                 fastest["process_wall_s"]
+                                 if fastest["other_cpu_s"] is not None
+                                 and fastest["process_wall_s"] else None)
             # One body's solve: the slower of the two (same mesh size).
             b = [rec["solve_body1_s"], rec["solve_body2_s"]]
             rec["solve_one_body_s"] = (max(b) if None not in b else None)
@@ -374,6 +506,10 @@ def plot(csv_path, png_path):
         x = [r["n_dofs"] for r in ok]
         ax_t.plot(x, [r["solve_s"] for r in ok], color=col, marker=mk,
                   ls=ls, label="solve: " + label(*key))
+        # Spread over the repeats (min .. max).
+        ax_t.vlines(x, [r["solve_s"] for r in ok],
+                    [r["solve_s_max"] for r in ok], color=col, lw=1.5,
+                    alpha=0.5)
         ax_p.plot(x, [1e6 * r["solve_s"] / r["n_dofs"] for r in ok],
                   color=col, marker=mk, ls=ls, label=label(*key))
         ax_m.plot(x, [r["peak_memory_MiB"] for r in ok], color=col,
@@ -525,6 +661,23 @@ def table(csv_path):
         else:
             print("  crossover at ~%s DoFs per body" % f"{int(n_x):,}")
 
+    print("\nRuns per point: clean/successful (clean: other processes used "
+          "< 0.1 core on average; if there is a clean run, only clean runs "
+          "are used), and the other processes' average load [cores] during "
+          "the fastest run used:\n")
+    print("| DoFs total |" + "".join(" %s %dr |" % k for k in keys))
+    print("|" + "---|" * (1 + len(keys)))
+    for n in sizes:
+        line = "| %s |" % f"{n:,}"
+        for k in keys:
+            r = next((r for r in series[k] if r["n_dofs"] == n), None)
+            if r is None or r["status"] != "ok":
+                line += " - |"
+            else:
+                line += " %d/%d, %s |" % (r.get("n_clean", 0), r["n_runs"],
+                                         fmt(r.get("other_load"), 2))
+        print(line)
+
     bad = [r for v in series.values() for r in v if r["status"] != "ok"]
     if bad:
         print("\nUnsuccessful configurations:")
@@ -566,6 +719,20 @@ def main():
                         "'timeout' (default: %(default)s)")
     p.add_argument("--quick", action="store_true",
                    help="smoke test: up to ~7e4 DoFs, one repeat")
+    p.add_argument("--append", action="store_true",
+                   help="add the runs to the existing CSV instead of "
+                        "starting a new one (e.g. more repeats of some "
+                        "sizes)")
+    p.add_argument("--quiet-wait", type=float, default=300,
+                   help="before each run, wait up to this many seconds for "
+                        "other processes to leave the CPUs idle (0: do not "
+                        "wait; default: %(default)s)")
+    p.add_argument("--quiet-threshold", type=float, default=0.15,
+                   help="CPU cores that other processes may use for the "
+                        "machine to count as idle (default: %(default)s)")
+    p.add_argument("--no-snapshot", action="store_true",
+                   help="run the executable in place instead of a private "
+                        "copy made at the start of the sweep")
     p.add_argument("--keep", action="store_true",
                    help="keep the /tmp output directories")
     p.add_argument("--plot-only", "--replot", action="store_true",
