@@ -48,8 +48,9 @@ main(int argc, char *argv[])
       {
         message = user_message(e);
       }
-    const bool diagnosed = message.find("slides: every active contact node "
-                                        "slips") != std::string::npos;
+    const bool diagnosed =
+      message.find("would slide: in the contact sets of this step every "
+                   "active node slips") != std::string::npos;
     out << "Q = 1.67 mu N under force control: stopped with the sliding "
            "diagnosis: "
         << (diagnosed ? "yes" : "no") << std::endl;

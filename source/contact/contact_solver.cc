@@ -161,12 +161,16 @@ namespace coulomb_adapt
       for (const auto &[l, m] : M[j])
         master_to_slave[l].emplace_back(j, m);
 
-    const double E = slave.description().material.youngs_modulus;
+    // c = scale E_c / D_jj with the combined modulus E_c = E1 E2 / (E1 +
+    // E2), which follows the softer body: with the stiffer one's modulus a
+    // soft partner makes c and the residual scale meaningless.
+    const double E = combined_modulus();
     complementarity_constant.resize(n_slave);
     for (unsigned int j = 0; j < n_slave; ++j)
       complementarity_constant[j] =
         contact_parameters.complementarity_scale * E / D[j];
-    row_scale = E;
+    // The gap rows are scaled like the rows of K^1 they replace.
+    row_scale = slave.description().material.youngs_modulus;
 
     // Sparsity: K^1 and K^2 (shifted), the slave rows (both K^1 rows of the
     // node, the node's own DoFs and the coupled master DoFs), and in the
@@ -289,10 +293,19 @@ namespace coulomb_adapt
                "holds it tangentially. Hold it with the scene's hold option "
                "(blocks, punch: 'Hold centre line'; hertz: 'Hold axis'; "
                "patch: 'Hold upper body') or use friction." :
-               "slides: every active contact node slips (the tangential "
-               "load exceeds mu times the normal load?) and no Dirichlet "
-               "data hold it tangentially, so the static problem has no "
-               "equilibrium.")));
+               "would slide: in the contact sets of this step every active "
+               "node slips and no Dirichlet data hold it tangentially, so "
+               "the linear system is singular. " +
+                 (step == 1 ?
+                    std::string("") :
+                    std::string("If the tangential load exceeds mu times "
+                                "the normal load the static problem has no "
+                                "equilibrium; otherwise the active set "
+                                "iteration went astray (try another "
+                                "'Contact/Complementarity scale').")) +
+                 (step == 1 ? std::string("The tangential load exceeds mu "
+                                          "times the normal load?") :
+                              std::string()))));
       }
   }
 
@@ -527,8 +540,14 @@ namespace coulomb_adapt
       {
         states[j].pressure            = lambda[j] * nodes[j].normal;
         states[j].tangential_traction = lambda[j] * nodes[j].tangent;
-        states[j].gap  = (gaps[j] - jump[j] * nodes[j].normal) / D[j];
-        states[j].slip = jump[j] * nodes[j].tangent / D[j];
+        states[j].facing_master = mortar.is_covered(j);
+        states[j].gap =
+          states[j].facing_master ?
+            (gaps[j] - jump[j] * nodes[j].normal) / D[j] :
+            0.;
+        states[j].slip = states[j].facing_master ?
+                           jump[j] * nodes[j].tangent / D[j] :
+                           0.;
       }
   }
 
@@ -581,7 +600,7 @@ namespace coulomb_adapt
   double
   ContactSolver::complementarity_residual() const
   {
-    const double E = slave.description().material.youngs_modulus;
+    const double E = combined_modulus();
     double p = 0;
     for (const auto &s : states)
       p = std::max(p, std::abs(s.pressure));
@@ -631,6 +650,16 @@ namespace coulomb_adapt
                    s.slip_sign > 0                  ? '+' :
                                                       '-';
     return signature;
+  }
+
+
+
+  double
+  ContactSolver::combined_modulus() const
+  {
+    const double E1 = slave.description().material.youngs_modulus;
+    const double E2 = master.description().material.youngs_modulus;
+    return E1 * E2 / (E1 + E2);
   }
 
 

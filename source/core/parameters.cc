@@ -193,9 +193,9 @@ namespace coulomb_adapt
                           "1",
                           Patterns::Double(0),
                           "The constants c_n = c_t of the complementarity "
-                          "functions are this factor times E / h at each "
-                          "slave node (E of the slave body, h the node's "
-                          "mortar weight). The converged solution does not "
+                          "functions are this factor times E_c / h at each "
+                          "slave node (E_c = E1 E2 / (E1 + E2), h the "
+                          "node's mortar weight). The converged solution does not "
                           "depend on it; it changes the path of the active "
                           "set iteration. Must be > 0.");
         prm.declare_entry("Maximum Newton iterations",

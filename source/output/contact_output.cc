@@ -30,13 +30,14 @@ namespace coulomb_adapt
     {
       std::ofstream csv(base + ".csv");
       csv << "x,y,normal_x,normal_y,weight,contact_pressure,"
-             "tangential_traction,gap,slip,status\n";
+             "tangential_traction,gap,slip,status,facing_master\n";
       csv << std::setprecision(12);
       for (const auto &s : states)
         csv << s.position[0] << ',' << s.position[1] << ',' << s.normal[0]
             << ',' << s.normal[1] << ',' << s.weight << ',' << s.pressure
             << ',' << s.tangential_traction << ',' << s.gap << ',' << s.slip
-            << ',' << to_string(s.status) << '\n';
+            << ',' << to_string(s.status) << ','
+            << (s.facing_master ? 1 : 0) << '\n';
     }
 
     if (!write_vtu)

@@ -44,6 +44,10 @@ namespace coulomb_adapt
     double        gap;
     /** Tangential jump W_t = (u^1 - u^2) . t (mm). */
     double        slip;
+    /** Whether the master surface lies opposite the node (covers its
+     * support); if not, the node cannot touch and gap/slip are not
+     * defined (reported as 0). */
+    bool          facing_master;
     ContactStatus status;
     /** Sign of the slip direction (slip nodes). */
     int           slip_sign;
@@ -80,7 +84,7 @@ namespace coulomb_adapt
    * M^T D^-1 (f^1 - K^1 u^1). The system is not symmetric.
    *
    * The sets are updated from the complementarity functions (c_n = c_t =
-   * scale E / D_jj) until they no longer change. mu = 0 takes the
+   * scale E_c / D_jj, E_c = E1 E2 / (E1 + E2)) until they no longer change. mu = 0 takes the
    * frictionless path: active nodes carry no tangential traction, there are
    * no stick or slip sets.
    */
@@ -130,6 +134,9 @@ namespace coulomb_adapt
     check_support(const unsigned int step) const;
     std::vector<std::vector<double>>
     rigid_body_modes() const;
+    /** E1 E2 / (E1 + E2): the modulus that scales c and the residual. */
+    double
+    combined_modulus() const;
     void
     assemble_newton_system();
     void
