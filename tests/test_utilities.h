@@ -7,6 +7,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <coulomb_adapt/app/command_line.h>
 #include <coulomb_adapt/core/parameters.h>
 
 #include <iostream>
@@ -18,24 +19,17 @@ namespace coulomb_adapt
 {
   namespace testing
   {
-    /** Declare all parameters, apply "Path/Entry" = value pairs, parse. */
+    /** Declare all parameters and apply "Path/Entry" = value pairs the
+     * way the program applies `-s` options. */
     inline Parameters
     make_parameters(
       ParameterHandler &                                      prm,
       const std::vector<std::pair<std::string, std::string>> &settings)
     {
       Parameters::declare_parameters(prm);
-      for (const auto &[path, value] : settings)
-        {
-          auto sections = Utilities::split_string_list(path, '/');
-          const std::string entry = sections.back();
-          sections.pop_back();
-          for (const auto &s : sections)
-            prm.enter_subsection(s);
-          prm.set(entry, value);
-          for (unsigned int i = 0; i < sections.size(); ++i)
-            prm.leave_subsection();
-        }
+      CommandLine command_line;
+      command_line.overrides = settings;
+      read_parameters(command_line, prm);
       Parameters parameters;
       parameters.parse_parameters(prm);
       return parameters;

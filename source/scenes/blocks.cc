@@ -34,12 +34,7 @@ namespace coulomb_adapt
                           "Fix the horizontal displacement of the upper "
                           "body's nodes on x = 100 (exact by symmetry). "
                           "Needs an even number of upper cells in x.");
-        for (const std::string body : {"Body 1", "Body 2"})
-          {
-            prm.enter_subsection(body);
-            MaterialConstants::declare_parameters(prm, 130000., 0.3);
-            prm.leave_subsection();
-          }
+        declare_body_materials(prm, 130000., 0.3, 130000., 0.3);
       }
       prm.leave_subsection();
     }
@@ -62,13 +57,7 @@ namespace coulomb_adapt
                                prm.get("Upper body subdivisions"),
                                "'Hold centre line' needs an even number of "
                                "cells in x, so that x = 100 is a mesh line");
-        for (unsigned int b = 0; b < 2; ++b)
-          {
-            const std::string body = "Body " + std::to_string(b + 1);
-            prm.enter_subsection(body);
-            materials[b].parse_parameters(prm, path + "/" + body);
-            prm.leave_subsection();
-          }
+        materials = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
     }

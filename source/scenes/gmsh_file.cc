@@ -27,12 +27,7 @@ namespace coulomb_adapt
                           Patterns::List(Patterns::Double(), 2, 2),
                           "Uniform traction (x, y) on the 'traction' "
                           "curves (MPa).");
-        for (const std::string body : {"Body 1", "Body 2"})
-          {
-            prm.enter_subsection(body);
-            MaterialConstants::declare_parameters(prm, 130000., 0.3);
-            prm.leave_subsection();
-          }
+        declare_body_materials(prm, 130000., 0.3, 130000., 0.3);
       }
       prm.leave_subsection();
     }
@@ -46,13 +41,7 @@ namespace coulomb_adapt
       prm.enter_subsection("Gmsh");
       {
         const std::string path = "Scene/Gmsh";
-        for (unsigned int b = 0; b < 2; ++b)
-          {
-            const std::string body = "Body " + std::to_string(b + 1);
-            prm.enter_subsection(body);
-            materials[b].parse_parameters(prm, path + "/" + body);
-            prm.leave_subsection();
-          }
+        materials = parse_body_materials(prm, path);
         const auto t = Utilities::string_to_double(
           Utilities::split_string_list(prm.get("Traction")));
         traction     = Tensor<1, 2>({t[0], t[1]});

@@ -64,12 +64,7 @@ namespace coulomb_adapt
                           "Radius of the zone around the first contact "
                           "point that gets the contact mesh size, in units "
                           "of a; the mesh coarsens gradually outside it.");
-        prm.enter_subsection("Body 1");
-        MaterialConstants::declare_parameters(prm, 130000., 0.3);
-        prm.leave_subsection();
-        prm.enter_subsection("Body 2");
-        MaterialConstants::declare_parameters(prm, 130000., 0.3);
-        prm.leave_subsection();
+        declare_body_materials(prm, 130000., 0.3, 130000., 0.3);
       }
       prm.leave_subsection();
 
@@ -133,13 +128,7 @@ namespace coulomb_adapt
           get_subdivisions(prm, "Block subdivisions", path);
         contact_mesh_factor = prm.get_double("Contact mesh size");
         refined_zone_factor = prm.get_double("Refined zone size");
-        for (unsigned int b = 0; b < 2; ++b)
-          {
-            const std::string body = "Body " + std::to_string(b + 1);
-            prm.enter_subsection(body);
-            materials[b].parse_parameters(prm, path + "/" + body);
-            prm.leave_subsection();
-          }
+        materials = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
     }

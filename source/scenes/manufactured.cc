@@ -93,12 +93,7 @@ namespace coulomb_adapt
                           "3, 3",
                           Patterns::List(Patterns::Integer(1), 2, 2),
                           "Cells of the lower unit square in x and y.");
-        prm.enter_subsection("Body 1");
-        MaterialConstants::declare_parameters(prm, 1000., 0.3);
-        prm.leave_subsection();
-        prm.enter_subsection("Body 2");
-        MaterialConstants::declare_parameters(prm, 2000., 0.2);
-        prm.leave_subsection();
+        declare_body_materials(prm, 1000., 0.3, 2000., 0.2);
       }
       prm.leave_subsection();
     }
@@ -116,13 +111,7 @@ namespace coulomb_adapt
           prm.get_double("Amplitude"));
         subdivisions[0] = get_subdivisions(prm, "Body 1 subdivisions", path);
         subdivisions[1] = get_subdivisions(prm, "Body 2 subdivisions", path);
-        for (unsigned int b = 0; b < 2; ++b)
-          {
-            const std::string body = "Body " + std::to_string(b + 1);
-            prm.enter_subsection(body);
-            materials[b].parse_parameters(prm, path + "/" + body);
-            prm.leave_subsection();
-          }
+        materials = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
     }

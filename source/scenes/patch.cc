@@ -42,12 +42,7 @@ namespace coulomb_adapt
                           "block's nodes on x = 0, where the exact solution "
                           "has none: needed without friction, where nothing "
                           "else holds the block sideways.");
-        for (const std::string body : {"Body 1", "Body 2"})
-          {
-            prm.enter_subsection(body);
-            MaterialConstants::declare_parameters(prm, 1000., 0.3);
-            prm.leave_subsection();
-          }
+        declare_body_materials(prm, 1000., 0.3, 1000., 0.3);
       }
       prm.leave_subsection();
     }
@@ -67,13 +62,7 @@ namespace coulomb_adapt
         pressure        = prm.get_double("Pressure");
         hold_upper_body = prm.get_bool("Hold upper body");
         shear_traction  = prm.get_double("Shear traction");
-        for (unsigned int b = 0; b < 2; ++b)
-          {
-            const std::string body = "Body " + std::to_string(b + 1);
-            prm.enter_subsection(body);
-            materials[b].parse_parameters(prm, path + "/" + body);
-            prm.leave_subsection();
-          }
+        materials = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
     }

@@ -35,12 +35,7 @@ namespace coulomb_adapt
                           "Fix the horizontal displacement of the punch's "
                           "nodes on x = 0 (exact by symmetry); needs an "
                           "even number of punch cells in x.");
-        prm.enter_subsection("Body 1");
-        MaterialConstants::declare_parameters(prm, 1300000., 0.3);
-        prm.leave_subsection();
-        prm.enter_subsection("Body 2");
-        MaterialConstants::declare_parameters(prm, 130000., 0.3);
-        prm.leave_subsection();
+        declare_body_materials(prm, 1300000., 0.3, 130000., 0.3);
       }
       prm.leave_subsection();
     }
@@ -65,13 +60,7 @@ namespace coulomb_adapt
                                prm.get("Punch subdivisions"),
                                "'Hold centre line' needs an even number of "
                                "cells in x, so that x = 0 is a mesh line");
-        for (unsigned int b = 0; b < 2; ++b)
-          {
-            const std::string body = "Body " + std::to_string(b + 1);
-            prm.enter_subsection(body);
-            materials[b].parse_parameters(prm, path + "/" + body);
-            prm.leave_subsection();
-          }
+        materials = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
     }

@@ -43,6 +43,43 @@ namespace coulomb_adapt
 
 
   void
+  declare_body_materials(ParameterHandler &prm,
+                         const double      youngs_modulus_1,
+                         const double      poissons_ratio_1,
+                         const double      youngs_modulus_2,
+                         const double      poissons_ratio_2)
+  {
+    prm.enter_subsection("Body 1");
+    MaterialConstants::declare_parameters(prm,
+                                          youngs_modulus_1,
+                                          poissons_ratio_1);
+    prm.leave_subsection();
+    prm.enter_subsection("Body 2");
+    MaterialConstants::declare_parameters(prm,
+                                          youngs_modulus_2,
+                                          poissons_ratio_2);
+    prm.leave_subsection();
+  }
+
+
+
+  std::array<MaterialConstants, 2>
+  parse_body_materials(ParameterHandler &prm, const std::string &path)
+  {
+    std::array<MaterialConstants, 2> materials;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const std::string body = "Body " + std::to_string(b + 1);
+        prm.enter_subsection(body);
+        materials[b].parse_parameters(prm, path + "/" + body);
+        prm.leave_subsection();
+      }
+    return materials;
+  }
+
+
+
+  void
   Scene::refine_initial_mesh(const unsigned int, Triangulation<2> &) const
   {}
 

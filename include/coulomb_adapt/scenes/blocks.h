@@ -38,7 +38,7 @@ namespace coulomb_adapt
       std::vector<unsigned int> lower_subdivisions;
       double                    pressure;
       bool                      hold_centre_line;
-      MaterialConstants         materials[2];
+      std::array<MaterialConstants, 2>         materials;
     };
   } // namespace scenes
 } // namespace coulomb_adapt

@@ -38,7 +38,7 @@ namespace coulomb_adapt
     private:
       std::array<CoarseMeshData, 2> meshes;
       Tensor<1, 2>                  traction;
-      MaterialConstants             materials[2];
+      std::array<MaterialConstants, 2>             materials;
     };
   } // namespace scenes
 } // namespace coulomb_adapt

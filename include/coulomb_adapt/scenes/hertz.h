@@ -96,7 +96,7 @@ namespace coulomb_adapt
       double                    contact_mesh_factor;
       double                    refined_zone_factor;
       PlaneModel                plane_model;
-      MaterialConstants         materials[2];
+      std::array<MaterialConstants, 2>         materials;
     };
   } // namespace scenes
 } // namespace coulomb_adapt

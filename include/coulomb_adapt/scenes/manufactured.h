@@ -71,7 +71,7 @@ namespace coulomb_adapt
 
     private:
       std::vector<unsigned int>                  subdivisions[2];
-      MaterialConstants                          materials[2];
+      std::array<MaterialConstants, 2>                          materials;
       PlaneModel                                 plane_model;
       std::shared_ptr<ManufacturedDisplacement> exact;
     };

@@ -40,7 +40,7 @@ namespace coulomb_adapt
       double                    pressure;
       bool                      hold_upper_body;
       double                    shear_traction;
-      MaterialConstants         materials[2];
+      std::array<MaterialConstants, 2>         materials;
     };
   } // namespace scenes
 } // namespace coulomb_adapt

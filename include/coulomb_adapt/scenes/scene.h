@@ -12,6 +12,7 @@
 
 #include <coulomb_adapt/core/parameters.h>
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -41,6 +42,20 @@ namespace coulomb_adapt
     void
     parse_parameters(ParameterHandler &prm, const std::string &path);
   };
+
+  /** Declare the subsections `Body 1` and `Body 2` with their materials,
+   * in the current subsection (a scene's). */
+  void
+  declare_body_materials(ParameterHandler &prm,
+                         const double      youngs_modulus_1,
+                         const double      poissons_ratio_1,
+                         const double      youngs_modulus_2,
+                         const double      poissons_ratio_2);
+
+  /** Read the materials declared by declare_body_materials; @p path names
+   * the scene's subsection for messages. */
+  std::array<MaterialConstants, 2>
+  parse_body_materials(ParameterHandler &prm, const std::string &path);
 
   /** A traction t(x, n) (MPa) on a boundary part, given the outward unit
    * normal n: lets a scene prescribe sigma(x) n from a known stress. */
