@@ -45,6 +45,19 @@ namespace coulomb_adapt
 
 
 
+  // Inverting sigma = lambda tr(eps) I + 2 mu eps: tr(sigma) = 2 (lambda +
+  // mu) tr(eps), so eps = (sigma - lambda / (2 (lambda + mu)) tr(sigma) I)
+  // / (2 mu), with the effective lambda of the 2D model.
+  SymmetricTensor<2, 2>
+  ElasticMaterial::strain(const SymmetricTensor<2, 2> &s) const
+  {
+    return (s - lambda_2d / (2. * (lambda_2d + mu_)) * trace(s) *
+                  unit_symmetric_tensor<2>()) /
+           (2. * mu_);
+  }
+
+
+
   double
   ElasticMaterial::out_of_plane_stress(
     const SymmetricTensor<2, 2> &strain) const

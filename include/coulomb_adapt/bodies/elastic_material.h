@@ -31,6 +31,12 @@ namespace coulomb_adapt
     SymmetricTensor<2, 2>
     stress(const SymmetricTensor<2, 2> &strain) const;
 
+    /** The compliance K^-1 of the 2D model: the strain with this stress.
+     * sigma : strain(sigma) is the energy density of the 2D model (in
+     * plane strain it includes the work of sigma_zz, which is 0). */
+    SymmetricTensor<2, 2>
+    strain(const SymmetricTensor<2, 2> &stress) const;
+
     /** sigma_zz: nu (sigma_xx + sigma_yy) in plane strain, 0 in plane
      * stress. */
     double

@@ -1,0 +1,106 @@
+#ifndef coulomb_adapt_indicator_recovered_stress_h
+#define coulomb_adapt_indicator_recovered_stress_h
+
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+
+#include <memory>
+#include <string>
+
+namespace coulomb_adapt
+{
+  /** How the smoothed stress of the indicator is obtained (theory.md §3.3). */
+  enum class StressRecoveryMethod
+  {
+    /** ZZ1: global L2 projection onto the continuous FE space (a mass
+     * system with one right-hand side per stress component). */
+    l2_projection,
+    /** Superconvergent patch recovery (Zienkiewicz and Zhu 1992). */
+    spr
+  };
+
+  /** "zz" or "spr", as in the parameter file and summary.json. */
+  std::string
+  to_string(const StressRecoveryMethod method);
+
+  /**
+   * The smoothed stress sigma~ of one body: a continuous field in the
+   * body's own finite element space (FE_Q(p) or FE_SimplexP(p), the degree
+   * of the displacement), three components (sigma_xx, sigma_yy, sigma_xy)
+   * of the 2D model, with the body's hanging-node constraints so that it is
+   * continuous on adapted quadrilateral meshes too.
+   *
+   * Only the in-plane components are recovered: in plane strain sigma_zz
+   * is not an independent field but nu (sigma_xx + sigma_yy), and the
+   * energy norm of the 2D model (K^-1 of ElasticMaterial::strain) already
+   * accounts for it.
+   */
+  class RecoveredStress
+  {
+  public:
+    /** Set up the stress space on @p body's current mesh. */
+    explicit RecoveredStress(const ElasticBody &body);
+
+    /** Recover sigma~ from the stress K eps(@p displacement) (a ghosted
+     * vector of the body's displacement space). */
+    void
+    recover(const TrilinosWrappers::MPI::Vector &displacement,
+            const StressRecoveryMethod           method);
+
+    /** The stress space: components 0, 1, 2 = xx, yy, xy. */
+    const DoFHandler<2> &
+    dof_handler() const;
+
+    /** The recovered nodal values, with ghost entries. */
+    const TrilinosWrappers::MPI::Vector &
+    values() const;
+
+    /** CG iterations of the last L2 projection (0 for SPR). */
+    unsigned int
+    projection_iterations() const;
+
+  private:
+    void
+    project_l2(const TrilinosWrappers::MPI::Vector &displacement);
+    /** Implemented in spr_recovery.cc. */
+    void
+    recover_spr(const TrilinosWrappers::MPI::Vector &displacement);
+
+    const ElasticBody &           body;
+    std::unique_ptr<FESystem<2>>  fe;
+    DoFHandler<2>                 dofs;
+    IndexSet                      owned_dofs;
+    IndexSet                      relevant_dofs;
+    AffineConstraints<double>     constraints;
+    TrilinosWrappers::MPI::Vector recovered;
+    unsigned int                  n_cg_iterations = 0;
+  };
+
+  /** sigma as the three components (xx, yy, xy) the stress space uses. */
+  inline Tensor<1, 3>
+  stress_components(const SymmetricTensor<2, 2> &sigma)
+  {
+    return Tensor<1, 3>({sigma[0][0], sigma[1][1], sigma[0][1]});
+  }
+
+  /** The inverse of stress_components. */
+  inline SymmetricTensor<2, 2>
+  stress_tensor(const Tensor<1, 3> &components)
+  {
+    SymmetricTensor<2, 2> sigma;
+    sigma[0][0] = components[0];
+    sigma[1][1] = components[1];
+    sigma[0][1] = components[2];
+    return sigma;
+  }
+} // namespace coulomb_adapt
+
+#endif
