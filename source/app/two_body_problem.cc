@@ -178,6 +178,63 @@ namespace coulomb_adapt
 
 
 
+  // The indicator of theory.md section 3: correction, recovery, element
+  // contributions and epsilon.
+  void
+  TwoBodyProblem::estimate_error()
+  {
+    TimerOutput::Scope t(computing_timer, "error indicator");
+    const StressRecoveryMethod recovery =
+      parameters.error_indicator.recovery == "spr" ?
+        StressRecoveryMethod::spr :
+        StressRecoveryMethod::l2_projection;
+    error_estimate = std::make_unique<ErrorEstimate>(
+      coulomb_adapt::estimate_error({{bodies[0].get(), bodies[1].get()}},
+                                    contact_solver.get(),
+                                    parameters.contact.friction_coefficient,
+                                    recovery,
+                                    parameters.linear_solver));
+    const ErrorEstimate &e = *error_estimate;
+    if (e.has_contact)
+      {
+        const auto &c = e.correction;
+        if (c.skipped)
+          pcout << "  correction: skipped, the FE reactions are in the "
+                   "Coulomb cone (corrected fields = FE fields)";
+        else
+          pcout << "  correction: " << c.n_projected_nodes
+                << " nodal reactions projected onto the Coulomb cone, "
+                   "relative change "
+                << std::scientific << std::setprecision(3)
+                << c.relative_change << std::defaultfloat
+                << "; corrected problem solved";
+        if (c.max_penetration > 0)
+          pcout << "; penetration up to " << std::setprecision(3)
+                << c.max_penetration << " mm clipped";
+        pcout << std::endl;
+      }
+    pcout << "  error indicator (" << to_string(e.recovery)
+          << "): epsilon = " << std::fixed << std::setprecision(3)
+          << 100 * e.epsilon << " % (volume: body 1 "
+          << 100 * e.epsilon_volume[0] << " %, body 2 "
+          << 100 * e.epsilon_volume[1] << " %; contact "
+          << 100 * e.epsilon_contact << " %)" << std::defaultfloat
+          << std::endl;
+    cycle_record["epsilon"]         = e.epsilon;
+    cycle_record["epsilon_volume"]  = {e.epsilon_volume[0],
+                                      e.epsilon_volume[1]};
+    cycle_record["epsilon_contact"] = e.epsilon_contact;
+    cycle_record["recovery"]        = to_string(e.recovery);
+    if (e.has_contact)
+      cycle_record["correction"] = {
+        {"skipped", e.correction.skipped},
+        {"relative_change", e.correction.relative_change},
+        {"projected_nodes", e.correction.n_projected_nodes},
+        {"max_penetration_clipped", e.correction.max_penetration}};
+  }
+
+
+
   void
   TwoBodyProblem::output_results(const unsigned int cycle)
   {
@@ -185,12 +242,22 @@ namespace coulomb_adapt
     // The contact CSV is small and always written; VTU on request.
     if (contact_solver)
       contact_output->write(contact_solver->node_states(),
+                            error_estimate ?
+                              error_estimate->contact.nodal_density :
+                              std::vector<double>(),
                             cycle,
                             parameters.output.write_vtu);
     if (!parameters.output.write_vtu)
       return;
     for (unsigned int b = 0; b < 2; ++b)
-      body_outputs[b]->write(*bodies[b], cycle);
+      {
+        BodyErrorFields fields;
+        if (error_estimate)
+          fields = {&error_estimate->indicator[b],
+                    &error_estimate->density[b],
+                    error_estimate->recovered[b].get()};
+        body_outputs[b]->write(*bodies[b], cycle, fields);
+      }
   }
 
 
@@ -264,6 +331,7 @@ namespace coulomb_adapt
           scene->set_load_step(1);
         assemble_system();
         solve();
+        estimate_error();
 
         for (unsigned int b = 0; b < 2; ++b)
           if (bodies[b]->description().exact_displacement)

@@ -76,7 +76,8 @@ namespace coulomb_adapt
     const types::boundary_id contact_id = body.description().contact_boundary_id;
 
     // Per local contact face: for each node (x, y, dof_x, dof_y), then the
-    // outward normal of the face's chord.
+    // outward normal of the face's chord and the cell's id (4 integers,
+    // exact in doubles).
     std::vector<double> local;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -107,6 +108,8 @@ namespace coulomb_adapt
                 }
               local.push_back(normal[0]);
               local.push_back(normal[1]);
+              for (const unsigned int id : cell->id().to_binary<2>())
+                local.push_back(id);
             }
     const auto gathered = Utilities::MPI::all_gather(
       dof_handler.get_triangulation().get_communicator(), local);
@@ -114,10 +117,11 @@ namespace coulomb_adapt
     // Nodes are identified by their x DoF, and numbered in lexicographic
     // order of their positions, so that the numbering does not depend on
     // the number of ranks.
-    const unsigned int record = 4 * n_face_nodes + 2;
+    const unsigned int record = 4 * n_face_nodes + 6;
     std::map<types::global_dof_index, Node>           unique_nodes;
     std::vector<std::vector<types::global_dof_index>> segment_dofs;
     std::vector<Tensor<1, 2>>                         segment_normals;
+    std::vector<CellId>                               segment_cells;
     for (const auto &values : gathered)
       for (std::size_t i = 0; i < values.size(); i += record)
         {
@@ -134,8 +138,13 @@ namespace coulomb_adapt
               unique_nodes.emplace(node.dofs[0], node);
             }
           segment_dofs.push_back(face_nodes);
+          const std::size_t n = i + 4 * n_face_nodes;
           segment_normals.emplace_back(
-            Tensor<1, 2>({values[i + record - 2], values[i + record - 1]}));
+            Tensor<1, 2>({values[n], values[n + 1]}));
+          CellId::binary_type id;
+          for (unsigned int k = 0; k < 4; ++k)
+            id[k] = static_cast<unsigned int>(values[n + 2 + k]);
+          segment_cells.emplace_back(id);
         }
 
     nodes.clear();
@@ -156,6 +165,7 @@ namespace coulomb_adapt
         for (const auto dof : segment_dofs[s])
           segment.nodes.push_back(index_of[dof]);
         segment.normal = segment_normals[s];
+        segment.cell   = segment_cells[s];
         segments.push_back(segment);
       }
     // Segments in the order of their first node, for reproducible sums.
@@ -192,6 +202,7 @@ namespace coulomb_adapt
     D.assign(slave.size(), 0.);
     M.assign(slave.size(), {});
     gaps.assign(slave.size(), 0.);
+    overlap_list.clear();
 
     // D is diagonal with the dual basis: D_jj = int phi_j (h / 2 at a
     // vertex of a linear segment; h / 6 at a vertex and 2 h / 3 at the
@@ -205,19 +216,21 @@ namespace coulomb_adapt
           D[segment.nodes[i]] += weights[i] * h;
       }
 
-    for (const auto &slave_segment : slave_segments)
-      for (const auto &master_segment : master_segments)
+    for (unsigned int s = 0; s < slave_segments.size(); ++s)
+      for (unsigned int m = 0; m < master_segments.size(); ++m)
         // Only segments that face each other can come into contact.
-        if (slave_segment.normal * master_segment.normal < 0)
-          integrate_segment_pair(slave_segment, master_segment);
+        if (slave_segments[s].normal * master_segments[m].normal < 0)
+          integrate_segment_pair(s, m);
   }
 
 
 
   void
-  MortarInterface::integrate_segment_pair(const Segment &slave_segment,
-                                          const Segment &master_segment)
+  MortarInterface::integrate_segment_pair(const unsigned int slave_index,
+                                          const unsigned int master_index)
   {
+    const Segment &    slave_segment  = slave_segments[slave_index];
+    const Segment &    master_segment = master_segments[master_index];
     const Point<2> &   a = slave[slave_segment.nodes[0]].position;
     const Point<2> &   b = slave[slave_segment.nodes[1]].position;
     const Point<2> &   c = master[master_segment.nodes[0]].position;
@@ -240,6 +253,7 @@ namespace coulomb_adapt
     const double       det = -cd[0] * n[1] + cd[1] * n[0];
     if (std::abs(det) < 1e-12 * cd.norm())
       return;
+    overlap_list.push_back({slave_index, master_index, begin, end});
 
     // Exact for the products of the (dual) slave and master shape
     // functions on straight segments.
@@ -304,6 +318,29 @@ namespace coulomb_adapt
 
 
 
+  // Each rank packs the nodes whose DoFs it owns as [node, u_x, u_y].
+  std::vector<Tensor<1, 2>>
+  MortarInterface::gather_nodal_displacements(
+    const std::vector<Node> &            nodes,
+    const TrilinosWrappers::MPI::Vector &u)
+  {
+    const IndexSet      owned = u.locally_owned_elements();
+    std::vector<double> packed;
+    for (unsigned int n = 0; n < nodes.size(); ++n)
+      if (owned.is_element(nodes[n].dofs[0]))
+        packed.insert(packed.end(),
+                      {double(n), u(nodes[n].dofs[0]), u(nodes[n].dofs[1])});
+    std::vector<Tensor<1, 2>> values(nodes.size());
+    for (const auto &v :
+         Utilities::MPI::all_gather(u.get_mpi_communicator(), packed))
+      for (std::size_t i = 0; i < v.size(); i += 3)
+        values[static_cast<unsigned int>(v[i])] =
+          Tensor<1, 2>({v[i + 1], v[i + 2]});
+    return values;
+  }
+
+
+
   const std::vector<MortarInterface::Node> &
   MortarInterface::slave_nodes() const
   {
@@ -328,5 +365,30 @@ namespace coulomb_adapt
   MortarInterface::weighted_initial_gaps() const
   {
     return gaps;
+  }
+  const std::vector<MortarInterface::Segment> &
+  MortarInterface::slave_segment_list() const
+  {
+    return slave_segments;
+  }
+  const std::vector<MortarInterface::Segment> &
+  MortarInterface::master_segment_list() const
+  {
+    return master_segments;
+  }
+  const std::vector<MortarInterface::Overlap> &
+  MortarInterface::overlaps() const
+  {
+    return overlap_list;
+  }
+  unsigned int
+  MortarInterface::slave_element_degree() const
+  {
+    return slave_degree;
+  }
+  std::vector<double>
+  MortarInterface::slave_shape_values(const double xi) const
+  {
+    return segment_shape_values(slave_degree, xi);
   }
 } // namespace coulomb_adapt

@@ -245,6 +245,55 @@ namespace coulomb_adapt
 
 
     void
+    ErrorIndicator::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Error indicator");
+      {
+        prm.declare_entry("Recovery",
+                          "zz",
+                          Patterns::Selection("zz|spr"),
+                          "How the smoothed stress is recovered from the "
+                          "corrected FE stress on each body. zz: global L2 "
+                          "projection onto the continuous FE space of the "
+                          "same degree (Zienkiewicz-Zhu 1987, the seed's "
+                          "choice); spr: superconvergent patch recovery "
+                          "(Zienkiewicz-Zhu 1992).");
+        prm.declare_entry("Compute exact error",
+                          "false",
+                          Patterns::Bool(),
+                          "Also compute the exact error (3-8) and the "
+                          "effectivity index epsilon / epsilon_exact: with "
+                          "the scene's exact solution if it has one "
+                          "(manufactured), otherwise with a reference "
+                          "solution of the same scene on a finer mesh "
+                          "(an extra, expensive solve: for verification).");
+        prm.declare_entry("Reference refinements",
+                          "2",
+                          Patterns::Integer(1, 6),
+                          "Uniform refinements of the reference mesh beyond "
+                          "the mesh of the cycle (each multiplies the DoFs "
+                          "by about 4).");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
+    ErrorIndicator::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Error indicator");
+      {
+        recovery              = prm.get("Recovery");
+        compute_exact_error   = prm.get_bool("Compute exact error");
+        reference_refinements = prm.get_integer("Reference refinements");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    void
     Adaptation::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Adaptation");
@@ -318,6 +367,7 @@ namespace coulomb_adapt
     parameters::FiniteElements::declare_parameters(prm);
     parameters::Contact::declare_parameters(prm);
     parameters::LinearSolver::declare_parameters(prm);
+    parameters::ErrorIndicator::declare_parameters(prm);
     parameters::Adaptation::declare_parameters(prm);
     parameters::Output::declare_parameters(prm);
   }
@@ -332,6 +382,7 @@ namespace coulomb_adapt
     finite_elements.parse_parameters(prm);
     contact.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
+    error_indicator.parse_parameters(prm);
     adaptation.parse_parameters(prm);
     output.parse_parameters(prm);
   }

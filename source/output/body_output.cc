@@ -18,7 +18,9 @@ namespace coulomb_adapt
 
 
   void
-  BodyOutput::write(const ElasticBody &body, const unsigned int cycle)
+  BodyOutput::write(const ElasticBody & body,
+                    const unsigned int  cycle,
+                    const BodyErrorFields &error_fields)
   {
     const Triangulation<2> &tria = body.triangulation();
     const MPI_Comm          comm = tria.get_communicator();
@@ -42,6 +44,16 @@ namespace coulomb_adapt
           material_id(cell->active_cell_index()) = cell->material_id();
           subdomain(cell->active_cell_index()) = cell->subdomain_id();
         }
+    if (error_fields.indicator)
+      data_out.add_data_vector(*error_fields.indicator, "error_indicator");
+    if (error_fields.density)
+      data_out.add_data_vector(*error_fields.density, "error_density");
+    if (error_fields.recovered)
+      data_out.add_data_vector(error_fields.recovered->dof_handler(),
+                               error_fields.recovered->values(),
+                               std::vector<std::string>{"smoothed_stress_xx",
+                                                        "smoothed_stress_yy",
+                                                        "smoothed_stress_xy"});
     data_out.add_data_vector(material_id, "material_id");
     data_out.add_data_vector(subdomain, "subdomain");
 

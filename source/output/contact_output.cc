@@ -19,25 +19,34 @@ namespace coulomb_adapt
 
   void
   ContactOutput::write(const std::vector<ContactNodeState> &states,
+                       const std::vector<double> &contact_error_density,
                        const unsigned int                   cycle,
                        const bool                           write_vtu)
   {
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
       return;
+    const bool with_density = !contact_error_density.empty();
     const std::string base =
       directory + "/contact_" + Utilities::int_to_string(cycle, 3);
 
     {
       std::ofstream csv(base + ".csv");
       csv << "x,y,normal_x,normal_y,weight,contact_pressure,"
-             "tangential_traction,gap,slip,status,facing_master\n";
+             "tangential_traction,gap,slip,status,facing_master"
+          << (with_density ? ",contact_error_density\n" : "\n");
       csv << std::setprecision(12);
-      for (const auto &s : states)
-        csv << s.position[0] << ',' << s.position[1] << ',' << s.normal[0]
-            << ',' << s.normal[1] << ',' << s.weight << ',' << s.pressure
-            << ',' << s.tangential_traction << ',' << s.gap << ',' << s.slip
-            << ',' << to_string(s.status) << ','
-            << (s.facing_master ? 1 : 0) << '\n';
+      for (unsigned int j = 0; j < states.size(); ++j)
+        {
+          const ContactNodeState &s = states[j];
+          csv << s.position[0] << ',' << s.position[1] << ',' << s.normal[0]
+              << ',' << s.normal[1] << ',' << s.weight << ',' << s.pressure
+              << ',' << s.tangential_traction << ',' << s.gap << ','
+              << s.slip << ',' << to_string(s.status) << ','
+              << (s.facing_master ? 1 : 0);
+          if (with_density)
+            csv << ',' << contact_error_density[j];
+          csv << '\n';
+        }
     }
 
     if (!write_vtu)
@@ -45,8 +54,10 @@ namespace coulomb_adapt
 
     // One 1D patch per pair of consecutive slave nodes (the nodes are
     // sorted along the interface).
-    const std::vector<std::string> names = {
+    std::vector<std::string> names = {
       "contact_pressure", "tangential_traction", "gap", "slip", "status"};
+    if (with_density)
+      names.emplace_back("contact_error_density");
     std::vector<DataOutBase::Patch<1, 2>> patches;
     for (unsigned int j = 0; j + 1 < states.size(); ++j)
       {
@@ -64,6 +75,8 @@ namespace coulomb_adapt
             patch.data(3, v)          = s.slip;
             // 0 open, 1 stick, 2 slip.
             patch.data(4, v) = static_cast<double>(s.status);
+            if (with_density)
+              patch.data(5, v) = contact_error_density[j + v];
           }
         patch.patch_index = j;
         patches.push_back(patch);

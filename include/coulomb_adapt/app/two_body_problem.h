@@ -7,6 +7,7 @@
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/indicator/error_estimate.h>
 #include <coulomb_adapt/output/body_output.h>
 #include <coulomb_adapt/output/contact_output.h>
 #include <coulomb_adapt/output/run_summary.h>
@@ -52,6 +53,8 @@ namespace coulomb_adapt
     void
     solve_separately();
     void
+    estimate_error();
+    void
     output_results(const unsigned int cycle);
     void
     refine_grid();
@@ -66,6 +69,7 @@ namespace coulomb_adapt
     std::unique_ptr<RunSummary>               summary;
     std::unique_ptr<ContactSolver>            contact_solver;
     std::unique_ptr<ContactOutput>            contact_output;
+    std::unique_ptr<ErrorEstimate>            error_estimate;
     nlohmann::json                            cycle_record;
   };
 } // namespace coulomb_adapt

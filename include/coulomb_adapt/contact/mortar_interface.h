@@ -4,6 +4,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <deal.II/grid/cell_id.h>
+
 #include <deal.II/lac/full_matrix.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
@@ -55,6 +57,29 @@ namespace coulomb_adapt
       Tensor<1, 2> tangent;
     };
 
+    /** A contact face of one side. */
+    struct Segment
+    {
+      /** Indices into the node list of the same side: the two ends, then
+       * (degree 2) the middle node. */
+      std::vector<unsigned int> nodes;
+      /** Outward unit normal of the body at this segment. */
+      Tensor<1, 2> normal;
+      /** The cell the face belongs to. */
+      CellId cell;
+    };
+
+    /** Where a projected master segment overlaps a slave segment: the
+     * parameter interval [begin, end] of the slave segment's chord (0 at
+     * its first node, 1 at its second). */
+    struct Overlap
+    {
+      unsigned int slave_segment;
+      unsigned int master_segment;
+      double       begin;
+      double       end;
+    };
+
     /** Collect both contact boundaries and integrate D, M and g~. */
     void
     reinit(const ElasticBody &slave, const ElasticBody &master);
@@ -76,6 +101,25 @@ namespace coulomb_adapt
     const std::vector<double> &
     weighted_initial_gaps() const;
 
+    const std::vector<Segment> &
+    slave_segment_list() const;
+    const std::vector<Segment> &
+    master_segment_list() const;
+
+    /** Every slave/master segment overlap, the pieces of the interface
+     * where the two bodies face each other. */
+    const std::vector<Overlap> &
+    overlaps() const;
+
+    /** Degree of the slave side's elements (1 or 2). */
+    unsigned int
+    slave_element_degree() const;
+
+    /** Values of the slave segment's shape functions (ends, then middle
+     * node) at parameter @p xi in [0, 1]. */
+    std::vector<double>
+    slave_shape_values(const double xi) const;
+
     /** Whether the master surface covers slave node j's support
      * completely (sum_l M_jl = D_jj): only such nodes can come into
      * contact; the others lie beyond the master's edge. */
@@ -88,15 +132,13 @@ namespace coulomb_adapt
     weighted_jump(const std::vector<Tensor<1, 2>> &slave_displacements,
                   const std::vector<Tensor<1, 2>> &master_displacements) const;
 
+    /** The displacements at @p nodes (of either side) from a distributed
+     * displacement vector, gathered on every rank. */
+    static std::vector<Tensor<1, 2>>
+    gather_nodal_displacements(const std::vector<Node> &            nodes,
+                               const TrilinosWrappers::MPI::Vector &u);
+
   private:
-    struct Segment
-    {
-      /** Indices into the node list of the same side: the two ends, then
-       * (degree 2) the middle node. */
-      std::vector<unsigned int> nodes;
-      /** Outward unit normal of the body at this segment. */
-      Tensor<1, 2> normal;
-    };
 
     /** Returns the degree of the body's elements. */
     static unsigned int
@@ -105,8 +147,8 @@ namespace coulomb_adapt
                              std::vector<Segment> &segments);
 
     void
-    integrate_segment_pair(const Segment &slave_segment,
-                           const Segment &master_segment);
+    integrate_segment_pair(const unsigned int slave_segment_index,
+                           const unsigned int master_segment_index);
 
     std::vector<Node>                       slave;
     std::vector<Node>                       master;
@@ -115,6 +157,7 @@ namespace coulomb_adapt
     std::vector<double>                     D;
     std::vector<std::map<unsigned int, double>> M;
     std::vector<double>                     gaps;
+    std::vector<Overlap>                    overlap_list;
     unsigned int                            slave_degree  = 1;
     unsigned int                            master_degree = 1;
     /** Dual basis of the slave segments: psi_i = sum_k A_ik phi_k. */

@@ -102,6 +102,23 @@ namespace coulomb_adapt
       parse_parameters(ParameterHandler &prm);
     };
 
+    /** Subsection `Error indicator`. */
+    struct ErrorIndicator
+    {
+      /** "zz" (global L2 projection) or "spr" (patch recovery). */
+      std::string  recovery;
+      /** Compare with the exact error: the scene's exact solution if it
+       * has one, else a reference solution on a finer mesh. */
+      bool         compute_exact_error;
+      /** Uniform refinements of the reference mesh beyond the current one. */
+      unsigned int reference_refinements;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
     /** Subsection `Adaptation`. */
     struct Adaptation
     {
@@ -140,6 +157,7 @@ namespace coulomb_adapt
     parameters::FiniteElements finite_elements;
     parameters::Contact        contact;
     parameters::LinearSolver   linear_solver;
+    parameters::ErrorIndicator error_indicator;
     parameters::Adaptation     adaptation;
     parameters::Output         output;
 

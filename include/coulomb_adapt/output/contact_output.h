@@ -22,9 +22,12 @@ namespace coulomb_adapt
   public:
     ContactOutput(const std::string &directory, const MPI_Comm comm);
 
-    /** Write the CSV, and with @p write_vtu the VTU and PVD record. */
+    /** Write the CSV, and with @p write_vtu the VTU and PVD record.
+     * @p contact_error_density (one value per slave node, may be empty) is
+     * the density of the indicator's contact term. */
     void
     write(const std::vector<ContactNodeState> &states,
+          const std::vector<double> &          contact_error_density,
           const unsigned int                   cycle,
           const bool                           write_vtu);
 

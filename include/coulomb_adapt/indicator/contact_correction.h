@@ -1,0 +1,65 @@
+#ifndef coulomb_adapt_indicator_contact_correction_h
+#define coulomb_adapt_indicator_contact_correction_h
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/indicator/contact_error.h>
+
+#include <array>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /** The corrected FE solution of theory.md section 3.2. */
+  struct CorrectedContactSolution
+  {
+    /** True when R_h was already in the Coulomb cone: the corrected
+     * fields are the FE fields and no second solve was done. */
+    bool skipped = true;
+    /** ||R_c - R_h|| / ||R_h|| in the lumped L2(Gamma_c) norm. */
+    double relative_change = 0;
+    /** Slave nodes whose reaction the projection moved. */
+    unsigned int n_projected_nodes = 0;
+    /** Largest nodal penetration of W_c (mm), clipped by the contact term;
+     * 0 if none. */
+    double max_penetration = 0;
+    /** U_c of body 1 and body 2, with ghost entries. */
+    std::array<TrilinosWrappers::MPI::Vector, 2> displacement;
+    /** R_c (as lambda_c = -R_c) and W_c at the slave nodes. */
+    std::vector<ContactNodeFields> fields;
+  };
+
+  /**
+   * Project the nodal reactions of the contact solution onto the Coulomb
+   * cone K_mu and, if that changed any of them, solve the corrected problem:
+   * each body in equilibrium under its own data and the prescribed contact
+   * traction (R_c on body 1, -R_c on body 2), applied in the same mortar
+   * form as in the contact solve (D R_c on the slave nodes, M^T lambda_c on
+   * the master nodes). With R_c = R_h that problem returns U_h exactly,
+   * which is why the solve can be skipped when nothing moved.
+   *
+   * A body whose supports do not hold all its rigid motions (body 1 of
+   * `blocks` is held by contact alone) is singular under prescribed
+   * tractions: its load is projected onto the range of the stiffness (the
+   * part of R_c that the body cannot balance is removed), the free rigid
+   * modes are pinned for the solve, and U_c - U_h is made orthogonal to
+   * them, so the correction adds no rigid motion.
+   */
+  CorrectedContactSolution
+  correct_contact_solution(const ElasticBody &               slave,
+                           const ElasticBody &               master,
+                           const ContactSolver &             contact_solver,
+                           const double                      friction_coefficient,
+                           const parameters::LinearSolver &  solver_parameters);
+
+  /** The Euclidean projection of (lambda_n, lambda_t) onto the cone
+   * lambda_n >= 0, |lambda_t| <= mu lambda_n (R in K_mu). */
+  std::array<double, 2>
+  project_onto_coulomb_cone(const double lambda_n,
+                            const double lambda_t,
+                            const double mu);
+} // namespace coulomb_adapt
+
+#endif

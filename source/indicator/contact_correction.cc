@@ -1,0 +1,345 @@
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <coulomb_adapt/indicator/contact_correction.h>
+#include <coulomb_adapt/solvers/linear_solver.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace coulomb_adapt
+{
+  std::array<double, 2>
+  project_onto_coulomb_cone(const double lambda_n,
+                            const double lambda_t,
+                            const double mu)
+  {
+    if (std::abs(lambda_t) <= mu * lambda_n)
+      return {{lambda_n, lambda_t}};
+    // In the polar cone: the nearest point of K_mu is its apex.
+    if (mu * std::abs(lambda_t) <= -lambda_n)
+      return {{0., 0.}};
+    // Otherwise onto the nearest edge of the cone, the ray (1, mu s).
+    const double n = (lambda_n + mu * std::abs(lambda_t)) / (1 + mu * mu);
+    return {{n, mu * std::copysign(n, lambda_t)}};
+  }
+
+
+
+  namespace
+  {
+    // The rigid motions body @p body can make without moving its supported
+    // (Dirichlet or point-constrained) DoFs: the null space of the
+    // Gram matrix of the rigid modes restricted to those DoFs. Modes are
+    // the translations and the rotation about the body's centre, scaled to
+    // O(1) entries so that one threshold fits every body.
+    std::vector<TrilinosWrappers::MPI::Vector>
+    free_rigid_modes(const ElasticBody &body)
+    {
+      const MPI_Comm comm  = body.triangulation().get_communicator();
+      const auto &   owned = body.locally_owned_dof_set();
+
+      Point<2> lower(1e300, 1e300), upper(-1e300, -1e300);
+      for (const auto &cell : body.triangulation().active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int d = 0; d < 2; ++d)
+              {
+                lower[d] = std::min(lower[d], cell->vertex(v)[d]);
+                upper[d] = std::max(upper[d], cell->vertex(v)[d]);
+              }
+      for (unsigned int d = 0; d < 2; ++d)
+        {
+          lower[d] = Utilities::MPI::min(lower[d], comm);
+          upper[d] = Utilities::MPI::max(upper[d], comm);
+        }
+      const Point<2> centre = (lower + upper) / 2;
+      const double   radius = (upper - lower).norm() / 2;
+
+      // rigid_body_modes(): x, y translation and rotation about the origin.
+      auto modes = body.rigid_body_modes();
+      for (unsigned int k = 0; k < modes[2].size(); ++k)
+        modes[2][k] =
+          (modes[2][k] + centre[1] * modes[0][k] - centre[0] * modes[1][k]) /
+          radius;
+
+      const auto &constraints = body.constraints();
+      auto        is_supported = [&](const types::global_dof_index i) {
+        return constraints.is_constrained(i) &&
+               constraints.get_constraint_entries(i)->empty();
+      };
+      SymmetricTensor<2, 3> gram;
+      unsigned int          k = 0;
+      for (const auto i : owned)
+        {
+          if (is_supported(i))
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = a; b < 3; ++b)
+                gram[a][b] += modes[a][k] * modes[b][k];
+          ++k;
+        }
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = a; b < 3; ++b)
+          gram[a][b] = Utilities::MPI::sum(gram[a][b], comm);
+
+      std::vector<TrilinosWrappers::MPI::Vector> free;
+      for (const auto &[value, direction] : eigenvectors(gram))
+        if (value < 1e-8)
+          {
+            TrilinosWrappers::MPI::Vector z(owned, comm);
+            unsigned int                  k = 0;
+            for (const auto i : owned)
+              {
+                if (!constraints.is_constrained(i))
+                  z(i) = direction[0] * modes[0][k] +
+                         direction[1] * modes[1][k] +
+                         direction[2] * modes[2][k];
+                ++k;
+              }
+            z.compress(VectorOperation::insert);
+            free.push_back(z);
+          }
+      return free;
+    }
+
+
+
+    // DoFs that fix the free rigid modes when pinned: Gaussian elimination
+    // with complete pivoting on the (n_dofs x n_modes) matrix of the modes.
+    std::vector<types::global_dof_index>
+    pinning_dofs(const std::vector<TrilinosWrappers::MPI::Vector> &modes,
+                 const MPI_Comm                                    comm)
+    {
+      std::vector<TrilinosWrappers::MPI::Vector> reduced = modes;
+      std::vector<types::global_dof_index>       pinned;
+      for (unsigned int m = 0; m < reduced.size(); ++m)
+        {
+          // The largest remaining entry of mode m, over all ranks.
+          double                  best = 0;
+          types::global_dof_index where = 0;
+          for (const auto i : reduced[m].locally_owned_elements())
+            if (std::abs(reduced[m](i)) > best)
+              {
+                best  = std::abs(reduced[m](i));
+                where = i;
+              }
+          const auto candidates =
+            Utilities::MPI::all_gather(comm, std::make_pair(best, where));
+          const auto pick = *std::max_element(
+            candidates.begin(),
+            candidates.end(),
+            [](const auto &a, const auto &b) { return a.first < b.first; });
+          pinned.push_back(pick.second);
+
+          // Every mode's value at the pinned DoF, from its owner.
+          std::vector<double> local;
+          if (reduced[m].locally_owned_elements().is_element(pick.second))
+            for (const auto &r : reduced)
+              local.push_back(r(pick.second));
+          std::vector<double> at_pick;
+          for (const auto &v : Utilities::MPI::all_gather(comm, local))
+            if (!v.empty())
+              at_pick = v;
+          // Eliminate the pinned DoF from the remaining modes.
+          for (unsigned int r = m + 1; r < reduced.size(); ++r)
+            reduced[r].add(-at_pick[r] / at_pick[m], reduced[m]);
+        }
+      return pinned;
+    }
+
+
+
+    // Solve K u = f for a body, pinning its free rigid modes if it has
+    // any; the result satisfies the body's constraints and, for a floating
+    // body, u - u_reference is orthogonal to the free modes.
+    TrilinosWrappers::MPI::Vector
+    solve_under_prescribed_tractions(
+      const ElasticBody &                  body,
+      TrilinosWrappers::MPI::Vector        load,
+      const TrilinosWrappers::MPI::Vector &u_reference,
+      const parameters::LinearSolver &     solver_parameters)
+    {
+      const MPI_Comm comm  = body.triangulation().get_communicator();
+      const auto &   owned = body.locally_owned_dof_set();
+      const auto     modes = free_rigid_modes(body);
+
+      // Gram matrix of the free modes and its inverse.
+      const unsigned int n = modes.size();
+      FullMatrix<double> gram(n, n), inverse(n, n);
+      for (unsigned int a = 0; a < n; ++a)
+        for (unsigned int b = 0; b < n; ++b)
+          gram(a, b) = modes[a] * modes[b];
+      if (n > 0)
+        inverse.invert(gram);
+      auto remove_modes = [&](TrilinosWrappers::MPI::Vector &v,
+                              const TrilinosWrappers::MPI::Vector &target) {
+        // v <- v - Z G^-1 Z^T (v - target): no free-mode component in
+        // v - target.
+        TrilinosWrappers::MPI::Vector difference(v);
+        difference -= target;
+        std::vector<double> projections(n);
+        for (unsigned int a = 0; a < n; ++a)
+          projections[a] = modes[a] * difference;
+        for (unsigned int a = 0; a < n; ++a)
+          {
+            double coefficient = 0;
+            for (unsigned int b = 0; b < n; ++b)
+              coefficient += inverse(a, b) * projections[b];
+            v.add(-coefficient, modes[a]);
+          }
+      };
+
+      TrilinosWrappers::MPI::Vector solution(owned, comm);
+      if (n == 0)
+        {
+          solve_linear_system(body.system_matrix(),
+                              solution,
+                              load,
+                              body.rigid_body_modes(),
+                              solver_parameters);
+          body.constraints().distribute(solution);
+          return solution;
+        }
+
+      // The load's resultant on the free modes cannot be balanced: remove
+      // it (the l2 projection onto the range of K).
+      TrilinosWrappers::MPI::Vector zero(owned, comm);
+      remove_modes(load, zero);
+
+      const auto pinned = pinning_dofs(modes, comm);
+      TrilinosWrappers::SparseMatrix pinned_matrix;
+      pinned_matrix.copy_from(body.system_matrix());
+      pinned_matrix.clear_rows(pinned, 1.);
+      for (const auto i : pinned)
+        if (owned.is_element(i))
+          load(i) = 0;
+      load.compress(VectorOperation::insert);
+      solve_linear_system(pinned_matrix,
+                          solution,
+                          load,
+                          body.rigid_body_modes(),
+                          solver_parameters,
+                          false);
+      body.constraints().distribute(solution);
+      TrilinosWrappers::MPI::Vector reference(owned, comm);
+      reference = u_reference;
+      remove_modes(solution, reference);
+      return solution;
+    }
+  } // namespace
+
+
+
+  CorrectedContactSolution
+  correct_contact_solution(const ElasticBody &              slave,
+                           const ElasticBody &              master,
+                           const ContactSolver &            contact_solver,
+                           const double                     mu,
+                           const parameters::LinearSolver & solver_parameters)
+  {
+    const auto &states = contact_solver.node_states();
+    const auto &mortar = contact_solver.mortar_interface();
+    const auto &nodes  = mortar.slave_nodes();
+    const auto &D      = mortar.slave_weights();
+
+    CorrectedContactSolution corrected;
+    corrected.fields.resize(states.size());
+    corrected.displacement = {slave.solution(), master.solution()};
+
+    // R_c: the nodal reactions projected onto the Coulomb cone. Changes at
+    // the level of the condensation's round-off are not corrections.
+    double largest = 0;
+    for (const auto &s : states)
+      largest = std::max({largest,
+                          std::abs(s.pressure),
+                          std::abs(s.tangential_traction)});
+    std::vector<Tensor<1, 2>> change(states.size());
+    double                    change_norm = 0, norm = 0;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      {
+        const auto  &s = states[j];
+        const auto   projected =
+          project_onto_coulomb_cone(s.pressure, s.tangential_traction, mu);
+        const double dn = projected[0] - s.pressure;
+        const double dt = projected[1] - s.tangential_traction;
+        if (std::abs(dn) + std::abs(dt) > 1e-10 * largest)
+          {
+            ++corrected.n_projected_nodes;
+            change[j] = dn * nodes[j].normal + dt * nodes[j].tangent;
+          }
+        corrected.fields[j].pressure            = projected[0];
+        corrected.fields[j].tangential_traction = projected[1];
+        corrected.fields[j].gap                 = s.gap;
+        corrected.fields[j].slip                = s.slip;
+        change_norm += D[j] * change[j].norm_square();
+        norm += D[j] * (s.pressure * s.pressure +
+                        s.tangential_traction * s.tangential_traction);
+      }
+    corrected.relative_change =
+      norm > 0 ? std::sqrt(change_norm / norm) : 0.;
+    corrected.skipped = (corrected.n_projected_nodes == 0);
+
+    if (!corrected.skipped)
+      {
+        // The contact loads of the corrected problem: f^1 - D lambda_c on
+        // body 1, f^2 + M^T lambda_c on body 2 (the FE solution satisfies
+        // the same equations with lambda_h).
+        const std::array<const ElasticBody *, 2> bodies = {{&slave, &master}};
+        std::array<TrilinosWrappers::MPI::Vector, 2> loads = {
+          {slave.system_rhs(), master.system_rhs()}};
+        const auto &master_nodes = mortar.master_nodes();
+        const auto &M            = mortar.master_coupling();
+        auto add_load = [&](const unsigned int                     b,
+                            const std::array<types::global_dof_index, 2> &dofs,
+                            const Tensor<1, 2> &force) {
+          for (unsigned int c = 0; c < 2; ++c)
+            if (bodies[b]->locally_owned_dof_set().is_element(dofs[c]) &&
+                !bodies[b]->constraints().is_constrained(dofs[c]))
+              loads[b](dofs[c]) += force[c];
+        };
+        for (unsigned int j = 0; j < states.size(); ++j)
+          {
+            const Tensor<1, 2> lambda =
+              corrected.fields[j].pressure * nodes[j].normal +
+              corrected.fields[j].tangential_traction * nodes[j].tangent;
+            add_load(0, nodes[j].dofs, -D[j] * lambda);
+            for (const auto &[l, m] : M[j])
+              add_load(1, master_nodes[l].dofs, m * lambda);
+          }
+        for (unsigned int b = 0; b < 2; ++b)
+          {
+            loads[b].compress(VectorOperation::add);
+            const TrilinosWrappers::MPI::Vector solution =
+              solve_under_prescribed_tractions(*bodies[b],
+                                               loads[b],
+                                               bodies[b]->solution(),
+                                               solver_parameters);
+            corrected.displacement[b] = solution;
+          }
+
+        // W_c from the corrected displacements, in the mortar's weighted
+        // form as the solver evaluates it.
+        const auto u1 = MortarInterface::gather_nodal_displacements(
+          nodes, corrected.displacement[0]);
+        const auto u2 = MortarInterface::gather_nodal_displacements(
+          master_nodes, corrected.displacement[1]);
+        const auto  jump = mortar.weighted_jump(u1, u2);
+        const auto &gaps = mortar.weighted_initial_gaps();
+        for (unsigned int j = 0; j < nodes.size(); ++j)
+          if (mortar.is_covered(j))
+            {
+              corrected.fields[j].gap =
+                (gaps[j] - jump[j] * nodes[j].normal) / D[j];
+              corrected.fields[j].slip = jump[j] * nodes[j].tangent / D[j];
+            }
+      }
+
+    // Penetration at the level of round-off of the displacements is none.
+    double scale = 0;
+    for (const auto &f : corrected.fields)
+      scale = std::max({scale, std::abs(f.gap), std::abs(f.slip)});
+    for (const auto &f : corrected.fields)
+      if (-f.gap > 1e-10 * scale)
+        corrected.max_penetration = std::max(corrected.max_penetration, -f.gap);
+    return corrected;
+  }
+} // namespace coulomb_adapt

@@ -1,0 +1,127 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <coulomb_adapt/indicator/contact_error.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace coulomb_adapt
+{
+  namespace
+  {
+    // The zeros in (begin, end) of the segment interpolant of nodal values
+    // v (ends, then middle node): a line or a parabola in xi.
+    void
+    add_zeros(const std::vector<double> &v,
+              const double               begin,
+              const double               end,
+              std::vector<double> &      breaks)
+    {
+      double a0 = v[0], a1 = v[1] - v[0], a2 = 0;
+      if (v.size() == 3)
+        {
+          // (1-xi)(1-2xi) v0 + xi(2xi-1) v1 + 4 xi(1-xi) vm
+          a1 = -3 * v[0] - v[1] + 4 * v[2];
+          a2 = 2 * v[0] + 2 * v[1] - 4 * v[2];
+        }
+      std::vector<double> roots;
+      const double        scale = std::abs(a0) + std::abs(a1) + std::abs(a2);
+      if (scale == 0)
+        return;
+      if (std::abs(a2) <= 1e-14 * scale)
+        {
+          if (std::abs(a1) > 1e-14 * scale)
+            roots.push_back(-a0 / a1);
+        }
+      else
+        {
+          const double discriminant = a1 * a1 - 4 * a2 * a0;
+          if (discriminant >= 0)
+            {
+              // The cancellation-free form of the two roots.
+              const double q =
+                -0.5 * (a1 + std::copysign(std::sqrt(discriminant), a1));
+              roots.push_back(q / a2);
+              if (q != 0)
+                roots.push_back(a0 / q);
+            }
+        }
+      for (const double r : roots)
+        if (r > begin && r < end)
+          breaks.push_back(r);
+    }
+  } // namespace
+
+
+
+  ContactErrorTerm
+  integrate_contact_error(const MortarInterface &               mortar,
+                          const std::vector<ContactNodeFields> &fields,
+                          const double                          mu)
+  {
+    const auto &       nodes    = mortar.slave_nodes();
+    const auto &       segments = mortar.slave_segment_list();
+    const auto &       masters  = mortar.master_segment_list();
+    const unsigned int degree   = mortar.slave_element_degree();
+    // c is a product of two interpolants on each piece (degree 2p), the
+    // nodal densities one more factor phi_j (degree 3p).
+    const QGauss<1> gauss(degree + 2);
+
+    ContactErrorTerm term;
+    term.nodal_density.assign(nodes.size(), 0.);
+    for (const auto &overlap : mortar.overlaps())
+      {
+        const auto &segment = segments[overlap.slave_segment];
+        const double h = nodes[segment.nodes[0]].position.distance(
+          nodes[segment.nodes[1]].position);
+        const unsigned int  n = segment.nodes.size();
+        std::vector<double> pressure(n), traction(n), gap(n), slip(n);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const ContactNodeFields &f = fields[segment.nodes[i]];
+            pressure[i]                = f.pressure;
+            traction[i]                = f.tangential_traction;
+            gap[i]                     = f.gap;
+            slip[i]                    = f.slip;
+          }
+        std::vector<double> breaks = {overlap.begin, overlap.end};
+        add_zeros(pressure, overlap.begin, overlap.end, breaks);
+        add_zeros(slip, overlap.begin, overlap.end, breaks);
+        add_zeros(gap, overlap.begin, overlap.end, breaks);
+        std::sort(breaks.begin(), breaks.end());
+
+        double piece_sum = 0;
+        for (unsigned int b = 0; b + 1 < breaks.size(); ++b)
+          for (unsigned int q = 0; q < gauss.size(); ++q)
+            {
+              const double xi =
+                breaks[b] + (breaks[b + 1] - breaks[b]) * gauss.point(q)[0];
+              const double w =
+                gauss.weight(q) * (breaks[b + 1] - breaks[b]) * h;
+              const auto phi = mortar.slave_shape_values(xi);
+              double     p = 0, t = 0, g = 0, s = 0;
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  p += phi[i] * pressure[i];
+                  t += phi[i] * traction[i];
+                  g += phi[i] * gap[i];
+                  s += phi[i] * slip[i];
+                }
+              // R = -lambda, W_n = -gap clipped to min(W_n, 0):
+              // mu |R_n||W_t| + R_t W_t + R_n W_n.
+              const double c =
+                mu * std::abs(p) * std::abs(s) - t * s + p * std::max(g, 0.);
+              piece_sum += c * w;
+              for (unsigned int i = 0; i < n; ++i)
+                term.nodal_density[segment.nodes[i]] += phi[i] * c * w;
+            }
+        term.integral += piece_sum;
+        term.slave_cells[segment.cell] += piece_sum;
+        term.master_cells[masters[overlap.master_segment].cell] += piece_sum;
+      }
+    const auto &D = mortar.slave_weights();
+    for (unsigned int j = 0; j < nodes.size(); ++j)
+      term.nodal_density[j] /= D[j];
+    return term;
+  }
+} // namespace coulomb_adapt
