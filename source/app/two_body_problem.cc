@@ -3,6 +3,7 @@
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/bodies/elasticity_errors.h>
 #include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/indicator/exact_error.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 
 #include <iomanip>
@@ -181,7 +182,7 @@ namespace coulomb_adapt
   // The indicator of theory.md section 3: correction, recovery, element
   // contributions and epsilon.
   void
-  TwoBodyProblem::estimate_error()
+  TwoBodyProblem::estimate_error(const unsigned int cycle)
   {
     TimerOutput::Scope t(computing_timer, "error indicator");
     const StressRecoveryMethod recovery =
@@ -231,6 +232,62 @@ namespace coulomb_adapt
         {"relative_change", e.correction.relative_change},
         {"projected_nodes", e.correction.n_projected_nodes},
         {"max_penetration_clipped", e.correction.max_penetration}};
+    if (parameters.error_indicator.compute_exact_error)
+      compare_with_exact_error(cycle);
+  }
+
+
+
+  // For verification: the exact error of the corrected solution against
+  // the scene's exact solution, or else a reference solution on a mesh
+  // refined `Reference refinements` more times.
+  void
+  TwoBodyProblem::compare_with_exact_error(const unsigned int cycle)
+  {
+    TimerOutput::Scope t(computing_timer, "exact error");
+    const std::array<const ElasticBody *, 2> body_pointers = {
+      {bodies[0].get(), bodies[1].get()}};
+    std::unique_ptr<ReferenceStress> reference;
+    if (bodies[0]->description().exact_displacement &&
+        bodies[1]->description().exact_displacement)
+      reference = std::make_unique<ExactSolutionStress>(body_pointers);
+    else
+      {
+        AssertThrow(has_contact() && scene->n_load_steps() == 1,
+                    ExcMessage(
+                      "Error indicator/Compute exact error: scene '" +
+                      scene->name() +
+                      "' has no exact solution, and a reference solution "
+                      "is computed only for static contact scenes."));
+        pcout << "  exact error: solving the reference problem ("
+              << parameters.error_indicator.reference_refinements
+              << " more uniform refinements)" << std::endl;
+        reference = std::make_unique<ReferenceSolutionStress>(
+          mpi_communicator,
+          *scene,
+          parameters,
+          parameters.mesh.global_refinements + cycle,
+          parameters.error_indicator.reference_refinements);
+      }
+    const ExactErrorComparison c = coulomb_adapt::compare_with_exact_error(
+      body_pointers, *error_estimate, *reference);
+    pcout << "  exact error (" << reference->description()
+          << "): epsilon_exact = " << std::fixed << std::setprecision(3)
+          << 100 * c.epsilon_exact << " %, effectivity " << c.effectivity
+          << " (elements: mean " << c.element_effectivity_mean << ", std "
+          << c.element_effectivity_std << ", min "
+          << c.element_effectivity_min << ", max "
+          << c.element_effectivity_max << ")" << std::defaultfloat
+          << std::endl;
+    cycle_record["epsilon_exact"] = c.epsilon_exact;
+    cycle_record["effectivity"]   = c.effectivity;
+    cycle_record["element_effectivity"] = {
+      {"mean", c.element_effectivity_mean},
+      {"std", c.element_effectivity_std},
+      {"min", c.element_effectivity_min},
+      {"max", c.element_effectivity_max},
+      {"n_elements", c.n_elements}};
+    cycle_record["exact_error_reference"] = reference->description();
   }
 
 
@@ -331,7 +388,7 @@ namespace coulomb_adapt
           scene->set_load_step(1);
         assemble_system();
         solve();
-        estimate_error();
+        estimate_error(cycle);
 
         for (unsigned int b = 0; b < 2; ++b)
           if (bodies[b]->description().exact_displacement)

@@ -53,7 +53,9 @@ namespace coulomb_adapt
     void
     solve_separately();
     void
-    estimate_error();
+    estimate_error(const unsigned int cycle);
+    void
+    compare_with_exact_error(const unsigned int cycle);
     void
     output_results(const unsigned int cycle);
     void
