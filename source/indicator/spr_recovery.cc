@@ -1,14 +1,602 @@
+// Superconvergent patch recovery (SPR, Zienkiewicz and Zhu 1992) of the
+// stress of one body, in parallel.
+//
+// For every vertex (the patch centre) a polynomial of degree p per stress
+// component is fitted, in the least-squares sense, to the raw stress
+// K eps(u_h) at the sampling points of the cells around the vertex: the
+// Gauss points of order p (superconvergent for quadrilaterals; the usual
+// choice for triangles). Nodal values of the recovered field then come
+// from these polynomials:
+//  - an interior vertex takes the value of its own polynomial;
+//  - a boundary vertex, or an interior one whose patch does not determine
+//    a degree-p polynomial, takes the average of the polynomials of the
+//    interior patches it belongs to (ZZ's treatment of boundaries);
+//  - an edge node (p = 2) averages the patches of the edge's end vertices,
+//    a cell node (Q2) those of the cell's vertices;
+//  - hanging nodes follow from the hanging-node constraints.
+//
+// The normal equations of a patch are sums of per-cell terms. Each rank
+// adds the terms of its own cells into a distributed vector with one slot
+// per vertex and entry, and a compress(add) leaves the complete sums with
+// the vertex's owner. The owner solves the small system; a ghost update
+// then gives every rank the polynomials of all vertices of its cells and
+// ghost cells, which is all a node of an owned cell needs. No cell beyond
+// the ghost layer is ever used, and the result does not depend on the
+// partition (up to the order of floating-point sums).
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/la_parallel_vector.h>
+
 #include <coulomb_adapt/indicator/recovered_stress.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
 
 namespace coulomb_adapt
 {
-  // Placeholder until the patch recovery lands: refuse rather than
-  // pretend.
-  void
-  RecoveredStress::recover_spr(const TrilinosWrappers::MPI::Vector &)
+  namespace
   {
-    AssertThrow(false,
-                ExcMessage("SPR stress recovery is not implemented yet; use "
-                           "'Error indicator/Recovery = zz'."));
+    constexpr unsigned int max_spr_degree  = 2;
+    constexpr unsigned int max_n_monomials = 6;
+
+    constexpr unsigned int
+    n_monomials(const unsigned int degree)
+    {
+      return (degree + 1) * (degree + 2) / 2;
+    }
+
+    // 1, dx, dy, dx^2, dx dy, dy^2, in local coordinates d = x - x_vertex.
+    // Ordered by degree, so that a fit of lower degree uses the leading
+    // rows and columns of the same normal equations.
+    std::array<double, max_n_monomials>
+    monomials(const Tensor<1, 2> &d)
+    {
+      return {{1., d[0], d[1], d[0] * d[0], d[0] * d[1], d[1] * d[1]}};
+    }
+
+
+
+    // Where the entries of one vertex sit among the components of the
+    // per-vertex vectors. Normal equations: the upper triangle of A^T A
+    // (row by row), then A^T b for the components xx, yy, xy. Fit: the
+    // coefficients of the three components, the fitted degree + 1 (0: no
+    // fit) and a flag for patches that serve as SPR centres.
+    class PatchLayout
+    {
+    public:
+      explicit PatchLayout(const unsigned int degree)
+        : n(n_monomials(degree))
+      {
+        Assert(is_centre_entry() < n_entries(), ExcInternalError());
+      }
+
+      unsigned int
+      n_fit_monomials() const
+      {
+        return n;
+      }
+      unsigned int
+      matrix_entry(const unsigned int i, const unsigned int j) const
+      {
+        Assert(i <= j, ExcInternalError());
+        return i * n - i * (i - 1) / 2 + (j - i);
+      }
+      unsigned int
+      rhs_entry(const unsigned int component, const unsigned int k) const
+      {
+        return n * (n + 1) / 2 + component * n + k;
+      }
+      unsigned int
+      coefficient_entry(const unsigned int component,
+                        const unsigned int k) const
+      {
+        return component * n + k;
+      }
+      unsigned int
+      fitted_degree_entry() const
+      {
+        return 3 * n;
+      }
+      unsigned int
+      is_centre_entry() const
+      {
+        return 3 * n + 1;
+      }
+      // Components per vertex: the normal equations, the larger of the
+      // two records.
+      unsigned int
+      n_entries() const
+      {
+        return n * (n + 1) / 2 + 3 * n;
+      }
+
+    private:
+      unsigned int n;
+    };
+
+
+
+    // The least-squares polynomial of one patch.
+    struct PatchFit
+    {
+      Point<2>     centre;
+      bool         is_centre = false;
+      bool         has_fit   = false;
+      unsigned int degree    = 0;
+      std::array<Tensor<1, 3>, max_n_monomials> coefficients;
+
+      Tensor<1, 3>
+      value(const Point<2> &x) const
+      {
+        const auto   m = monomials(x - centre);
+        Tensor<1, 3> sigma;
+        for (unsigned int k = 0; k < n_monomials(degree); ++k)
+          sigma += coefficients[k] * m[k];
+        return sigma;
+      }
+    };
+
+
+
+    // Solve the normal equations of one patch for the highest degree <= p
+    // its sampling points determine.
+    //
+    // The matrix is first scaled to unit diagonal. Changing the length
+    // unit (or scaling the local coordinates by a cell size) multiplies
+    // each monomial by a power of the scale, a diagonal change of basis
+    // that this equilibration undoes exactly: the fit and the rank
+    // decision are independent of the mesh size, and the coordinates need
+    // no further scaling. A Cholesky factorisation without pivoting, in
+    // the degree order of the monomials, then says how much of each
+    // monomial is not explained by the lower ones; the first small pivot
+    // ends the monomials the patch determines (e.g. two centroids on a
+    // Q1 boundary fix a constant, not a plane).
+    PatchFit
+    fit_patch(const std::vector<double> &entries,
+              const PatchLayout &        layout,
+              const unsigned int         degree,
+              const Point<2> &           centre)
+    {
+      // cond(equilibrated matrix) up to ~1e8 is accepted.
+      const double pivot_tolerance = 1e-8;
+
+      const unsigned int n = layout.n_fit_monomials();
+      std::array<double, max_n_monomials> scale{};
+      for (unsigned int k = 0; k < n; ++k)
+        {
+          const double diagonal = entries[layout.matrix_entry(k, k)];
+          scale[k] = diagonal > 0 ? 1. / std::sqrt(diagonal) : 0.;
+        }
+
+      FullMatrix<double> cholesky(n, n);
+      unsigned int       n_determined = 0;
+      for (unsigned int k = 0; k < n && scale[k] > 0; ++k)
+        {
+          double pivot = 1.;
+          for (unsigned int j = 0; j < k; ++j)
+            pivot -= cholesky(k, j) * cholesky(k, j);
+          if (!(pivot > pivot_tolerance))
+            break;
+          cholesky(k, k) = std::sqrt(pivot);
+          for (unsigned int i = k + 1; i < n; ++i)
+            {
+              double a = scale[i] * entries[layout.matrix_entry(k, i)] *
+                         scale[k];
+              for (unsigned int j = 0; j < k; ++j)
+                a -= cholesky(i, j) * cholesky(k, j);
+              cholesky(i, k) = a / cholesky(k, k);
+            }
+          ++n_determined;
+        }
+
+      PatchFit fit;
+      fit.centre = centre;
+      if (n_determined == 0)
+        return fit;
+      fit.has_fit = true;
+      fit.degree  = degree;
+      while (n_monomials(fit.degree) > n_determined)
+        --fit.degree;
+      const unsigned int m = n_monomials(fit.degree);
+
+      // L L^T y = S b, coefficients S y.
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          std::array<double, max_n_monomials> y{};
+          for (unsigned int i = 0; i < m; ++i)
+            {
+              double r = scale[i] * entries[layout.rhs_entry(c, i)];
+              for (unsigned int j = 0; j < i; ++j)
+                r -= cholesky(i, j) * y[j];
+              y[i] = r / cholesky(i, i);
+            }
+          for (unsigned int i = m; i-- > 0;)
+            {
+              double r = y[i];
+              for (unsigned int j = i + 1; j < m; ++j)
+                r -= cholesky(j, i) * y[j];
+              y[i] = r / cholesky(i, i);
+            }
+          for (unsigned int i = 0; i < m; ++i)
+            fit.coefficients[i][c] = scale[i] * y[i];
+        }
+      return fit;
+    }
+
+
+
+    using VertexCell = DoFHandler<2>::active_cell_iterator;
+
+    // A vertex and the cells around it, as far as this rank sees them:
+    // complete for every vertex of a locally owned cell, since the ghost
+    // layer holds all cells sharing a vertex with an owned cell.
+    struct VertexPatch
+    {
+      Point<2>                location;
+      std::vector<VertexCell> cells;
+      /** A cell of the patch and the vertex's number in it, to find the
+       * vertex's DoFs. */
+      VertexCell   some_cell;
+      unsigned int vertex_in_cell = 0;
+      bool         at_boundary    = false;
+    };
+
+    // The patches of all vertices of the locally owned and ghost cells,
+    // keyed by the vertex's first DoF in @p vertex_dofs.
+    std::map<types::global_dof_index, VertexPatch>
+    collect_vertex_patches(const DoFHandler<2> &vertex_dofs)
+    {
+      std::map<types::global_dof_index, VertexPatch> patches;
+      for (const auto &cell : vertex_dofs.active_cell_iterators())
+        if (!cell->is_artificial())
+          {
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                VertexPatch &patch = patches[cell->vertex_dof_index(v, 0)];
+                if (patch.cells.empty())
+                  {
+                    patch.location       = cell->vertex(v);
+                    patch.some_cell      = cell;
+                    patch.vertex_in_cell = v;
+                  }
+                patch.cells.push_back(cell);
+              }
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary())
+                for (const unsigned int v : face->vertex_indices())
+                  patches[face->vertex_dof_index(v, 0)].at_boundary = true;
+          }
+      return patches;
+    }
+
+
+
+    // The raw stress at the sampling points of the locally owned cells,
+    // added into the normal equations of each of the cell's vertices (in
+    // coordinates relative to that vertex).
+    void
+    add_cell_contributions(
+      const ElasticBody &                         body,
+      const TrilinosWrappers::MPI::Vector &       displacement,
+      const Quadrature<2> &                       sampling_points,
+      const DoFHandler<2> &                       vertex_dofs,
+      const PatchLayout &                         layout,
+      LinearAlgebra::distributed::Vector<double> &normal_equations)
+    {
+      FEValues<2> fe_values(body.mapping(),
+                            body.dof_handler().get_fe(),
+                            sampling_points,
+                            update_gradients | update_quadrature_points);
+      const FEValuesExtractors::Vector   u(0);
+      const unsigned int                 n = layout.n_fit_monomials();
+      std::vector<SymmetricTensor<2, 2>> strains(sampling_points.size());
+      std::vector<Tensor<1, 3>>          stresses(sampling_points.size());
+      std::vector<double>                cell_entries(layout.n_entries());
+
+      for (const auto &cell : body.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            fe_values[u].get_function_symmetric_gradients(displacement,
+                                                          strains);
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              stresses[q] =
+                stress_components(body.material().stress(strains[q]));
+
+            const VertexCell vertex_cell(&body.triangulation(),
+                                         cell->level(),
+                                         cell->index(),
+                                         &vertex_dofs);
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                std::fill(cell_entries.begin(), cell_entries.end(), 0.);
+                for (const unsigned int q :
+                     fe_values.quadrature_point_indices())
+                  {
+                    const auto m = monomials(fe_values.quadrature_point(q) -
+                                             cell->vertex(v));
+                    for (unsigned int i = 0; i < n; ++i)
+                      {
+                        for (unsigned int j = i; j < n; ++j)
+                          cell_entries[layout.matrix_entry(i, j)] +=
+                            m[i] * m[j];
+                        for (unsigned int c = 0; c < 3; ++c)
+                          cell_entries[layout.rhs_entry(c, i)] +=
+                            m[i] * stresses[q][c];
+                      }
+                  }
+                for (unsigned int e = 0; e < layout.n_entries(); ++e)
+                  normal_equations(vertex_cell->vertex_dof_index(v, e)) +=
+                    cell_entries[e];
+              }
+          }
+      normal_equations.compress(VectorOperation::add);
+    }
+
+
+
+    // Fit the patch of every locally owned vertex and store the result.
+    // Hanging vertices are no patch centres: their cells lie on one side
+    // only, and their values come from the constraints anyway.
+    void
+    fit_owned_patches(
+      const std::map<types::global_dof_index, VertexPatch> &patches,
+      const LinearAlgebra::distributed::Vector<double> &    normal_equations,
+      const AffineConstraints<double> &                     hanging_vertices,
+      const PatchLayout &                                   layout,
+      const unsigned int                                    degree,
+      LinearAlgebra::distributed::Vector<double> &          fits)
+    {
+      const IndexSet &    owned = fits.get_partitioner()->locally_owned_range();
+      std::vector<double> entries(layout.n_entries());
+      for (const auto &[first_dof, patch] : patches)
+        if (owned.is_element(first_dof) &&
+            !hanging_vertices.is_constrained(first_dof))
+          {
+            const auto dof = [&](const unsigned int e) {
+              return patch.some_cell->vertex_dof_index(patch.vertex_in_cell, e);
+            };
+            for (unsigned int e = 0; e < layout.n_entries(); ++e)
+              entries[e] = normal_equations(dof(e));
+            const PatchFit fit =
+              fit_patch(entries, layout, degree, patch.location);
+            if (!fit.has_fit)
+              continue;
+            for (unsigned int k = 0; k < n_monomials(fit.degree); ++k)
+              for (unsigned int c = 0; c < 3; ++c)
+                fits(dof(layout.coefficient_entry(c, k))) =
+                  fit.coefficients[k][c];
+            fits(dof(layout.fitted_degree_entry())) = fit.degree + 1;
+            fits(dof(layout.is_centre_entry())) =
+              (!patch.at_boundary && fit.degree == degree) ? 1. : 0.;
+          }
+      fits.update_ghost_values();
+    }
+
+
+
+    // The fits of all vertices this rank sees, from the ghosted vector.
+    std::map<types::global_dof_index, PatchFit>
+    read_fits(const std::map<types::global_dof_index, VertexPatch> &patches,
+              const LinearAlgebra::distributed::Vector<double> &    fits,
+              const PatchLayout &                                   layout)
+    {
+      std::map<types::global_dof_index, PatchFit> result;
+      for (const auto &[first_dof, patch] : patches)
+        {
+          const auto dof = [&](const unsigned int e) {
+            return patch.some_cell->vertex_dof_index(patch.vertex_in_cell, e);
+          };
+          PatchFit fit;
+          fit.centre = patch.location;
+          const double degree_plus_one =
+            fits(dof(layout.fitted_degree_entry()));
+          fit.has_fit   = degree_plus_one > 0.5;
+          fit.degree    = fit.has_fit ? std::lround(degree_plus_one) - 1 : 0;
+          fit.is_centre = fits(dof(layout.is_centre_entry())) > 0.5;
+          for (unsigned int k = 0; k < n_monomials(fit.degree); ++k)
+            for (unsigned int c = 0; c < 3; ++c)
+              fit.coefficients[k][c] =
+                fits(dof(layout.coefficient_entry(c, k)));
+          result.emplace(first_dof, fit);
+        }
+      return result;
+    }
+
+
+
+    // The recovered stress at node x, from the patches it belongs to: the
+    // SPR centres among its own vertices (the vertex itself, the edge's end
+    // vertices, the cell's vertices), else the SPR centres among the
+    // vertices of all cells containing it, the way ZZ treat boundary
+    // nodes. On meshes too coarse for that (no interior vertex nearby) the
+    // best fits the own vertices' patches allow (lower degree) are used.
+    Tensor<1, 3>
+    node_value(const Point<2> &                                   x,
+               const std::vector<types::global_dof_index> &       own_vertices,
+               const std::set<types::global_dof_index> &          surrounding,
+               const std::map<types::global_dof_index, PatchFit> &fits)
+    {
+      const auto average = [&](const auto &vertices,
+                               const bool  centres_only,
+                               Tensor<1, 3> &sigma) {
+        sigma                = Tensor<1, 3>();
+        unsigned int n_found = 0;
+        for (const auto v : vertices)
+          {
+            const PatchFit &fit = fits.at(v);
+            if (centres_only ? fit.is_centre : fit.has_fit)
+              {
+                sigma += fit.value(x);
+                ++n_found;
+              }
+          }
+        if (n_found > 0)
+          sigma /= n_found;
+        return n_found > 0;
+      };
+
+      Tensor<1, 3> sigma;
+      if (average(own_vertices, true, sigma) ||
+          average(surrounding, true, sigma) ||
+          average(own_vertices, false, sigma) ||
+          average(surrounding, false, sigma))
+        return sigma;
+      AssertThrow(false,
+                  ExcMessage("SPR: no patch fit for the node at (" +
+                             std::to_string(x[0]) + ", " +
+                             std::to_string(x[1]) + ")."));
+      return sigma;
+    }
+  } // namespace
+
+
+
+  void
+  RecoveredStress::recover_spr(const TrilinosWrappers::MPI::Vector &displacement)
+  {
+    const unsigned int degree = fe->base_element(0).degree;
+    AssertThrow(degree >= 1 && degree <= max_spr_degree,
+                ExcMessage("'Error indicator/Recovery = spr' supports "
+                           "polynomial degrees 1 and 2, not " +
+                           std::to_string(degree) + "; use 'zz'."));
+    const PatchLayout layout(degree);
+    const MPI_Comm    comm    = body.triangulation().get_communicator();
+    const bool        simplex = body.is_simplex_mesh();
+
+    // One DoF per vertex and per patch entry: the index space of the
+    // distributed per-vertex data (its hanging-node constraints mark the
+    // hanging vertices).
+    DoFHandler<2>     vertex_dofs(body.triangulation());
+    const FESystem<2> vertex_fe(simplex ?
+                                  static_cast<const FiniteElement<2> &>(
+                                    FE_SimplexP<2>(1)) :
+                                  static_cast<const FiniteElement<2> &>(
+                                    FE_Q<2>(1)),
+                                layout.n_entries());
+    vertex_dofs.distribute_dofs(vertex_fe);
+    IndexSet relevant_vertex_dofs;
+    DoFTools::extract_locally_relevant_dofs(vertex_dofs, relevant_vertex_dofs);
+    AffineConstraints<double> hanging_vertices(relevant_vertex_dofs);
+    DoFTools::make_hanging_node_constraints(vertex_dofs, hanging_vertices);
+    hanging_vertices.close();
+
+    // Gauss points of order p: the cell centroid for Q1 and P1, the 2 x 2
+    // points of Q2, the 3-point rule of P2.
+    const Quadrature<2> sampling_points =
+      simplex ? static_cast<Quadrature<2>>(QGaussSimplex<2>(degree)) :
+                static_cast<Quadrature<2>>(QGauss<2>(degree));
+
+    LinearAlgebra::distributed::Vector<double> normal_equations(
+      vertex_dofs.locally_owned_dofs(), relevant_vertex_dofs, comm);
+    add_cell_contributions(body,
+                           displacement,
+                           sampling_points,
+                           vertex_dofs,
+                           layout,
+                           normal_equations);
+
+    const auto patches = collect_vertex_patches(vertex_dofs);
+    LinearAlgebra::distributed::Vector<double> fit_vector(
+      vertex_dofs.locally_owned_dofs(), relevant_vertex_dofs, comm);
+    fit_owned_patches(
+      patches, normal_equations, hanging_vertices, layout, degree, fit_vector);
+    const auto fits = read_fits(patches, fit_vector, layout);
+
+    // Nodal values of the owned, unconstrained nodes of the stress space,
+    // at the nodes' physical positions.
+    const FiniteElement<2> &base = fe->base_element(0);
+    FEValues<2>             node_positions(body.mapping(),
+                                *fe,
+                                Quadrature<2>(base.get_unit_support_points()),
+                                update_quadrature_points);
+    std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
+    std::vector<bool> done(owned_dofs.n_elements(), false);
+    TrilinosWrappers::MPI::Vector owned_values(owned_dofs, comm);
+
+    for (const auto &cell : dofs.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dof_indices);
+          node_positions.reinit(cell);
+          const VertexCell vertex_cell(&body.triangulation(),
+                                       cell->level(),
+                                       cell->index(),
+                                       &vertex_dofs);
+          const unsigned int first_line_node =
+            cell->n_vertices() * base.n_dofs_per_vertex();
+          const unsigned int first_interior_node =
+            first_line_node + cell->n_lines() * base.n_dofs_per_line();
+
+          for (unsigned int node = 0; node < base.n_dofs_per_cell(); ++node)
+            {
+              const auto first_dof =
+                dof_indices[fe->component_to_system_index(0, node)];
+              if (!owned_dofs.is_element(first_dof) ||
+                  constraints.is_constrained(first_dof) ||
+                  done[owned_dofs.index_within_set(first_dof)])
+                continue;
+              done[owned_dofs.index_within_set(first_dof)] = true;
+
+              std::vector<types::global_dof_index> own_vertices;
+              std::set<types::global_dof_index>    surrounding;
+              const auto add_vertices_of = [&](const VertexCell &c) {
+                for (const unsigned int v : c->vertex_indices())
+                  surrounding.insert(c->vertex_dof_index(v, 0));
+              };
+              if (node < first_line_node)
+                {
+                  const auto vertex = vertex_cell->vertex_dof_index(
+                    node / base.n_dofs_per_vertex(), 0);
+                  own_vertices = {vertex};
+                  for (const auto &c : patches.at(vertex).cells)
+                    add_vertices_of(c);
+                }
+              else if (node < first_interior_node)
+                {
+                  // In 2D the lines of a cell are its faces.
+                  const auto line = vertex_cell->face(
+                    (node - first_line_node) / base.n_dofs_per_line());
+                  own_vertices = {line->vertex_dof_index(0, 0),
+                                  line->vertex_dof_index(1, 0)};
+                  for (const auto &c : patches.at(own_vertices[0]).cells)
+                    for (const unsigned int v : c->vertex_indices())
+                      if (c->vertex_dof_index(v, 0) == own_vertices[1])
+                        add_vertices_of(c);
+                }
+              else
+                {
+                  for (const unsigned int v : vertex_cell->vertex_indices())
+                    own_vertices.push_back(vertex_cell->vertex_dof_index(v, 0));
+                  add_vertices_of(vertex_cell);
+                }
+
+              const Tensor<1, 3> sigma =
+                node_value(node_positions.quadrature_point(node),
+                           own_vertices,
+                           surrounding,
+                           fits);
+              for (unsigned int c = 0; c < 3; ++c)
+                owned_values[dof_indices[fe->component_to_system_index(
+                  c, node)]] = sigma[c];
+            }
+        }
+    owned_values.compress(VectorOperation::insert);
+    constraints.distribute(owned_values);
+    recovered       = owned_values;
+    n_cg_iterations = 0;
   }
 } // namespace coulomb_adapt

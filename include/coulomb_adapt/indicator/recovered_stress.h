@@ -23,7 +23,11 @@ namespace coulomb_adapt
     /** ZZ1: global L2 projection onto the continuous FE space (a mass
      * system with one right-hand side per stress component). */
     l2_projection,
-    /** Superconvergent patch recovery (Zienkiewicz and Zhu 1992). */
+    /** Superconvergent patch recovery (Zienkiewicz and Zhu 1992): around
+     * each vertex, a polynomial of degree p fitted by least squares to the
+     * stress at the Gauss points of order p of the cells sharing the
+     * vertex; nodal values from these polynomials (spr_recovery.cc).
+     * Degrees 1 and 2. */
     spr
   };
 
