@@ -1,7 +1,7 @@
 // The error indicator against the exact error:
 //  - manufactured elasticity without contact (exact solution known):
 //    effectivity epsilon / epsilon_exact within 0.9-1.1 after a few uniform
-//    refinements, Q1 and P1;
+//    refinements, Q1 and P1, ZZ (L2 projection) and SPR;
 //  - hertz (frictionless) against a reference solution two uniform
 //    refinements finer: effectivity within 0.7-1.4 on a sequence of meshes;
 //  - blocks (the seed's example, P1): epsilon decreases under uniform
@@ -20,7 +20,8 @@ using namespace coulomb_adapt;
 namespace
 {
   const std::vector<StressRecoveryMethod> methods = {
-    StressRecoveryMethod::l2_projection};
+    StressRecoveryMethod::l2_projection,
+    StressRecoveryMethod::spr};
 
   std::array<const ElasticBody *, 2>
   pointers(const std::array<std::unique_ptr<ElasticBody>, 2> &bodies)
@@ -40,7 +41,7 @@ main(int argc, char **argv)
       << std::endl;
   for (const std::string cell_type : {"quadrilateral", "triangle"})
     for (const auto method : methods)
-      for (const std::string refinements : {"2", "3"})
+      for (const std::string refinements : {"3", "4"})
         {
           ParameterHandler prm;
           const Parameters parameters = testing::make_parameters(
@@ -78,6 +79,7 @@ main(int argc, char **argv)
   out << "Hertz (mu = 0) against a reference solution 2 refinements finer"
       << std::endl;
   for (const std::string refinements : {"0", "1"})
+    for (const auto method : methods)
     {
       const std::vector<std::pair<std::string, std::string>> settings = {
         {"Scene/Name", "hertz"},
@@ -89,7 +91,7 @@ main(int argc, char **argv)
         estimate_error(pointers(p->bodies),
                        p->solver.get(),
                        0.,
-                       StressRecoveryMethod::l2_projection,
+                       method,
                        p->parameters.linear_solver);
       const ReferenceSolutionStress reference(MPI_COMM_WORLD,
                                               *p->scene,
@@ -100,7 +102,8 @@ main(int argc, char **argv)
         compare_with_exact_error(pointers(p->bodies), e, reference);
       const auto n_dofs = p->bodies[0]->dof_handler().n_dofs() +
                           p->bodies[1]->dof_handler().n_dofs();
-      out << "  " << n_dofs << " DoFs: epsilon " << 100 * e.epsilon
+      out << "  " << n_dofs << " DoFs, " << to_string(method)
+          << ": epsilon " << 100 * e.epsilon
           << " %, reference " << 100 * c.epsilon_exact << " %, effectivity "
           << c.effectivity << std::endl;
       AssertThrow(c.effectivity > 0.7 && c.effectivity < 1.4,
