@@ -236,8 +236,24 @@ namespace coulomb_adapt
                            const double                     mu,
                            const parameters::LinearSolver & solver_parameters)
   {
-    const auto &states = contact_solver.node_states();
-    const auto &mortar = contact_solver.mortar_interface();
+    return correct_contact_solution(slave,
+                                    master,
+                                    contact_solver.mortar_interface(),
+                                    contact_solver.node_states(),
+                                    mu,
+                                    solver_parameters);
+  }
+
+
+
+  CorrectedContactSolution
+  correct_contact_solution(const ElasticBody &                  slave,
+                           const ElasticBody &                  master,
+                           const MortarInterface &              mortar,
+                           const std::vector<ContactNodeState> &states,
+                           const double                         mu,
+                           const parameters::LinearSolver &     solver_parameters)
+  {
     const auto &nodes  = mortar.slave_nodes();
     const auto &D      = mortar.slave_weights();
 

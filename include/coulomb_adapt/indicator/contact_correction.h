@@ -54,6 +54,16 @@ namespace coulomb_adapt
                            const double                      friction_coefficient,
                            const parameters::LinearSolver &  solver_parameters);
 
+  /** The same, for given nodal contact states on @p mortar (the
+   * solver's, or modified ones in tests). */
+  CorrectedContactSolution
+  correct_contact_solution(const ElasticBody &                  slave,
+                           const ElasticBody &                  master,
+                           const MortarInterface &              mortar,
+                           const std::vector<ContactNodeState> &states,
+                           const double                         friction_coefficient,
+                           const parameters::LinearSolver &     solver_parameters);
+
   /** The Euclidean projection of (lambda_n, lambda_t) onto the cone
    * lambda_n >= 0, |lambda_t| <= mu lambda_n (R in K_mu). */
   std::array<double, 2>
