@@ -490,9 +490,9 @@ namespace coulomb_adapt
     const auto &u1           = slave.solution();
     const auto &u2           = master.solution();
 
-    // [j, lambda_x, lambda_y, u_x, u_y] for owned slave nodes,
-    // [l, u_x, u_y] for owned master nodes.
-    std::vector<double> slave_packed, master_packed;
+    // The multipliers [j, lambda_x, lambda_y] of the slave nodes whose
+    // rows this rank owns, gathered on every rank.
+    std::vector<double> packed;
     for (const unsigned int j : owned_slave_nodes)
       {
         Tensor<1, 2> lambda;
@@ -504,35 +504,17 @@ namespace coulomb_adapt
               Ku += k.values[e] * u1(k.columns[e]);
             lambda[c] = mortar.is_covered(j) ? (k.rhs - Ku) / D[j] : 0.;
           }
-        slave_packed.insert(slave_packed.end(),
-                            {double(j),
-                             lambda[0],
-                             lambda[1],
-                             u1(nodes[j].dofs[0]),
-                             u1(nodes[j].dofs[1])});
+        packed.insert(packed.end(), {double(j), lambda[0], lambda[1]});
       }
-    for (unsigned int l = 0; l < master_nodes.size(); ++l)
-      if (master.locally_owned_dof_set().is_element(master_nodes[l].dofs[0]))
-        master_packed.insert(master_packed.end(),
-                             {double(l),
-                              u2(master_nodes[l].dofs[0]),
-                              u2(master_nodes[l].dofs[1])});
-
-    std::vector<Tensor<1, 2>> lambda(nodes.size()), slave_u(nodes.size()),
-      master_u(master_nodes.size());
-    for (const auto &v :
-         Utilities::MPI::all_gather(mpi_communicator, slave_packed))
-      for (std::size_t i = 0; i < v.size(); i += 5)
-        {
-          const auto j = static_cast<unsigned int>(v[i]);
-          lambda[j]    = Tensor<1, 2>({v[i + 1], v[i + 2]});
-          slave_u[j]   = Tensor<1, 2>({v[i + 3], v[i + 4]});
-        }
-    for (const auto &v :
-         Utilities::MPI::all_gather(mpi_communicator, master_packed))
+    std::vector<Tensor<1, 2>> lambda(nodes.size());
+    for (const auto &v : Utilities::MPI::all_gather(mpi_communicator, packed))
       for (std::size_t i = 0; i < v.size(); i += 3)
-        master_u[static_cast<unsigned int>(v[i])] =
+        lambda[static_cast<unsigned int>(v[i])] =
           Tensor<1, 2>({v[i + 1], v[i + 2]});
+    const auto slave_u =
+      MortarInterface::gather_nodal_displacements(nodes, u1);
+    const auto master_u =
+      MortarInterface::gather_nodal_displacements(master_nodes, u2);
 
     const auto jump = mortar.weighted_jump(slave_u, master_u);
     const auto &gaps = mortar.weighted_initial_gaps();

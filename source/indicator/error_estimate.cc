@@ -47,11 +47,16 @@ namespace coulomb_adapt
 
       difference.reinit(body.triangulation().n_active_cells());
       double sum_norm = 0;
-      auto   displacement_cell = body.dof_handler().begin_active();
       for (const auto &cell : recovered.dof_handler().active_cell_iterators())
         {
           if (cell->is_locally_owned())
             {
+              // The same cell in the displacement's DoFHandler.
+              const DoFHandler<2>::active_cell_iterator displacement_cell(
+                &body.triangulation(),
+                cell->level(),
+                cell->index(),
+                &body.dof_handler());
               stress_values.reinit(cell);
               displacement_values.reinit(displacement_cell);
               displacement_values[u].get_function_symmetric_gradients(
@@ -73,7 +78,6 @@ namespace coulomb_adapt
                 }
               difference(cell->active_cell_index()) = cell_difference;
             }
-          ++displacement_cell;
         }
       return Utilities::MPI::sum(sum_norm,
                                  body.triangulation().get_communicator());

@@ -94,11 +94,16 @@ namespace coulomb_adapt
     std::vector<types::global_dof_index> dof_indices(n_dofs);
     std::vector<SymmetricTensor<2, 2>> strains(quadrature.size());
 
-    auto displacement_cell = body.dof_handler().begin_active();
     for (const auto &cell : dofs.active_cell_iterators())
       {
         if (cell->is_locally_owned())
           {
+            // The same cell in the displacement's DoFHandler.
+            const DoFHandler<2>::active_cell_iterator displacement_cell(
+              &body.triangulation(),
+              cell->level(),
+              cell->index(),
+              &body.dof_handler());
             stress_values.reinit(cell);
             displacement_values.reinit(displacement_cell);
             displacement_values[u].get_function_symmetric_gradients(
@@ -125,7 +130,6 @@ namespace coulomb_adapt
             constraints.distribute_local_to_global(
               cell_matrix, cell_rhs, dof_indices, mass, rhs);
           }
-        ++displacement_cell;
       }
     mass.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);

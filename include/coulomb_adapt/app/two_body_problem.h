@@ -53,7 +53,7 @@ namespace coulomb_adapt
     void
     solve_separately();
     void
-    estimate_error(const unsigned int cycle);
+    estimate_error();
     void
     compare_with_exact_error(const unsigned int cycle);
     void
