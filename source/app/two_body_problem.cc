@@ -102,6 +102,16 @@ namespace coulomb_adapt
                                                      parameters.contact,
                                                      parameters.linear_solver,
                                                      pcout);
+    const bool warm_start = parameters.adaptation.warm_start &&
+                            !previous_contact_states.empty() &&
+                            scene->n_load_steps() == 1;
+    if (warm_start)
+      contact_solver->warm_start_from(previous_contact_states);
+    pcout << "  contact: Newton starts from "
+          << (warm_start ? "the previous cycle's contact sets (warm start)" :
+                           "the initial gap")
+          << std::endl;
+    cycle_record["warm_start"] = warm_start;
     // The scene's load path: one step for the static problem, several for
     // a quasi-static one (the solver keeps the stick/slip history).
     const unsigned int  n_steps = scene->n_load_steps();
@@ -245,25 +255,34 @@ namespace coulomb_adapt
     TimerOutput::Scope t(computing_timer, "exact error");
     const std::array<const ElasticBody *, 2> body_pointers = {
       {bodies[0].get(), bodies[1].get()}};
-    std::unique_ptr<ReferenceStress> reference;
+    std::unique_ptr<ReferenceStress> exact;
+    // Uniform refinement: a reference `Reference refinements` finer than
+    // each cycle. Adaptive meshes: one reference, that much finer than the
+    // initial mesh, kept for all cycles (it should stay finer than the
+    // adapted meshes where they are finest).
+    const bool adaptive = parameters.adaptation.strategy != "uniform";
     if (bodies[0]->description().exact_displacement &&
         bodies[1]->description().exact_displacement)
-      reference = std::make_unique<ExactSolutionStress>(body_pointers);
-    else
+      exact = std::make_unique<ExactSolutionStress>(body_pointers);
+    else if (!adaptive || !reference_solution)
       {
         pcout << "  exact error: solving the reference problem ("
               << parameters.error_indicator.reference_refinements
-              << " more uniform refinements)" << std::endl;
-        reference = std::make_unique<ReferenceSolutionStress>(
+              << " more uniform refinements than "
+              << (adaptive ? "the initial mesh" : "this cycle's mesh") << ")"
+              << std::endl;
+        reference_solution = std::make_unique<ReferenceSolutionStress>(
           mpi_communicator,
           *scene,
           parameters,
-          parameters.mesh.global_refinements + cycle,
+          parameters.mesh.global_refinements + (adaptive ? 0 : cycle),
           parameters.error_indicator.reference_refinements);
       }
+    const ReferenceStress &reference =
+      exact ? *exact : *reference_solution;
     const ExactErrorComparison c = coulomb_adapt::compare_with_exact_error(
-      body_pointers, *error_estimate, *reference);
-    pcout << "  exact error (" << reference->description()
+      body_pointers, *error_estimate, reference);
+    pcout << "  exact error (" << reference.description()
           << "): epsilon_exact = " << std::fixed << std::setprecision(3)
           << 100 * c.epsilon_exact << " %, effectivity " << c.effectivity
           << " (elements: mean " << c.element_effectivity_mean << ", std "
@@ -279,7 +298,7 @@ namespace coulomb_adapt
       {"min", c.element_effectivity_min},
       {"max", c.element_effectivity_max},
       {"n_elements", c.n_elements}};
-    cycle_record["exact_error_reference"] = reference->description();
+    cycle_record["exact_error_reference"] = reference.description();
   }
 
 
@@ -314,9 +333,73 @@ namespace coulomb_adapt
   void
   TwoBodyProblem::refine_grid()
   {
-    TimerOutput::Scope t(computing_timer, "refine");
-    for (auto &body : bodies)
-      body->refine_uniformly();
+    TimerOutput::Scope t(computing_timer, "adapt mesh");
+    // What lives on the old meshes goes; the contact sets are kept by
+    // position for the warm start.
+    previous_contact_states.clear();
+    if (contact_solver)
+      previous_contact_states = contact_solver->node_states();
+    contact_solver.reset();
+    const auto &a = parameters.adaptation;
+    last_adaptation =
+      adapt_meshes({{bodies[0].get(), bodies[1].get()}},
+                   *error_estimate,
+                   previous_contact_states,
+                   a,
+                   parameters.finite_elements.degree);
+    error_estimate.reset();
+    const MeshAdaptationReport &r = *last_adaptation;
+    pcout << "  adapt (" << r.strategy;
+    if (r.strategy == "refine")
+      pcout << ", " << a.refinement_criterion;
+    pcout << "): ";
+    if (r.predicted_n_cells >= 0)
+      pcout << "optimal mesh for epsilon_0 = " << 100 * a.target_error
+            << " %: N* = " << std::llround(r.predicted_n_cells)
+            << " cells, predicted epsilon " << std::setprecision(3)
+            << 100 * r.predicted_epsilon << " % (r_E bounded to ["
+            << a.min_size_ratio << ", " << a.max_size_ratio << "]: "
+            << r.n_at_min_ratio << " cells at the lower, "
+            << r.n_at_max_ratio << " at the upper bound; q reduced to "
+            << std::min<double>(parameters.finite_elements.degree,
+                                a.singular_rate)
+            << " in " << r.n_singular_cells << " cells at singular points)";
+    if (r.strategy == "refine")
+      pcout << (r.predicted_n_cells >= 0 ? "; " : "") << r.n_refine_flags
+            << " cells flagged for refinement, " << r.n_coarsen_flags
+            << " for coarsening";
+    if (r.strategy == "uniform")
+      pcout << "every cell refined once";
+    pcout << std::endl;
+  }
+
+
+
+  bool
+  TwoBodyProblem::continue_cycles(const unsigned int            cycle,
+                                  const types::global_dof_index n_dofs,
+                                  std::string &                 reason) const
+  {
+    const auto &a = parameters.adaptation;
+    std::ostringstream s;
+    if (a.target_error > 0 && error_estimate &&
+        error_estimate->epsilon <= a.target_error)
+      s << "target reached: epsilon = " << std::setprecision(4)
+        << 100 * error_estimate->epsilon << " % <= epsilon_0 = "
+        << 100 * a.target_error << " %";
+    else if (cycle + 1 >= a.n_cycles)
+      {
+        s << "maximum number of cycles (" << a.n_cycles << ") reached";
+        if (a.target_error > 0 && error_estimate)
+          s << " before the target: epsilon = " << std::setprecision(4)
+            << 100 * error_estimate->epsilon << " % > epsilon_0 = "
+            << 100 * a.target_error << " %";
+      }
+    else if (n_dofs >= a.max_dofs)
+      s << "maximum number of DoFs reached (" << n_dofs << " >= " << a.max_dofs
+        << ")";
+    reason = s.str();
+    return reason.empty();
   }
 
 
@@ -369,6 +452,7 @@ namespace coulomb_adapt
 
         setup_system();
         pcout << "Cycle " << cycle << std::endl;
+        cycle_record["strategy"] = parameters.adaptation.strategy;
         types::global_dof_index n_dofs = 0;
         nlohmann::json          body_records = nlohmann::json::array();
         for (const auto &body : bodies)
@@ -385,6 +469,29 @@ namespace coulomb_adapt
                                     {"n_cells", n_cells},
                                     {"n_vertices", n_vertices},
                                     {"n_dofs", n_body_dofs}});
+          }
+        if (last_adaptation && last_adaptation->predicted_n_cells >= 0)
+          {
+            const double obtained =
+              bodies[0]->triangulation().n_global_active_cells() +
+              bodies[1]->triangulation().n_global_active_cells();
+            pcout << "  cells: " << obtained << " obtained, N* = "
+                  << std::llround(last_adaptation->predicted_n_cells)
+                  << " predicted (" << std::showpos << std::setprecision(3)
+                  << 100 * (obtained / last_adaptation->predicted_n_cells - 1)
+                  << std::noshowpos << " %)" << std::endl;
+            cycle_record["adaptation"] = {
+              {"predicted_n_cells", last_adaptation->predicted_n_cells},
+              {"predicted_epsilon", last_adaptation->predicted_epsilon},
+              {"obtained_n_cells", obtained},
+              {"singular_cells", last_adaptation->n_singular_cells}};
+          }
+        if (last_adaptation && last_adaptation->strategy == "refine")
+          {
+            cycle_record["adaptation"]["refine_flags"] =
+              last_adaptation->n_refine_flags;
+            cycle_record["adaptation"]["coarsen_flags"] =
+              last_adaptation->n_coarsen_flags;
           }
         if (scene->n_load_steps() > 1)
           scene->set_load_step(1);
@@ -435,8 +542,48 @@ namespace coulomb_adapt
         cycle_record["peak_memory_total_MiB"] =
           Utilities::MPI::sum(memory.VmHWM / 1024., mpi_communicator);
         summary->add_cycle(cycle_record);
-        pcout << "  cycle " << cycle << " done in " << std::setprecision(3)
-              << cycle_timer.wall_time() << " s" << std::endl;
+
+        // The per-cycle line a user watches, and the final table's row.
+        const double       epsilon = error_estimate->epsilon;
+        const unsigned int newton =
+          cycle_record.value("newton_iterations", 0u);
+        pcout << "Cycle " << cycle << ": " << n_dofs << " DoFs, epsilon = "
+              << std::fixed << std::setprecision(3) << 100 * epsilon
+              << " %, epsilon_contact = "
+              << 100 * error_estimate->epsilon_contact << " %"
+              << std::defaultfloat;
+        if (contact_solver)
+          pcout << ", " << newton << " Newton steps";
+        pcout << ", " << std::setprecision(3) << cycle_timer.wall_time()
+              << " s" << std::endl;
+        cycle_table.add_value("cycle", cycle);
+        cycle_table.add_value("cells 1", body_records[0]["n_cells"].get<unsigned int>());
+        cycle_table.add_value("cells 2", body_records[1]["n_cells"].get<unsigned int>());
+        cycle_table.add_value("DoFs", n_dofs);
+        cycle_table.add_value("eps %", 100 * epsilon);
+        cycle_table.add_value("eps_c %", 100 * error_estimate->epsilon_contact);
+        if (contact_solver)
+          cycle_table.add_value("Newton", newton);
+        cycle_table.add_value("time s", cycle_timer.wall_time());
+
+        std::string reason;
+        if (!continue_cycles(cycle, n_dofs, reason))
+          {
+            pcout << "Adaptation stops after cycle " << cycle << ": "
+                  << reason << std::endl;
+            summary->set("stop_reason", reason);
+            break;
+          }
+      }
+    for (const std::string column : {"eps %", "eps_c %", "time s"})
+      cycle_table.set_precision(column, 3);
+    for (const std::string column : {"eps %", "eps_c %"})
+      cycle_table.set_scientific(column, false);
+    if (pcout.is_active())
+      {
+        std::cout << std::endl;
+        cycle_table.write_text(std::cout,
+                               TableHandler::org_mode_table);
       }
     computing_timer.print_summary();
   }

@@ -76,7 +76,18 @@ namespace coulomb_adapt
   ElasticBody::create_mesh(const unsigned int n_refinements)
   {
     Triangulation<2> serial;
-    scene.create_coarse_mesh(body_index, cell_type, serial);
+    create_scene_coarse_mesh(serial);
+    if (remeshed)
+      {
+        // Keep the scene's manifolds: the remesher copied their ids.
+        Triangulation<2> remeshed_tria;
+        remeshed->create_triangulation(remeshed_tria);
+        for (const auto id : serial.get_manifold_ids())
+          if (id != numbers::flat_manifold_id)
+            remeshed_tria.set_manifold(id, serial.get_manifold(id));
+        serial.clear();
+        serial.copy_triangulation(remeshed_tria);
+      }
     simplex = !serial.all_reference_cells_are_hyper_cube();
 
     std::unique_ptr<parallel::TriangulationBase<2>> new_tria;
@@ -121,6 +132,48 @@ namespace coulomb_adapt
       create_mesh(n_global_refinements);
     else
       tria->refine_global(1);
+  }
+
+
+
+  void
+  ElasticBody::refine_and_coarsen(const std::vector<signed char> &decisions)
+  {
+    AssertThrow(!simplex,
+                ExcMessage("local refinement needs quadrilaterals (deal.II "
+                           "9.4 refines triangles only globally)"));
+    for (const auto &cell : tria->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const signed char d = decisions[cell->active_cell_index()];
+          if (d > 0)
+            cell->set_refine_flag();
+          else if (d < 0)
+            cell->set_coarsen_flag();
+        }
+    tria->prepare_coarsening_and_refinement();
+    tria->execute_coarsening_and_refinement();
+  }
+
+
+
+  void
+  ElasticBody::replace_mesh(const CoarseMeshData &mesh)
+  {
+    AssertThrow(simplex,
+                ExcMessage("remeshing produces triangles; this body has "
+                           "quadrilaterals"));
+    remeshed             = mesh;
+    n_global_refinements = 0;
+    create_mesh(0);
+  }
+
+
+
+  void
+  ElasticBody::create_scene_coarse_mesh(Triangulation<2> &serial) const
+  {
+    scene.create_coarse_mesh(body_index, cell_type, serial);
   }
 
 

@@ -227,7 +227,51 @@ namespace coulomb_adapt
         states[j].weight   = D[j];
       }
     if (first_step)
-      initialize_sets();
+      {
+        initialize_sets();
+        if (!warm_start_states.empty())
+          transfer_warm_start_sets();
+      }
+  }
+
+
+
+  // Nearest previous node by position: the interface is a curve, and the
+  // meshes of two cycles resolve it differently.
+  void
+  ContactSolver::transfer_warm_start_sets()
+  {
+    std::vector<ContactNodeState> transferred = states;
+    unsigned int                  n_active    = 0;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      {
+        if (!mortar.is_covered(j))
+          continue;
+        const ContactNodeState *nearest = nullptr;
+        double                  best    = std::numeric_limits<double>::max();
+        for (const auto &p : warm_start_states)
+          {
+            const double d = p.position.distance_square(states[j].position);
+            if (d < best)
+              best = d, nearest = &p;
+          }
+        transferred[j].status    = nearest->status;
+        transferred[j].slip_sign = nearest->slip_sign;
+        if (mu == 0 && transferred[j].status == ContactStatus::stick)
+          transferred[j].status = ContactStatus::slip;
+        n_active += (transferred[j].status != ContactStatus::open);
+      }
+    if (n_active > 0 || !slave.is_floating())
+      states = transferred;
+    warm_start_states.clear();
+  }
+
+
+
+  void
+  ContactSolver::warm_start_from(const std::vector<ContactNodeState> &previous)
+  {
+    warm_start_states = previous;
   }
 
 

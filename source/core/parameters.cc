@@ -300,14 +300,80 @@ namespace coulomb_adapt
       {
         prm.declare_entry("Strategy",
                           "uniform",
-                          Patterns::Selection("uniform"),
+                          Patterns::Selection("uniform|refine|remesh"),
                           "How the mesh changes from one cycle to the next. "
-                          "uniform: every cell is refined once.");
+                          "uniform: every cell is refined once. refine: "
+                          "quadrilaterals are refined and coarsened with "
+                          "hanging nodes (p4est), cells chosen by the "
+                          "'Refinement criterion'. remesh: each body is "
+                          "remeshed by gmsh with triangles of the optimal "
+                          "size field h*_E = r_E h_E (theory.md section 4).");
         prm.declare_entry("Number of cycles",
                           "1",
-                          Patterns::Integer(1, 20),
-                          "Number of solve cycles; the mesh is adapted "
-                          "between two cycles.");
+                          Patterns::Integer(1, 40),
+                          "Maximum number of solve cycles; the mesh is "
+                          "adapted between two cycles.");
+        prm.declare_entry("Target error",
+                          "0",
+                          Patterns::Double(0, 100),
+                          "The prescribed accuracy epsilon_0, in percent: "
+                          "the cycles stop once epsilon <= epsilon_0. 0: no "
+                          "target, run 'Number of cycles' cycles (required "
+                          "> 0 by 'remesh' and by 'Refinement criterion = "
+                          "size ratio', which aim at it).");
+        prm.declare_entry("Maximum number of DoFs",
+                          "2e6",
+                          Patterns::Double(1),
+                          "No further cycle once a cycle has at least this "
+                          "many DoFs (both bodies).");
+        prm.declare_entry("Refinement criterion",
+                          "size ratio",
+                          Patterns::Selection(
+                            "size ratio|fixed fraction|fixed number|optimize"),
+                          "For 'Strategy = refine': which cells are refined "
+                          "and coarsened. size ratio: from r_E of theory.md "
+                          "section 4 (r_E < 1/2 refine, r_E > 2 coarsen). "
+                          "fixed fraction / fixed number: deal.II's "
+                          "GridRefinement with 'Refine fraction' and "
+                          "'Coarsen fraction' (of the error, or of the "
+                          "cells). optimize: the number of refined cells "
+                          "that minimises the predicted error times the "
+                          "cell count (GridRefinement's 'optimize').");
+        prm.declare_entry("Refine fraction",
+                          "0.3",
+                          Patterns::Double(0, 1),
+                          "fixed fraction / fixed number: fraction of the "
+                          "squared error (or of the cells) refined.");
+        prm.declare_entry("Coarsen fraction",
+                          "0.03",
+                          Patterns::Double(0, 1),
+                          "fixed fraction / fixed number: fraction of the "
+                          "squared error (or of the cells) coarsened.");
+        prm.declare_entry("Minimum size ratio",
+                          "0.1",
+                          Patterns::Double(0.001, 1),
+                          "Lower bound of r_E = h*_E / h_E: how much finer "
+                          "one cycle may make a cell.");
+        prm.declare_entry("Maximum size ratio",
+                          "4",
+                          Patterns::Double(1, 100),
+                          "Upper bound of r_E: how much coarser one cycle "
+                          "may make a cell.");
+        prm.declare_entry("Singular convergence rate",
+                          "0.5",
+                          Patterns::Double(0.01, 10),
+                          "Local convergence rate q used in r_E for cells "
+                          "at a singular point (ends of the contact zone, "
+                          "points where a clamped or contact boundary "
+                          "meets another boundary condition): min(p, this). "
+                          "Elsewhere q = p, the polynomial degree.");
+        prm.declare_entry("Warm start",
+                          "true",
+                          Patterns::Bool(),
+                          "Start the semismooth Newton method of a cycle "
+                          "from the contact sets (open/stick/slip) of the "
+                          "previous cycle, transferred to the new slave "
+                          "nodes, instead of from the initial gap.");
       }
       prm.leave_subsection();
     }
@@ -319,8 +385,31 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Adaptation");
       {
-        strategy = prm.get("Strategy");
-        n_cycles = prm.get_integer("Number of cycles");
+        const std::string path = "Adaptation/";
+        strategy             = prm.get("Strategy");
+        n_cycles             = prm.get_integer("Number of cycles");
+        target_error         = prm.get_double("Target error") / 100;
+        max_dofs             = prm.get_double("Maximum number of DoFs");
+        refinement_criterion = prm.get("Refinement criterion");
+        refine_fraction      = prm.get_double("Refine fraction");
+        coarsen_fraction     = prm.get_double("Coarsen fraction");
+        min_size_ratio       = prm.get_double("Minimum size ratio");
+        max_size_ratio       = prm.get_double("Maximum size ratio");
+        singular_rate        = prm.get_double("Singular convergence rate");
+        warm_start           = prm.get_bool("Warm start");
+        require_parameter(refine_fraction + coarsen_fraction <= 1,
+                          path + "Refine fraction",
+                          refine_fraction,
+                          "Refine fraction + Coarsen fraction <= 1");
+        const bool aims_at_target =
+          strategy == "remesh" ||
+          (strategy == "refine" && refinement_criterion == "size ratio");
+        require_parameter(!aims_at_target || target_error > 0,
+                          path + "Target error",
+                          100 * target_error,
+                          "a value > 0 (percent) with Strategy = remesh or "
+                          "Refinement criterion = size ratio, which build "
+                          "the mesh for that accuracy");
       }
       prm.leave_subsection();
     }
@@ -385,5 +474,21 @@ namespace coulomb_adapt
     error_indicator.parse_parameters(prm);
     adaptation.parse_parameters(prm);
     output.parse_parameters(prm);
+    // deal.II 9.4 refines simplices only globally, and gmsh remeshes with
+    // triangles: each strategy needs its cell type.
+    if (adaptation.strategy == "refine" &&
+        mesh.cell_type != CellType::quadrilateral)
+      throw ParameterError("Adaptation/Strategy",
+                           "refine",
+                           "'refine' needs 'Mesh/Cell type = "
+                           "quadrilateral' (hanging nodes); for triangles "
+                           "use 'remesh' or 'uniform'");
+    if (adaptation.strategy == "remesh" &&
+        mesh.cell_type != CellType::triangle)
+      throw ParameterError("Adaptation/Strategy",
+                           "remesh",
+                           "'remesh' needs 'Mesh/Cell type = triangle' "
+                           "(gmsh remeshes with triangles); for "
+                           "quadrilaterals use 'refine' or 'uniform'");
   }
 } // namespace coulomb_adapt

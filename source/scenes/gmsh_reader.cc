@@ -122,13 +122,14 @@ namespace coulomb_adapt
         }
       return 0.5 * a;
     }
+  } // namespace
 
 
 
-    // Build one body's mesh from the elements of its physical surface and
-    // the boundary lines of the named curve groups.
-    CoarseMeshData
-    build_body(const std::vector<std::vector<std::size_t>> &elements,
+  // Build one body's mesh from the elements of its physical surface and
+  // the boundary lines of the named curve groups.
+  CoarseMeshData
+  build_body_mesh(const std::vector<std::vector<std::size_t>> &elements,
                const std::map<std::size_t, Point<2>> &      all_nodes,
                const std::map<types::boundary_id,
                               std::vector<std::vector<std::size_t>>> &lines,
@@ -198,8 +199,6 @@ namespace coulomb_adapt
         GridTools::consistently_order_cells(mesh.cells);
       return mesh;
     }
-  } // namespace
-
 
 
   std::array<CoarseMeshData, 2>
@@ -271,7 +270,7 @@ namespace coulomb_adapt
               throw ParameterError("gmsh file '" + file_name +
                                    "': physical surface '" + name +
                                    "' has no elements");
-            meshes[b] = build_body(elements, nodes, lines, b, file_name);
+            meshes[b] = build_body_mesh(elements, nodes, lines, b, file_name);
           }
       }
     catch (...)

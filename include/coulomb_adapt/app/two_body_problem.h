@@ -2,12 +2,16 @@
 #define coulomb_adapt_app_two_body_problem_h
 
 #include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/table_handler.h>
 #include <deal.II/base/timer.h>
+
+#include <coulomb_adapt/adaptation/mesh_adaptation.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
+#include <coulomb_adapt/indicator/exact_error.h>
 #include <coulomb_adapt/output/body_output.h>
 #include <coulomb_adapt/output/contact_output.h>
 #include <coulomb_adapt/output/run_summary.h>
@@ -15,6 +19,8 @@
 
 #include <array>
 #include <memory>
+#include <optional>
+#include <vector>
 
 namespace coulomb_adapt
 {
@@ -58,8 +64,14 @@ namespace coulomb_adapt
     compare_with_exact_error(const unsigned int cycle);
     void
     output_results(const unsigned int cycle);
+    /** Adapt both meshes for the next cycle (Adaptation/Strategy). */
     void
     refine_grid();
+    /** Whether another cycle is wanted after @p cycle, with the reason. */
+    bool
+    continue_cycles(const unsigned int      cycle,
+                    const types::global_dof_index n_dofs,
+                    std::string &           reason) const;
 
     MPI_Comm                                  mpi_communicator;
     const Parameters &                        parameters;
@@ -73,6 +85,15 @@ namespace coulomb_adapt
     std::unique_ptr<ContactOutput>            contact_output;
     std::unique_ptr<ErrorEstimate>            error_estimate;
     nlohmann::json                            cycle_record;
+    /** The contact sets of the previous cycle, for the warm start. */
+    std::vector<ContactNodeState>             previous_contact_states;
+    /** The adaptation that made the current meshes (none on cycle 0). */
+    std::optional<MeshAdaptationReport>       last_adaptation;
+    /** The reference solution of the exact error, kept over the cycles
+     * of an adaptive run. */
+    std::unique_ptr<ReferenceStress>          reference_solution;
+    /** One row per cycle, printed at the end. */
+    TableHandler                              cycle_table;
   };
 } // namespace coulomb_adapt
 

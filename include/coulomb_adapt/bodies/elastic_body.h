@@ -19,10 +19,12 @@
 
 #include <coulomb_adapt/bodies/elastic_material.h>
 #include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/scenes/gmsh_reader.h>
 #include <coulomb_adapt/scenes/scene.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
 
 #include <memory>
+#include <optional>
 #include <set>
 
 namespace coulomb_adapt
@@ -58,6 +60,23 @@ namespace coulomb_adapt
     /** Refine every cell once. */
     void
     refine_uniformly();
+
+    /** Refine (+1) and coarsen (-1) the locally owned active cells as
+     * @p decisions says (indexed by active cell index); hanging nodes are
+     * kept at one level by p4est. Quadrilateral meshes only. */
+    void
+    refine_and_coarsen(const std::vector<signed char> &decisions);
+
+    /** Replace the mesh by @p mesh (from the remesher), with the scene's
+     * manifolds; it becomes the coarse mesh of later uniform refinements.
+     * Triangle meshes only. */
+    void
+    replace_mesh(const CoarseMeshData &mesh);
+
+    /** The scene's coarse mesh of this body, serial, with its boundary ids
+     * and manifolds: the geometry a remesher needs. */
+    void
+    create_scene_coarse_mesh(Triangulation<2> &tria) const;
 
     /** Distribute DoFs, build constraints and the matrix's sparsity. */
     void
@@ -143,6 +162,8 @@ namespace coulomb_adapt
     const ElasticMaterial                        elastic_material;
     bool                                         simplex;
     unsigned int                                 n_global_refinements;
+    /** The remesher's mesh, used instead of the scene's coarse mesh. */
+    std::optional<CoarseMeshData>                remeshed;
 
     std::unique_ptr<parallel::TriangulationBase<2>> tria;
     std::unique_ptr<FESystem<2>>                 fe;

@@ -107,6 +107,14 @@ namespace coulomb_adapt
     ContactSolverReport
     solve();
 
+    /** Start the next solve from the sets of @p previous (the node states
+     * of a solve on another mesh of the same bodies): each slave node takes
+     * the status and slip direction of the nearest previous node. Without
+     * it (or if that leaves a floating body 1 without active node) the
+     * sets start from the initial gap. */
+    void
+    warm_start_from(const std::vector<ContactNodeState> &previous);
+
     /** The last linear solve of the Newton iteration. */
     const LinearSolverReport &
     last_linear_solver_report() const;
@@ -130,6 +138,8 @@ namespace coulomb_adapt
     setup();
     void
     initialize_sets();
+    void
+    transfer_warm_start_sets();
     void
     check_support(const unsigned int step) const;
     std::vector<std::vector<double>>
@@ -180,6 +190,8 @@ namespace coulomb_adapt
     TrilinosWrappers::MPI::Vector    rhs;
 
     std::vector<ContactNodeState>    states;
+    /** States of a previous mesh to start from (warm_start_from). */
+    std::vector<ContactNodeState>    warm_start_states;
     /** Weighted tangential jump at the end of the previous load step. */
     std::vector<double>              previous_weighted_slip;
   };

@@ -122,9 +122,28 @@ namespace coulomb_adapt
     /** Subsection `Adaptation`. */
     struct Adaptation
     {
-      /** "uniform": every cycle refines all cells once. */
+      /** "uniform": every cycle refines all cells once; "refine":
+       * quadrilaterals refined and coarsened with hanging nodes; "remesh":
+       * each body remeshed by gmsh from the optimal size field. */
       std::string  strategy;
+      /** Maximum number of solve cycles. */
       unsigned int n_cycles;
+      /** epsilon_0 as a fraction (the file gives percent); 0: no target. */
+      double       target_error;
+      /** No further cycle once a cycle has at least this many DoFs. */
+      double       max_dofs;
+      /** For "refine": "size ratio", "fixed fraction", "fixed number" or
+       * "optimize". */
+      std::string  refinement_criterion;
+      double       refine_fraction;
+      double       coarsen_fraction;
+      /** Bounds of r_E = h*_E / h_E. */
+      double       min_size_ratio;
+      double       max_size_ratio;
+      /** Local convergence rate q used in cells at singular points. */
+      double       singular_rate;
+      /** Start Newton from the previous cycle's contact sets. */
+      bool         warm_start;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -7,6 +7,7 @@
 #include <coulomb_adapt/core/parameters.h>
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,21 @@ namespace coulomb_adapt
    * higher-order gmsh elements are used. Errors (missing file, missing
    * group, unsupported elements) name the file and what is missing.
    */
+  /**
+   * One body's mesh from gmsh elements (corner node tags, triangles or
+   * quadrangles, either orientation) and the boundary lines of each
+   * boundary id; only lines that are boundary edges of these elements are
+   * kept. @p file_name is for messages.
+   */
+  CoarseMeshData
+  build_body_mesh(
+    const std::vector<std::vector<std::size_t>> &elements,
+    const std::map<std::size_t, Point<2>> &      all_nodes,
+    const std::map<types::boundary_id, std::vector<std::vector<std::size_t>>>
+      &                      lines,
+    const types::material_id material_id,
+    const std::string &      file_name);
+
   std::array<CoarseMeshData, 2>
   read_two_body_gmsh_file(const std::string &file_name,
                           const CellType     requested_cell_type,

@@ -1,0 +1,55 @@
+#ifndef coulomb_adapt_adaptation_gmsh_remesher_h
+#define coulomb_adapt_adaptation_gmsh_remesher_h
+
+#include <deal.II/base/point.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/scenes/gmsh_reader.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /** A triangle of the current mesh with the target element size h* at
+   * its vertices: a piece of the size field handed to gmsh. */
+  struct SizeFieldTriangle
+  {
+    std::array<Point<2>, 3> vertices;
+    std::array<double, 3>   size;
+  };
+
+  /**
+   * The size field h*(x) of a triangle mesh, on every rank: h*_E = r_E h_E
+   * with h_E = (4 |E| / sqrt 3)^1/2, the edge of the equilateral triangle of
+   * the same area (so that the cell count of the new mesh is sum_E r_E^-2
+   * for any shape), smoothed by taking at each vertex the geometric mean of
+   * h*_E over the cells around it. @p ratio holds r_E per active cell
+   * (locally owned entries).
+   */
+  std::vector<SizeFieldTriangle>
+  nodal_size_field(const ElasticBody &body, const Vector<double> &ratio);
+
+  /**
+   * Mesh the domain of @p geometry (a body's coarse mesh: its boundary,
+   * one closed curve, gives the geometry) with gmsh's triangles of size
+   * @p size_field (a PostView background field, linear in each triangle).
+   * The boundary is rebuilt as gmsh curves: maximal runs of boundary faces
+   * with the same boundary id and manifold id that are straight (flat
+   * manifold) or lie on one SphericalManifold (circle arcs); boundary ids
+   * and manifold ids are carried over. Rank 0 of @p comm meshes, every
+   * rank receives the mesh. @p body_name is for messages.
+   */
+  CoarseMeshData
+  remesh_with_gmsh(const Triangulation<2> &              geometry,
+                   const std::vector<SizeFieldTriangle> &size_field,
+                   const std::string &                   body_name,
+                   const MPI_Comm                        comm);
+} // namespace coulomb_adapt
+
+#endif

@@ -1,0 +1,45 @@
+#ifndef coulomb_adapt_adaptation_mesh_adaptation_h
+#define coulomb_adapt_adaptation_mesh_adaptation_h
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/indicator/error_estimate.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /** What one adaptation step did, for the log and summary.json. */
+  struct MeshAdaptationReport
+  {
+    std::string strategy;
+    /** Predicted cell count N* (both bodies) and epsilon of the optimal
+     * mesh, when the size ratios were used; -1 otherwise. */
+    double       predicted_n_cells = -1;
+    double       predicted_epsilon = -1;
+    unsigned int n_singular_cells  = 0;
+    unsigned int n_at_min_ratio = 0, n_at_max_ratio = 0;
+    /** Cells flagged (refine strategy). */
+    unsigned int n_refine_flags = 0, n_coarsen_flags = 0;
+  };
+
+  /**
+   * Change both bodies' meshes for the next cycle (theory.md section 4):
+   * uniform refinement, hierarchical refinement and coarsening of
+   * quadrilaterals, or gmsh remeshing of each body with the optimal size
+   * field. @p estimate and @p contact_states are those of the current
+   * meshes; the estimate's recovered stresses, which live on these meshes,
+   * are released. @p degree is the polynomial degree p.
+   */
+  MeshAdaptationReport
+  adapt_meshes(const std::array<ElasticBody *, 2> & bodies,
+               ErrorEstimate &                      estimate,
+               const std::vector<ContactNodeState> &contact_states,
+               const parameters::Adaptation &       parameters,
+               const unsigned int                   degree);
+} // namespace coulomb_adapt
+
+#endif

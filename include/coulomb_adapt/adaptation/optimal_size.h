@@ -1,0 +1,71 @@
+#ifndef coulomb_adapt_adaptation_optimal_size_h
+#define coulomb_adapt_adaptation_optimal_size_h
+
+#include <deal.II/base/point.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/indicator/error_estimate.h>
+
+#include <array>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * The optimal mesh of theory.md section 4 for a prescribed accuracy,
+   * as a size ratio r_E = h*_E / h_E per cell of each body.
+   */
+  struct OptimalSizeRatios
+  {
+    /** r_E per active cell (entries of locally owned cells). */
+    std::array<Vector<double>, 2> ratio;
+    /** The local convergence rate q_E used. */
+    std::array<Vector<double>, 2> rate;
+    /** Predicted cell count sum_E r_E^-d of the optimal mesh (both bodies,
+     * all ranks), after bounding. */
+    double       predicted_n_cells = 0;
+    /** Predicted epsilon sqrt(sum_E r_E^2q epsilon_E^2), after bounding:
+     * epsilon_0 unless the bounds prevent it. */
+    double       predicted_epsilon = 0;
+    /** Cells whose rate was reduced (singular points). */
+    unsigned int n_singular_cells = 0;
+    /** Cells at the lower / upper bound of r_E. */
+    unsigned int n_at_min_ratio = 0, n_at_max_ratio = 0;
+  };
+
+  /**
+   * Points where the displacement is expected to be singular, the same on
+   * every rank: the ends of the active contact zone (from @p contact_states,
+   * may be empty), and the boundary vertices where a clamped or a contact
+   * boundary part meets a part with another boundary id.
+   */
+  std::vector<Point<2>>
+  find_singular_points(const std::array<const ElasticBody *, 2> &bodies,
+                       const std::vector<ContactNodeState> &     contact_states);
+
+  /**
+   * Minimise the cell count sum_E r_E^-d subject to the predicted error
+   * sum_E r_E^{2 q_E} epsilon_E^2 = epsilon_0^2 (d = 2), with r_E bounded
+   * to [@p min_ratio, @p max_ratio]. q_E = p (@p degree) except in cells
+   * touching a point of @p singular_points, where q_E = min(p,
+   * @p singular_rate). With one q for all cells this is the closed form of
+   * theory.md section 4; with several, the Lagrange condition
+   * r_E^{2 q_E + d} = d / (2 Lambda q_E epsilon_E^2) holds in every cell and
+   * the multiplier Lambda is found by bisection (the predicted error is
+   * monotone in it).
+   */
+  OptimalSizeRatios
+  optimal_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
+                      const ErrorEstimate &                     estimate,
+                      const std::vector<Point<2>> &             singular_points,
+                      const double                              target_error,
+                      const unsigned int                        degree,
+                      const double                              singular_rate,
+                      const double                              min_ratio,
+                      const double                              max_ratio);
+} // namespace coulomb_adapt
+
+#endif

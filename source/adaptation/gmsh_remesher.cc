@@ -1,0 +1,415 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/grid/manifold_lib.h>
+
+#include <coulomb_adapt/adaptation/gmsh_remesher.h>
+
+#include <gmsh.h>
+
+#include <cmath>
+#include <map>
+#include <numeric>
+
+namespace coulomb_adapt
+{
+  std::vector<SizeFieldTriangle>
+  nodal_size_field(const ElasticBody &body, const Vector<double> &ratio)
+  {
+    // Per owned cell: three vertices and h*_E, packed for the gather.
+    std::vector<double> local;
+    for (const auto &cell : body.triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          AssertThrow(cell->n_vertices() == 3,
+                      ExcMessage("the size field is built on triangles"));
+          for (unsigned int v = 0; v < 3; ++v)
+            {
+              local.push_back(cell->vertex(v)[0]);
+              local.push_back(cell->vertex(v)[1]);
+            }
+          const double h = std::sqrt(4 * cell->measure() / std::sqrt(3.));
+          local.push_back(ratio(cell->active_cell_index()) * h);
+        }
+    const MPI_Comm comm = body.dof_handler().get_communicator();
+    std::vector<double> all;
+    for (const auto &part : Utilities::MPI::all_gather(comm, local))
+      all.insert(all.end(), part.begin(), part.end());
+
+    // Geometric mean at the vertices: sizes vary over orders of magnitude.
+    std::map<std::pair<double, double>, std::pair<double, unsigned int>>
+      log_sum;
+    for (std::size_t c = 0; c < all.size(); c += 7)
+      for (unsigned int v = 0; v < 3; ++v)
+        {
+          auto &entry = log_sum[{all[c + 2 * v], all[c + 2 * v + 1]}];
+          entry.first += std::log(all[c + 6]);
+          ++entry.second;
+        }
+    std::vector<SizeFieldTriangle> field(all.size() / 7);
+    for (std::size_t c = 0; c < field.size(); ++c)
+      for (unsigned int v = 0; v < 3; ++v)
+        {
+          const double x = all[7 * c + 2 * v], y = all[7 * c + 2 * v + 1];
+          const auto & entry      = log_sum[{x, y}];
+          field[c].vertices[v] = Point<2>(x, y);
+          field[c].size[v]     = std::exp(entry.first / entry.second);
+        }
+    return field;
+  }
+
+
+
+  namespace
+  {
+    struct BoundaryFace
+    {
+      unsigned int       a, b;
+      types::boundary_id boundary_id;
+      types::manifold_id manifold_id;
+    };
+
+    // The boundary faces of @p tria as one closed chain, each face oriented
+    // along the walk.
+    std::vector<BoundaryFace>
+    boundary_loop(const Triangulation<2> &tria, const std::string &body_name)
+    {
+      std::vector<BoundaryFace> faces;
+      for (const auto &cell : tria.active_cell_iterators())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            faces.push_back({face->vertex_index(0),
+                             face->vertex_index(1),
+                             face->boundary_id(),
+                             face->manifold_id()});
+      std::multimap<unsigned int, unsigned int> at_vertex;
+      for (unsigned int f = 0; f < faces.size(); ++f)
+        {
+          at_vertex.emplace(faces[f].a, f);
+          at_vertex.emplace(faces[f].b, f);
+        }
+      std::vector<BoundaryFace> loop = {faces[0]};
+      std::vector<bool>         used(faces.size(), false);
+      used[0] = true;
+      while (loop.back().b != loop.front().a)
+        {
+          const unsigned int v     = loop.back().b;
+          bool               found = false;
+          for (auto [it, end] = at_vertex.equal_range(v); it != end; ++it)
+            if (!used[it->second])
+              {
+                BoundaryFace next = faces[it->second];
+                if (next.a != v)
+                  std::swap(next.a, next.b);
+                used[it->second] = true;
+                loop.push_back(next);
+                found = true;
+                break;
+              }
+          AssertThrow(found,
+                      ExcMessage("remeshing " + body_name +
+                                 ": its boundary is not a closed curve"));
+        }
+      AssertThrow(loop.size() == faces.size(),
+                  ExcMessage("remeshing " + body_name +
+                             ": the body has holes (several boundary "
+                             "curves), which the remesher does not handle"));
+      return loop;
+    }
+
+
+
+    // One gmsh curve: a run of boundary vertices.
+    struct Curve
+    {
+      std::vector<unsigned int> vertices;
+      types::boundary_id        boundary_id;
+      types::manifold_id        manifold_id;
+    };
+
+    std::vector<Curve>
+    boundary_curves(const Triangulation<2> &tria, const std::string &body_name)
+    {
+      const std::vector<BoundaryFace> loop     = boundary_loop(tria, body_name);
+      const auto &                    vertices = tria.get_vertices();
+      auto direction = [&](const BoundaryFace &f) {
+        const Tensor<1, 2> d = vertices[f.b] - vertices[f.a];
+        return d / d.norm();
+      };
+      // A curve ends where the boundary data change, or where a straight
+      // run turns.
+      auto breaks_between = [&](const BoundaryFace &f, const BoundaryFace &g) {
+        if (f.boundary_id != g.boundary_id || f.manifold_id != g.manifold_id)
+          return true;
+        if (f.manifold_id != numbers::flat_manifold_id)
+          return false;
+        const Tensor<1, 2> s = direction(f), t = direction(g);
+        return std::abs(s[0] * t[1] - s[1] * t[0]) > 1e-10 || s * t < 0;
+      };
+      const unsigned int n     = loop.size();
+      unsigned int       start = 0;
+      while (start < n && !breaks_between(loop[(start + n - 1) % n], loop[start]))
+        ++start;
+      if (start == n) // a closed smooth curve: any vertex will do
+        start = 0;
+
+      std::vector<Curve> curves;
+      for (unsigned int k = 0; k < n; ++k)
+        {
+          const BoundaryFace &f = loop[(start + k) % n];
+          if (k == 0 || breaks_between(loop[(start + k + n - 1) % n], f))
+            curves.push_back({{f.a}, f.boundary_id, f.manifold_id});
+          curves.back().vertices.push_back(f.b);
+        }
+      return curves;
+    }
+
+
+
+    double
+    angle_between(const Point<2> &centre, const Point<2> &p, const Point<2> &q)
+    {
+      const Tensor<1, 2> u = p - centre, v = q - centre;
+      return std::abs(std::atan2(u[0] * v[1] - u[1] * v[0], u * v));
+    }
+
+
+
+    // Mesh in gmsh; the elements and the boundary lines of each curve.
+    CoarseMeshData
+    mesh_in_gmsh(const Triangulation<2> &              geometry,
+                 const std::vector<SizeFieldTriangle> &size_field,
+                 const std::string &                   body_name)
+    {
+      const std::vector<Curve> curves   = boundary_curves(geometry, body_name);
+      const auto &             vertices = geometry.get_vertices();
+
+      gmsh::model::add(body_name);
+      std::map<unsigned int, int> point_tag;
+      auto point = [&](const unsigned int v) {
+        auto it = point_tag.find(v);
+        if (it == point_tag.end())
+          it = point_tag
+                 .emplace(v,
+                          gmsh::model::geo::addPoint(vertices[v][0],
+                                                     vertices[v][1],
+                                                     0))
+                 .first;
+        return it->second;
+      };
+      std::vector<int>          loop_tags;
+      std::vector<unsigned int> curve_of_tag; // gmsh curve -> curves[]
+      std::map<int, unsigned int> curve_index;
+      for (unsigned int c = 0; c < curves.size(); ++c)
+        {
+          const Curve &curve = curves[c];
+          std::vector<int> tags;
+          if (curve.manifold_id == numbers::flat_manifold_id)
+            tags.push_back(gmsh::model::geo::addLine(
+              point(curve.vertices.front()), point(curve.vertices.back())));
+          else
+            {
+              const auto *sphere = dynamic_cast<const SphericalManifold<2> *>(
+                &geometry.get_manifold(curve.manifold_id));
+              AssertThrow(sphere != nullptr,
+                          ExcMessage("remeshing " + body_name +
+                                     ": a curved boundary that is not a "
+                                     "circle (SphericalManifold) is not "
+                                     "supported"));
+              const Point<2> centre = sphere->center;
+              const int      centre_tag =
+                gmsh::model::geo::addPoint(centre[0], centre[1], 0);
+              // gmsh's arcs must be shorter than pi: split at coarse
+              // vertices into arcs of at most a quarter circle.
+              std::size_t first = 0;
+              while (first + 1 < curve.vertices.size())
+                {
+                  std::size_t last = first + 1;
+                  while (last + 1 < curve.vertices.size() &&
+                         angle_between(centre,
+                                       vertices[curve.vertices[first]],
+                                       vertices[curve.vertices[last + 1]]) <=
+                           numbers::PI / 2 + 1e-12)
+                    ++last;
+                  tags.push_back(gmsh::model::geo::addCircleArc(
+                    point(curve.vertices[first]),
+                    centre_tag,
+                    point(curve.vertices[last])));
+                  first = last;
+                }
+            }
+          for (const int t : tags)
+            {
+              loop_tags.push_back(t);
+              curve_index[t] = c;
+            }
+        }
+      const int loop    = gmsh::model::geo::addCurveLoop(loop_tags);
+      const int surface = gmsh::model::geo::addPlaneSurface({loop});
+      gmsh::model::geo::synchronize();
+
+      // The size field: a list-based view of triangles with nodal sizes.
+      const int           view = gmsh::view::add("size field");
+      std::vector<double> data;
+      double              h_min = std::numeric_limits<double>::max(), h_max = 0;
+      for (const auto &t : size_field)
+        {
+          for (unsigned int d = 0; d < 2; ++d)
+            for (unsigned int v = 0; v < 3; ++v)
+              data.push_back(t.vertices[v][d]);
+          for (unsigned int v = 0; v < 3; ++v)
+            data.push_back(0.);
+          for (unsigned int v = 0; v < 3; ++v)
+            {
+              data.push_back(t.size[v]);
+              h_min = std::min(h_min, t.size[v]);
+              h_max = std::max(h_max, t.size[v]);
+            }
+        }
+      gmsh::view::addListData(view, "ST", size_field.size(), data);
+      const int field = gmsh::model::mesh::field::add("PostView");
+      gmsh::model::mesh::field::setNumber(field, "ViewTag", view);
+      gmsh::model::mesh::field::setAsBackgroundMesh(field);
+      gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+      gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+      gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+      // Outside the view (curved boundaries bulge out of the old polygon)
+      // gmsh's PostView gives a huge size: keep to the field's range.
+      gmsh::option::setNumber("Mesh.MeshSizeMin", h_min);
+      gmsh::option::setNumber("Mesh.MeshSizeMax", h_max);
+      gmsh::model::mesh::generate(2);
+
+      std::vector<std::size_t> node_tags;
+      std::vector<double>      coordinates, parametric;
+      gmsh::model::mesh::getNodes(
+        node_tags, coordinates, parametric, -1, -1, true, false);
+      std::map<std::size_t, Point<2>> nodes;
+      for (std::size_t i = 0; i < node_tags.size(); ++i)
+        nodes[node_tags[i]] =
+          Point<2>(coordinates[3 * i], coordinates[3 * i + 1]);
+
+      auto elements_of = [](const int dim, const int tag, const unsigned n) {
+        std::vector<int>                      types;
+        std::vector<std::vector<std::size_t>> element_tags, element_nodes;
+        gmsh::model::mesh::getElements(
+          types, element_tags, element_nodes, dim, tag);
+        std::vector<std::vector<std::size_t>> elements;
+        for (unsigned int t = 0; t < types.size(); ++t)
+          for (std::size_t e = 0; e < element_tags[t].size(); ++e)
+            elements.emplace_back(element_nodes[t].begin() + e * n,
+                                  element_nodes[t].begin() + (e + 1) * n);
+        return elements;
+      };
+      // Lines keyed by the index of their curve, renamed below.
+      std::map<types::boundary_id, std::vector<std::vector<std::size_t>>>
+        lines;
+      for (const auto &[tag, c] : curve_index)
+        for (auto &line : elements_of(1, tag, 2))
+          lines[c].push_back(line);
+      CoarseMeshData mesh =
+        build_body_mesh(elements_of(2, surface, 3),
+                        nodes,
+                        lines,
+                        geometry.begin_active()->material_id(),
+                        "remeshed " + body_name);
+      for (auto &line : mesh.boundary_lines.boundary_lines)
+        {
+          const Curve &curve = curves[line.boundary_id];
+          line.boundary_id   = curve.boundary_id;
+          line.manifold_id   = curve.manifold_id;
+        }
+      return mesh;
+    }
+
+
+
+    // CoarseMeshData as numbers, for the broadcast.
+    std::vector<double>
+    pack(const CoarseMeshData &mesh)
+    {
+      std::vector<double> data = {double(mesh.vertices.size()),
+                                  double(mesh.cells.size()),
+                                  double(mesh.boundary_lines.boundary_lines.size())};
+      for (const auto &v : mesh.vertices)
+        data.insert(data.end(), {v[0], v[1]});
+      for (const auto &c : mesh.cells)
+        data.insert(data.end(),
+                    {double(c.vertices[0]),
+                     double(c.vertices[1]),
+                     double(c.vertices[2]),
+                     double(c.material_id)});
+      for (const auto &l : mesh.boundary_lines.boundary_lines)
+        data.insert(data.end(),
+                    {double(l.vertices[0]),
+                     double(l.vertices[1]),
+                     double(l.boundary_id),
+                     double(l.manifold_id)});
+      return data;
+    }
+
+    CoarseMeshData
+    unpack(const std::vector<double> &data)
+    {
+      CoarseMeshData mesh;
+      std::size_t    k       = 3;
+      const auto     n_lines = static_cast<std::size_t>(data[2]);
+      for (std::size_t i = 0; i < static_cast<std::size_t>(data[0]); ++i, k += 2)
+        mesh.vertices.emplace_back(data[k], data[k + 1]);
+      for (std::size_t i = 0; i < static_cast<std::size_t>(data[1]); ++i, k += 4)
+        {
+          CellData<2> cell(3);
+          for (unsigned int v = 0; v < 3; ++v)
+            cell.vertices[v] = static_cast<unsigned int>(data[k + v]);
+          cell.material_id = static_cast<types::material_id>(data[k + 3]);
+          mesh.cells.push_back(cell);
+        }
+      for (std::size_t i = 0; i < n_lines; ++i, k += 4)
+        {
+          CellData<1> line;
+          line.vertices    = {static_cast<unsigned int>(data[k]),
+                           static_cast<unsigned int>(data[k + 1])};
+          line.boundary_id = static_cast<types::boundary_id>(data[k + 2]);
+          line.manifold_id = static_cast<types::manifold_id>(data[k + 3]);
+          mesh.boundary_lines.boundary_lines.push_back(line);
+        }
+      return mesh;
+    }
+  } // namespace
+
+
+
+  CoarseMeshData
+  remesh_with_gmsh(const Triangulation<2> &              geometry,
+                   const std::vector<SizeFieldTriangle> &size_field,
+                   const std::string &                   body_name,
+                   const MPI_Comm                        comm)
+  {
+    // One rank meshes (gmsh is serial), every rank gets the mesh.
+    std::vector<double> data;
+    std::string         error;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        gmsh::initialize();
+        gmsh::option::setNumber("General.Terminal", 0);
+        gmsh::option::setNumber("General.Verbosity", 0);
+        try
+          {
+            data = pack(mesh_in_gmsh(geometry, size_field, body_name));
+          }
+        catch (const std::exception &e)
+          {
+            error = e.what();
+          }
+        catch (...)
+          {
+            std::string message;
+            gmsh::logger::getLastError(message);
+            error = "gmsh: " + message;
+          }
+        gmsh::finalize();
+      }
+    error = Utilities::MPI::broadcast(comm, error, 0);
+    AssertThrow(error.empty(),
+                ExcMessage("remeshing " + body_name + " failed: " + error));
+    return unpack(Utilities::MPI::broadcast(comm, data, 0));
+  }
+} // namespace coulomb_adapt

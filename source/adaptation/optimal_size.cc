@@ -1,0 +1,193 @@
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+
+#include <coulomb_adapt/adaptation/optimal_size.h>
+#include <coulomb_adapt/scenes/scene_meshes.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace coulomb_adapt
+{
+  namespace
+  {
+    constexpr double dimension = 2;
+
+    // The ends of the active part of the slave's contact boundary, along
+    // the tangent of its first active node (the same on every rank: the
+    // states are).
+    void
+    add_contact_zone_ends(const std::vector<ContactNodeState> &states,
+                          std::set<std::pair<double, double>> &points)
+    {
+      const ContactNodeState *first = nullptr;
+      double                  s_min = 0, s_max = 0;
+      Point<2>                p_min, p_max;
+      for (const auto &state : states)
+        if (state.status != ContactStatus::open && state.facing_master)
+          {
+            if (first == nullptr)
+              {
+                first = &state;
+                p_min = p_max = state.position;
+                continue;
+              }
+            const double s = (state.position - first->position) * first->tangent;
+            if (s < s_min)
+              s_min = s, p_min = state.position;
+            if (s > s_max)
+              s_max = s, p_max = state.position;
+          }
+      if (first != nullptr)
+        {
+          points.emplace(p_min[0], p_min[1]);
+          points.emplace(p_max[0], p_max[1]);
+        }
+    }
+
+
+
+    // Boundary vertices where a clamped or contact part meets a part with
+    // another boundary id: the classical corner singularities of elasticity
+    // with mixed boundary conditions.
+    void
+    add_boundary_condition_changes(const ElasticBody &                  body,
+                                   std::set<std::pair<double, double>> &points)
+    {
+      std::map<std::pair<double, double>, std::set<types::boundary_id>> ids;
+      for (const auto &cell : body.triangulation().active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary())
+              for (unsigned int v = 0; v < face->n_vertices(); ++v)
+                ids[{face->vertex(v)[0], face->vertex(v)[1]}].insert(
+                  face->boundary_id());
+      for (const auto &[point, point_ids] : ids)
+        if (point_ids.size() > 1 &&
+            (point_ids.count(boundary_ids::dirichlet) ||
+             point_ids.count(boundary_ids::contact)))
+          points.insert(point);
+    }
+  } // namespace
+
+
+
+  std::vector<Point<2>>
+  find_singular_points(const std::array<const ElasticBody *, 2> &bodies,
+                       const std::vector<ContactNodeState> &     contact_states)
+  {
+    std::set<std::pair<double, double>> local;
+    add_contact_zone_ends(contact_states, local);
+    for (const ElasticBody *body : bodies)
+      add_boundary_condition_changes(*body, local);
+    // Each rank sees the boundary of its own cells: the union is the set.
+    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
+    const auto     gathered = Utilities::MPI::all_gather(
+      comm, std::vector<std::pair<double, double>>(local.begin(), local.end()));
+    std::set<std::pair<double, double>> all;
+    for (const auto &part : gathered)
+      all.insert(part.begin(), part.end());
+    std::vector<Point<2>> points;
+    for (const auto &[x, y] : all)
+      points.emplace_back(x, y);
+    return points;
+  }
+
+
+
+  OptimalSizeRatios
+  optimal_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
+                      const ErrorEstimate &                     estimate,
+                      const std::vector<Point<2>> &             singular_points,
+                      const double                              target_error,
+                      const unsigned int                        degree,
+                      const double                              singular_rate,
+                      const double                              min_ratio,
+                      const double                              max_ratio)
+  {
+    Assert(target_error > 0, ExcMessage("a target error is needed"));
+    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
+    OptimalSizeRatios result;
+
+    // Per owned cell: epsilon_E^2 and q_E; the cells of both bodies in one
+    // list, since the optimum is over the whole problem.
+    struct CellData
+    {
+      unsigned int body, index;
+      double       epsilon_squared, rate;
+    };
+    std::vector<CellData> cells;
+    const double          D2 = estimate.normalisation_squared;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const auto &tria = bodies[b]->triangulation();
+        result.ratio[b].reinit(tria.n_active_cells());
+        result.rate[b].reinit(tria.n_active_cells());
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const unsigned int i = cell->active_cell_index();
+              double             q = degree;
+              const BoundingBox<2> box = cell->bounding_box();
+              for (const auto &p : singular_points)
+                if (box.point_inside(p, 1e-10))
+                  {
+                    q = std::min<double>(degree, singular_rate);
+                    ++result.n_singular_cells;
+                    break;
+                  }
+              result.rate[b](i) = q;
+              cells.push_back(
+                {b, i, std::max(0., estimate.contribution_squared[b](i) / D2), q});
+            }
+      }
+    result.n_singular_cells = Utilities::MPI::sum(result.n_singular_cells, comm);
+
+    // r_E for the multiplier exp(L), bounded.
+    auto ratio = [&](const CellData &c, const double L) {
+      if (c.epsilon_squared <= 0)
+        return max_ratio;
+      const double log_r =
+        (std::log(dimension / (2 * c.rate * c.epsilon_squared)) - L) /
+        (2 * c.rate + dimension);
+      return std::clamp(std::exp(std::clamp(log_r, -300., 300.)),
+                        min_ratio,
+                        max_ratio);
+    };
+    auto predicted_error_squared = [&](const double L) {
+      double sum = 0;
+      for (const auto &c : cells)
+        sum += std::pow(ratio(c, L), 2 * c.rate) * c.epsilon_squared;
+      return Utilities::MPI::sum(sum, comm);
+    };
+
+    // The predicted error decreases as L grows; bisect on L.
+    const double target2 = target_error * target_error;
+    double       L_low = -1400, L_high = 1400;
+    for (unsigned int k = 0; k < 200 && L_high - L_low > 1e-12; ++k)
+      {
+        const double L = 0.5 * (L_low + L_high);
+        if (predicted_error_squared(L) > target2)
+          L_low = L;
+        else
+          L_high = L;
+      }
+
+    double n_cells = 0;
+    for (const auto &c : cells)
+      {
+        const double r              = ratio(c, L_high);
+        result.ratio[c.body](c.index) = r;
+        n_cells += std::pow(r, -dimension);
+        result.n_at_min_ratio += (r <= min_ratio * (1 + 1e-12));
+        result.n_at_max_ratio += (r >= max_ratio * (1 - 1e-12));
+      }
+    result.predicted_n_cells = Utilities::MPI::sum(n_cells, comm);
+    result.predicted_epsilon = std::sqrt(predicted_error_squared(L_high));
+    result.n_at_min_ratio    = Utilities::MPI::sum(result.n_at_min_ratio, comm);
+    result.n_at_max_ratio    = Utilities::MPI::sum(result.n_at_max_ratio, comm);
+    return result;
+  }
+} // namespace coulomb_adapt

@@ -1,0 +1,135 @@
+#include <deal.II/base/mpi.h>
+
+#include <coulomb_adapt/adaptation/refinement_flags.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numeric>
+
+namespace coulomb_adapt
+{
+  RefinementDecisions
+  decisions_from_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
+                             const OptimalSizeRatios &ratios,
+                             const bool               must_refine)
+  {
+    RefinementDecisions decisions;
+    unsigned int        n_refined = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const auto &tria = bodies[b]->triangulation();
+        decisions[b].assign(tria.n_active_cells(), 0);
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const unsigned int i = cell->active_cell_index();
+              const double       r = ratios.ratio[b](i);
+              if (r < 1 / std::sqrt(2.))
+                {
+                  decisions[b][i] = 1;
+                  ++n_refined;
+                }
+              else if (r > 2)
+                decisions[b][i] = -1;
+            }
+      }
+    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
+    if (must_refine && Utilities::MPI::sum(n_refined, comm) == 0)
+      for (unsigned int b = 0; b < 2; ++b)
+        for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
+          if (cell->is_locally_owned() &&
+              ratios.ratio[b](cell->active_cell_index()) < 1)
+            decisions[b][cell->active_cell_index()] = 1;
+    return decisions;
+  }
+
+
+
+  RefinementDecisions
+  decisions_from_indicator(const std::array<const ElasticBody *, 2> &bodies,
+                           const ErrorEstimate &estimate,
+                           const std::string &  criterion,
+                           const double         refine_fraction,
+                           const double         coarsen_fraction,
+                           const unsigned int   degree)
+  {
+    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
+    // epsilon_E^2 of every cell of both bodies, on every rank, sorted
+    // decreasingly: the thresholds are then the same everywhere.
+    std::vector<double> local;
+    for (unsigned int b = 0; b < 2; ++b)
+      for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
+        if (cell->is_locally_owned())
+          local.push_back(
+            estimate.contribution_squared[b](cell->active_cell_index()));
+    std::vector<double> all;
+    for (const auto &part : Utilities::MPI::all_gather(comm, local))
+      all.insert(all.end(), part.begin(), part.end());
+    std::sort(all.begin(), all.end(), std::greater<double>());
+    const std::size_t N     = all.size();
+    const double      total = std::accumulate(all.begin(), all.end(), 0.);
+
+    // Refine the first n_refine cells, coarsen the last n_coarsen.
+    std::size_t n_refine = 0, n_coarsen = 0;
+    if (criterion == "fixed fraction")
+      {
+        double sum = 0;
+        while (n_refine < N && sum < refine_fraction * total)
+          sum += all[n_refine++];
+        sum = 0;
+        while (n_coarsen < N - n_refine &&
+               sum + all[N - 1 - n_coarsen] <= coarsen_fraction * total)
+          sum += all[N - 1 - n_coarsen++];
+      }
+    else if (criterion == "fixed number")
+      {
+        n_refine  = static_cast<std::size_t>(std::ceil(refine_fraction * N));
+        n_coarsen = std::min(N - n_refine,
+                             static_cast<std::size_t>(coarsen_fraction * N));
+      }
+    else if (criterion == "optimize")
+      {
+        const double q         = degree;
+        const double reduction = 1 - std::pow(4., -q);
+        double       best      = std::pow(double(N), q) * total;
+        double       refined   = 0;
+        for (std::size_t M = 1; M <= N; ++M)
+          {
+            refined += all[M - 1];
+            const double J =
+              std::pow(double(N + 3 * M), q) * (total - reduction * refined);
+            if (J < best)
+              {
+                best     = J;
+                n_refine = M;
+              }
+          }
+      }
+    else
+      AssertThrow(false, ExcMessage("unknown refinement criterion '" + criterion + "'"));
+
+    const double refine_threshold =
+      n_refine > 0 ? all[n_refine - 1] : std::numeric_limits<double>::infinity();
+    const double coarsen_threshold =
+      n_coarsen > 0 ? all[N - n_coarsen] : -1;
+
+    RefinementDecisions decisions;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const auto &tria = bodies[b]->triangulation();
+        decisions[b].assign(tria.n_active_cells(), 0);
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const unsigned int i = cell->active_cell_index();
+              const double       e = estimate.contribution_squared[b](i);
+              if (e >= refine_threshold)
+                decisions[b][i] = 1;
+              else if (e <= coarsen_threshold)
+                decisions[b][i] = -1;
+            }
+      }
+    return decisions;
+  }
+} // namespace coulomb_adapt
