@@ -6,6 +6,7 @@
 
 #include <gmsh.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -31,9 +32,23 @@ namespace coulomb_adapt
           local.push_back(ratio(cell->active_cell_index()) * h);
         }
     const MPI_Comm comm = body.dof_handler().get_communicator();
-    std::vector<double> all;
+    // In a fixed order, whatever the partition: gmsh's result depends on
+    // the order of the view's triangles and on the last bits of the sizes,
+    // and the mesh must not depend on the number of ranks. The sizes are
+    // rounded to float for the same reason (r_E comes from MPI sums).
+    std::vector<std::array<double, 7>> cells;
     for (const auto &part : Utilities::MPI::all_gather(comm, local))
-      all.insert(all.end(), part.begin(), part.end());
+      for (std::size_t c = 0; c < part.size(); c += 7)
+        {
+          std::array<double, 7> cell;
+          std::copy(part.begin() + c, part.begin() + c + 7, cell.begin());
+          cell[6] = static_cast<float>(cell[6]);
+          cells.push_back(cell);
+        }
+    std::sort(cells.begin(), cells.end());
+    std::vector<double> all;
+    for (const auto &cell : cells)
+      all.insert(all.end(), cell.begin(), cell.end());
 
     // Geometric mean at the vertices: sizes vary over orders of magnitude.
     std::map<std::pair<double, double>, std::pair<double, unsigned int>>
@@ -54,6 +69,32 @@ namespace coulomb_adapt
           field[c].vertices[v] = Point<2>(x, y);
           field[c].size[v]     = std::exp(entry.first / entry.second);
         }
+
+    // Smoothing must not change the cell count the optimum asked for: the
+    // count of a size field is int 1 / (sqrt 3 / 4 h(x)^2) dx, with h
+    // constant per cell before and linear per cell after the smoothing
+    // (integrated at the edge midpoints). Near a singular point the
+    // smoothed field is much finer on average, so without this scaling the
+    // new mesh has up to a third more cells than N*.
+    double n_wanted = 0, n_smoothed = 0;
+    for (std::size_t c = 0; c < field.size(); ++c)
+      {
+        const auto & t    = field[c];
+        const double area = 0.5 * std::abs((t.vertices[1] - t.vertices[0])[0] *
+                                             (t.vertices[2] - t.vertices[0])[1] -
+                                           (t.vertices[1] - t.vertices[0])[1] *
+                                             (t.vertices[2] - t.vertices[0])[0]);
+        n_wanted += area / (all[7 * c + 6] * all[7 * c + 6]);
+        for (unsigned int v = 0; v < 3; ++v)
+          {
+            const double h = 0.5 * (t.size[v] + t.size[(v + 1) % 3]);
+            n_smoothed += area / 3 / (h * h);
+          }
+      }
+    const double scale = std::sqrt(n_smoothed / n_wanted);
+    for (auto &t : field)
+      for (double &h : t.size)
+        h = static_cast<float>(h * scale);
     return field;
   }
 

@@ -71,8 +71,9 @@ namespace coulomb_adapt
     const RefinementDecisions decisions =
       use_ratios ?
         decisions_from_size_ratios(const_bodies,
+                                   estimate,
                                    ratios,
-                                   estimate.epsilon > parameters.target_error) :
+                                   parameters.target_error) :
         decisions_from_indicator(const_bodies,
                                  estimate,
                                  parameters.refinement_criterion,

@@ -51,19 +51,27 @@ namespace coulomb_adapt
 
     // Boundary vertices where a clamped or contact part meets a part with
     // another boundary id: the classical corner singularities of elasticity
-    // with mixed boundary conditions.
+    // with mixed boundary conditions. Only owned cells are looked at (a
+    // ghost cell's face towards an absent cell also reports at_boundary),
+    // so the ids of a vertex are combined over the ranks.
     void
     add_boundary_condition_changes(const ElasticBody &                  body,
                                    std::set<std::pair<double, double>> &points)
     {
-      std::map<std::pair<double, double>, std::set<types::boundary_id>> ids;
+      std::vector<std::array<double, 3>> local;
       for (const auto &cell : body.triangulation().active_cell_iterators())
-        if (!cell->is_artificial())
+        if (cell->is_locally_owned())
           for (const auto &face : cell->face_iterators())
             if (face->at_boundary())
               for (unsigned int v = 0; v < face->n_vertices(); ++v)
-                ids[{face->vertex(v)[0], face->vertex(v)[1]}].insert(
-                  face->boundary_id());
+                local.push_back({{face->vertex(v)[0],
+                                  face->vertex(v)[1],
+                                  double(face->boundary_id())}});
+      std::map<std::pair<double, double>, std::set<types::boundary_id>> ids;
+      for (const auto &part : Utilities::MPI::all_gather(
+             body.dof_handler().get_communicator(), local))
+        for (const auto &[x, y, id] : part)
+          ids[{x, y}].insert(static_cast<types::boundary_id>(id));
       for (const auto &[point, point_ids] : ids)
         if (point_ids.size() > 1 &&
             (point_ids.count(boundary_ids::dirichlet) ||
@@ -79,18 +87,13 @@ namespace coulomb_adapt
                        const std::vector<ContactNodeState> &     contact_states)
   {
     std::set<std::pair<double, double>> local;
+    // The states are those of all slave nodes on every rank.
     add_contact_zone_ends(contact_states, local);
     for (const ElasticBody *body : bodies)
       add_boundary_condition_changes(*body, local);
-    // Each rank sees the boundary of its own cells: the union is the set.
-    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
-    const auto     gathered = Utilities::MPI::all_gather(
-      comm, std::vector<std::pair<double, double>>(local.begin(), local.end()));
-    std::set<std::pair<double, double>> all;
-    for (const auto &part : gathered)
-      all.insert(part.begin(), part.end());
+    // Both parts are the same on every rank.
     std::vector<Point<2>> points;
-    for (const auto &[x, y] : all)
+    for (const auto &[x, y] : local)
       points.emplace_back(x, y);
     return points;
   }

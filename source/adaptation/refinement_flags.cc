@@ -11,11 +11,46 @@ namespace coulomb_adapt
 {
   RefinementDecisions
   decisions_from_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
-                             const OptimalSizeRatios &ratios,
-                             const bool               must_refine)
+                             const ErrorEstimate &                     estimate,
+                             const OptimalSizeRatios &                 ratios,
+                             const double                              target_error)
   {
+    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
+    // Predicted epsilon^2 if cells with r_E < r_refine are refined (error
+    // x 4^-q) and those with r_E > 2 coarsened (x 4^q).
+    auto predicted_error_squared = [&](const double r_refine) {
+      double sum = 0;
+      for (unsigned int b = 0; b < 2; ++b)
+        for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const unsigned int i = cell->active_cell_index();
+              const double       r = ratios.ratio[b](i);
+              const double       q = ratios.rate[b](i);
+              const double factor = r < r_refine ? std::pow(4., -q) :
+                                    r > 2        ? std::pow(4., q) :
+                                                   1.;
+              sum += factor * estimate.contribution_squared[b](i);
+            }
+      return Utilities::MPI::sum(sum, comm) / estimate.normalisation_squared;
+    };
+    const double target2  = target_error * target_error;
+    double       r_refine = 1 / std::sqrt(2.);
+    if (predicted_error_squared(r_refine) > target2)
+      {
+        // The smallest threshold whose prediction meets the target.
+        double low = r_refine, high = 1e3;
+        for (unsigned int k = 0; k < 60; ++k)
+          {
+            const double mid = std::sqrt(low * high);
+            (predicted_error_squared(mid) > target2 ? low : high) = mid;
+          }
+        // Symmetric cells have the same r_E up to round-off: a threshold
+        // between them would refine one and not the other.
+        r_refine = high * (1 + 1e-8);
+      }
+
     RefinementDecisions decisions;
-    unsigned int        n_refined = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
         const auto &tria = bodies[b]->triangulation();
@@ -25,22 +60,9 @@ namespace coulomb_adapt
             {
               const unsigned int i = cell->active_cell_index();
               const double       r = ratios.ratio[b](i);
-              if (r < 1 / std::sqrt(2.))
-                {
-                  decisions[b][i] = 1;
-                  ++n_refined;
-                }
-              else if (r > 2)
-                decisions[b][i] = -1;
+              decisions[b][i]      = r < r_refine ? 1 : r > 2 ? -1 : 0;
             }
       }
-    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
-    if (must_refine && Utilities::MPI::sum(n_refined, comm) == 0)
-      for (unsigned int b = 0; b < 2; ++b)
-        for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
-          if (cell->is_locally_owned() &&
-              ratios.ratio[b](cell->active_cell_index()) < 1)
-            decisions[b][cell->active_cell_index()] = 1;
     return decisions;
   }
 
@@ -109,10 +131,12 @@ namespace coulomb_adapt
     else
       AssertThrow(false, ExcMessage("unknown refinement criterion '" + criterion + "'"));
 
+    // Cells equal up to round-off (symmetric ones) get the same decision.
     const double refine_threshold =
-      n_refine > 0 ? all[n_refine - 1] : std::numeric_limits<double>::infinity();
+      n_refine > 0 ? all[n_refine - 1] * (1 - 1e-10) :
+                     std::numeric_limits<double>::infinity();
     const double coarsen_threshold =
-      n_coarsen > 0 ? all[N - n_coarsen] : -1;
+      n_coarsen > 0 ? all[N - n_coarsen] * (1 + 1e-10) : -1;
 
     RefinementDecisions decisions;
     for (unsigned int b = 0; b < 2; ++b)

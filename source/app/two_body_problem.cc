@@ -14,10 +14,11 @@ namespace coulomb_adapt
   TwoBodyProblem::TwoBodyProblem(const MPI_Comm     mpi_communicator,
                                  const Parameters & parameters,
                                  ParameterHandler & prm,
-                                 const std::string &parameter_file)
+                                 const std::string &parameter_file,
+                                 std::ostream &     log)
     : mpi_communicator(mpi_communicator)
     , parameters(parameters)
-    , pcout(std::cout,
+    , pcout(log,
             Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
     // No communicator: the timer's destructor must not synchronise the
     // ranks while an exception unwinds (that could deadlock).
@@ -35,6 +36,23 @@ namespace coulomb_adapt
       summary->set("reference", scene->reference_values());
     summary->set("friction_coefficient",
                  parameters.contact.friction_coefficient);
+  }
+
+
+
+  const ElasticBody &
+  TwoBodyProblem::body(const unsigned int b) const
+  {
+    return *bodies[b];
+  }
+
+
+
+  const ErrorEstimate &
+  TwoBodyProblem::last_error_estimate() const
+  {
+    Assert(error_estimate, ExcMessage("no cycle has run"));
+    return *error_estimate;
   }
 
 
@@ -475,7 +493,7 @@ namespace coulomb_adapt
             const double obtained =
               bodies[0]->triangulation().n_global_active_cells() +
               bodies[1]->triangulation().n_global_active_cells();
-            pcout << "  cells: " << obtained << " obtained, N* = "
+            pcout << "  cells: " << std::llround(obtained) << " obtained, N* = "
                   << std::llround(last_adaptation->predicted_n_cells)
                   << " predicted (" << std::showpos << std::setprecision(3)
                   << 100 * (obtained / last_adaptation->predicted_n_cells - 1)
@@ -581,8 +599,8 @@ namespace coulomb_adapt
       cycle_table.set_scientific(column, false);
     if (pcout.is_active())
       {
-        std::cout << std::endl;
-        cycle_table.write_text(std::cout,
+        pcout.get_stream() << std::endl;
+        cycle_table.write_text(pcout.get_stream(),
                                TableHandler::org_mode_table);
       }
     computing_timer.print_summary();

@@ -29,8 +29,10 @@ namespace coulomb_adapt
    * with h_E = (4 |E| / sqrt 3)^1/2, the edge of the equilateral triangle of
    * the same area (so that the cell count of the new mesh is sum_E r_E^-2
    * for any shape), smoothed by taking at each vertex the geometric mean of
-   * h*_E over the cells around it. @p ratio holds r_E per active cell
-   * (locally owned entries).
+   * h*_E over the cells around it, then scaled so that the smoothed,
+   * piecewise linear field has the cell count sum_E r_E^-2 of the
+   * unsmoothed one. @p ratio holds r_E per active cell (locally owned
+   * entries).
    */
   std::vector<SizeFieldTriangle>
   nodal_size_field(const ElasticBody &body, const Vector<double> &ratio);

@@ -19,14 +19,17 @@ namespace coulomb_adapt
    * Hierarchical use of the optimal size ratios (theory.md section 4):
    * a cell is refined if r_E < 2^-1/2 and coarsened if r_E > 2, i.e. it
    * gets the level whose size is nearest to h*_E on a logarithmic scale
-   * (one level per cycle). If that flags nothing but @p must_refine, the
-   * cells with r_E < 1 are refined so that a cycle above the target always
-   * changes the mesh.
+   * (one level per cycle). One level is a coarse step: if the error
+   * predicted for these flags (epsilon_E^2 x 4^-q_E in refined cells,
+   * x 4^q_E in coarsened ones) is above @p target_error, the refinement
+   * threshold on r_E is raised until it is not, so that a cycle does not
+   * stall just above the target.
    */
   RefinementDecisions
   decisions_from_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
-                             const OptimalSizeRatios &ratios,
-                             const bool               must_refine);
+                             const ErrorEstimate &                     estimate,
+                             const OptimalSizeRatios &                 ratios,
+                             const double target_error);
 
   /**
    * Decisions from epsilon_E^2 over both bodies and all ranks together

@@ -18,6 +18,7 @@
 #include <coulomb_adapt/scenes/scene.h>
 
 #include <array>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -37,13 +38,23 @@ namespace coulomb_adapt
   class TwoBodyProblem
   {
   public:
+    /** The log goes to @p log on rank 0 (tests pass a string stream). */
     TwoBodyProblem(const MPI_Comm     mpi_communicator,
                    const Parameters & parameters,
                    ParameterHandler & prm,
-                   const std::string &parameter_file);
+                   const std::string &parameter_file,
+                   std::ostream &     log = std::cout);
 
     void
     run();
+
+    /** Body @p b (0: upper/slave, 1: lower/master) on its last mesh. */
+    const ElasticBody &
+    body(const unsigned int b) const;
+
+    /** The indicator of the last cycle. */
+    const ErrorEstimate &
+    last_error_estimate() const;
 
   private:
     void
