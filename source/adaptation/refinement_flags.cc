@@ -16,8 +16,20 @@ namespace coulomb_adapt
                              const double                              target_error)
   {
     const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
-    // Predicted epsilon^2 if cells with r_E < r_refine are refined (error
-    // x 4^-q) and those with r_E > 2 coarsened (x 4^q).
+    // Levels for r_E: the nearest power of 2 on a log scale, at least one
+    // if r_E < r_refine, at most max_levels per cycle, -1 (coarsen) if
+    // r_E > 2.
+    constexpr int max_levels = 3;
+    auto          levels     = [&](const double r, const double r_refine) {
+      if (r > 2)
+        return -1;
+      if (r >= r_refine)
+        return 0;
+      return std::clamp(static_cast<int>(std::floor(-std::log2(r) + 0.5)),
+                        1,
+                        max_levels);
+    };
+    // Predicted epsilon^2 for these levels: epsilon_E^2 x 4^(-q_E levels).
     auto predicted_error_squared = [&](const double r_refine) {
       double sum = 0;
       for (unsigned int b = 0; b < 2; ++b)
@@ -27,10 +39,8 @@ namespace coulomb_adapt
               const unsigned int i = cell->active_cell_index();
               const double       r = ratios.ratio[b](i);
               const double       q = ratios.rate[b](i);
-              const double factor = r < r_refine ? std::pow(4., -q) :
-                                    r > 2        ? std::pow(4., q) :
-                                                   1.;
-              sum += factor * estimate.contribution_squared[b](i);
+              sum += std::pow(4., -q * levels(r, r_refine)) *
+                     estimate.contribution_squared[b](i);
             }
       return Utilities::MPI::sum(sum, comm) / estimate.normalisation_squared;
     };
@@ -60,7 +70,7 @@ namespace coulomb_adapt
             {
               const unsigned int i = cell->active_cell_index();
               const double       r = ratios.ratio[b](i);
-              decisions[b][i]      = r < r_refine ? 1 : r > 2 ? -1 : 0;
+              decisions[b][i]      = levels(r, r_refine);
             }
       }
     return decisions;

@@ -12,18 +12,18 @@
 namespace coulomb_adapt
 {
   /** What happens to each active cell of a body (entries of locally owned
-   * cells): +1 refine, -1 coarsen, 0 keep. */
+   * cells): +k refine k times, -1 coarsen, 0 keep. */
   using RefinementDecisions = std::array<std::vector<signed char>, 2>;
 
   /**
    * Hierarchical use of the optimal size ratios (theory.md section 4):
-   * a cell is refined if r_E < 2^-1/2 and coarsened if r_E > 2, i.e. it
-   * gets the level whose size is nearest to h*_E on a logarithmic scale
-   * (one level per cycle). One level is a coarse step: if the error
-   * predicted for these flags (epsilon_E^2 x 4^-q_E in refined cells,
-   * x 4^q_E in coarsened ones) is above @p target_error, the refinement
-   * threshold on r_E is raised until it is not, so that a cycle does not
-   * stall just above the target.
+   * a cell is refined k = round(-log2 r_E) times (at most 3 per cycle)
+   * and coarsened if r_E > 2, i.e. it gets the level whose size is nearest
+   * to h*_E on a logarithmic scale. Levels are coarse steps: if the error
+   * predicted for these decisions (epsilon_E^2 x 4^(-q_E k)) is above
+   * @p target_error, the threshold on r_E below which a cell is refined at
+   * least once is raised from 2^-1/2 until it is not, so that a cycle does
+   * not stall just above the target.
    */
   RefinementDecisions
   decisions_from_size_ratios(const std::array<const ElasticBody *, 2> &bodies,

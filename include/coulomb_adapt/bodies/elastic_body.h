@@ -61,9 +61,9 @@ namespace coulomb_adapt
     void
     refine_uniformly();
 
-    /** Refine (+1) and coarsen (-1) the locally owned active cells as
-     * @p decisions says (indexed by active cell index); hanging nodes are
-     * kept at one level by p4est. Quadrilateral meshes only. */
+    /** Refine k times (+k) and coarsen (-1) the locally owned active cells
+     * as @p decisions says (indexed by active cell index); hanging nodes
+     * are kept at one level by p4est. Quadrilateral meshes only. */
     void
     refine_and_coarsen(const std::vector<signed char> &decisions);
 
