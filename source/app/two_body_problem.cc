@@ -401,7 +401,7 @@ namespace coulomb_adapt
     const auto &a = parameters.adaptation;
     std::ostringstream s;
     if (a.target_error > 0 && error_estimate &&
-        error_estimate->epsilon <= a.target_error)
+        error_estimate->epsilon <= a.target_error && cycle + 1 >= a.min_cycles)
       s << "target reached: epsilon = " << std::setprecision(4)
         << 100 * error_estimate->epsilon << " % <= epsilon_0 = "
         << 100 * a.target_error << " %";

@@ -313,6 +313,13 @@ namespace coulomb_adapt
                           Patterns::Integer(1, 40),
                           "Maximum number of solve cycles; the mesh is "
                           "adapted between two cycles.");
+        prm.declare_entry("Minimum number of cycles",
+                          "1",
+                          Patterns::Integer(1, 40),
+                          "The cycles do not stop at the target before this "
+                          "many: 2 is the seed's procedure (solve, build the "
+                          "optimal mesh for epsilon_0, solve again) even when "
+                          "the first mesh is already accurate enough.");
         prm.declare_entry("Target error",
                           "0",
                           Patterns::Double(0, 100),
@@ -388,6 +395,12 @@ namespace coulomb_adapt
         const std::string path = "Adaptation/";
         strategy             = prm.get("Strategy");
         n_cycles             = prm.get_integer("Number of cycles");
+        min_cycles           = prm.get_integer("Minimum number of cycles");
+        require_parameter(min_cycles <= n_cycles,
+                          path + "Minimum number of cycles",
+                          min_cycles,
+                          "at most 'Number of cycles' (" +
+                            std::to_string(n_cycles) + ")");
         target_error         = prm.get_double("Target error") / 100;
         max_dofs             = prm.get_double("Maximum number of DoFs");
         refinement_criterion = prm.get("Refinement criterion");

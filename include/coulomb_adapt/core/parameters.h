@@ -128,6 +128,8 @@ namespace coulomb_adapt
       std::string  strategy;
       /** Maximum number of solve cycles. */
       unsigned int n_cycles;
+      /** Cycles run even if the target is met earlier. */
+      unsigned int min_cycles;
       /** epsilon_0 as a fraction (the file gives percent); 0: no target. */
       double       target_error;
       /** No further cycle once a cycle has at least this many DoFs. */
