@@ -294,7 +294,8 @@ namespace coulomb_adapt
           *scene,
           parameters,
           parameters.mesh.global_refinements + (adaptive ? 0 : cycle),
-          parameters.error_indicator.reference_refinements);
+          parameters.error_indicator.reference_refinements,
+          adaptive);
       }
     const ReferenceStress &reference =
       exact ? *exact : *reference_solution;

@@ -8,6 +8,7 @@
 #include <coulomb_adapt/indicator/exact_error.h>
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 
 namespace coulomb_adapt
@@ -45,7 +46,8 @@ namespace coulomb_adapt
   // The exact stress is smooth: one subdivision with a higher-order rule
   // (see compare_with_exact_error) suffices.
   unsigned int
-  ExactSolutionStress::quadrature_subdivisions() const
+  ExactSolutionStress::quadrature_subdivisions(const unsigned int,
+                                               const double) const
   {
     return 1;
   }
@@ -65,9 +67,11 @@ namespace coulomb_adapt
     const Scene &      scene,
     const Parameters & parameters,
     const unsigned int global_refinements,
-    const unsigned int reference_refinements)
+    const unsigned int reference_refinements,
+    const bool         for_adapted_meshes)
     : quiet(std::cout, false)
     , reference_refinements(reference_refinements)
+    , for_adapted_meshes(for_adapted_meshes)
   {
     for (unsigned int b = 0; b < 2; ++b)
       {
@@ -87,6 +91,15 @@ namespace coulomb_adapt
                                                      parameters.linear_solver,
                                                      quiet);
     n_newton_iterations = contact_solver->solve().newton_iterations;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        double largest = 0;
+        for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
+          if (cell->is_locally_owned())
+            largest = std::max(largest, cell->diameter());
+        largest_cell_diameter[b] =
+          Utilities::MPI::max(largest, mpi_communicator);
+      }
   }
 
 
@@ -120,9 +133,15 @@ namespace coulomb_adapt
 
 
   unsigned int
-  ReferenceSolutionStress::quadrature_subdivisions() const
+  ReferenceSolutionStress::quadrature_subdivisions(
+    const unsigned int b,
+    const double       cell_diameter) const
   {
-    return 1u << reference_refinements;
+    const unsigned int uniform = 1u << reference_refinements;
+    if (!for_adapted_meshes)
+      return uniform;
+    const double fit = std::ceil(cell_diameter / largest_cell_diameter[b] - 1e-8);
+    return std::clamp(static_cast<unsigned int>(std::max(fit, 1.)), 1u, uniform);
   }
 
 
@@ -158,23 +177,29 @@ namespace coulomb_adapt
       {
         const ElasticBody &body   = *bodies[b];
         const unsigned int degree = body.dof_handler().get_fe().degree;
-        const unsigned int n_sub  = reference.quadrature_subdivisions();
-        // A piecewise reference field on 2^k x 2^k sub-cells: the iterated
-        // rule integrates each piece on its own.
-        std::unique_ptr<Quadrature<2>> quadrature;
-        if (body.is_simplex_mesh())
-          quadrature = std::make_unique<QIteratedSimplex<2>>(
-            QGaussSimplex<2>(std::min(degree + 2, 4u)), n_sub);
-        else
-          quadrature = std::make_unique<QIterated<2>>(QGauss<1>(degree + 2),
-                                                      n_sub);
-        FEValues<2> fe_values(body.mapping(),
-                              body.dof_handler().get_fe(),
-                              *quadrature,
-                              update_gradients | update_quadrature_points |
-                                update_JxW_values);
+        // A piecewise reference field on n x n sub-cells: the iterated
+        // rule integrates each piece on its own. One FEValues per n.
+        std::map<unsigned int, std::unique_ptr<Quadrature<2>>> quadratures;
+        std::map<unsigned int, std::unique_ptr<FEValues<2>>>   all_fe_values;
+        auto fe_values_for = [&](const unsigned int n_sub) -> FEValues<2> & {
+          auto it = all_fe_values.find(n_sub);
+          if (it != all_fe_values.end())
+            return *it->second;
+          if (body.is_simplex_mesh())
+            quadratures[n_sub] = std::make_unique<QIteratedSimplex<2>>(
+              QGaussSimplex<2>(std::min(degree + 2, 4u)), n_sub);
+          else
+            quadratures[n_sub] =
+              std::make_unique<QIterated<2>>(QGauss<1>(degree + 2), n_sub);
+          return *(all_fe_values[n_sub] = std::make_unique<FEValues<2>>(
+                     body.mapping(),
+                     body.dof_handler().get_fe(),
+                     *quadratures[n_sub],
+                     update_gradients | update_quadrature_points |
+                       update_JxW_values));
+        };
         const FEValuesExtractors::Vector u(0);
-        std::vector<SymmetricTensor<2, 2>> strains(quadrature->size());
+        std::vector<SymmetricTensor<2, 2>> strains;
 
         // All points of the locally owned cells, then one collective
         // evaluation of the reference.
@@ -185,7 +210,10 @@ namespace coulomb_adapt
         for (const auto &cell : body.dof_handler().active_cell_iterators())
           if (cell->is_locally_owned())
             {
+              FEValues<2> &fe_values = fe_values_for(
+                reference.quadrature_subdivisions(b, cell->diameter()));
               fe_values.reinit(cell);
+              strains.resize(fe_values.n_quadrature_points);
               fe_values[u].get_function_symmetric_gradients(
                 estimate.correction.displacement[b], strains);
               for (const unsigned int q : fe_values.quadrature_point_indices())

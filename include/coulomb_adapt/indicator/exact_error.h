@@ -24,10 +24,12 @@ namespace coulomb_adapt
     virtual std::vector<SymmetricTensor<2, 2>>
     stresses(const unsigned int b, const std::vector<Point<2>> &points) const = 0;
 
-    /** Subdivisions per direction of each cell's quadrature, so that a
-     * piecewise reference field is integrated on its own pieces. */
+    /** Subdivisions per direction of the quadrature of a cell of body
+     * @p b with diameter @p cell_diameter, so that a piecewise reference
+     * field is integrated on its own pieces. */
     virtual unsigned int
-    quadrature_subdivisions() const = 0;
+    quadrature_subdivisions(const unsigned int b,
+                            const double       cell_diameter) const = 0;
 
     /** "exact solution" or "reference solution (N DoFs)". */
     virtual std::string
@@ -42,7 +44,8 @@ namespace coulomb_adapt
     std::vector<SymmetricTensor<2, 2>>
     stresses(const unsigned int b, const std::vector<Point<2>> &points) const override;
     unsigned int
-    quadrature_subdivisions() const override;
+    quadrature_subdivisions(const unsigned int b,
+                            const double       cell_diameter) const override;
     std::string
     description() const override;
 
@@ -54,7 +57,13 @@ namespace coulomb_adapt
    * A reference solution of the same scene on a finer mesh: both bodies
    * built with @p reference_refinements more uniform refinements and solved
    * with contact (quietly); its stress is evaluated at arbitrary points
-   * across ranks (Utilities::MPI::RemotePointEvaluation).
+   * across ranks (Utilities::MPI::RemotePointEvaluation). With
+   * @p for_adapted_meshes, the meshes compared with it are not its
+   * uniform ancestors: a cell gets as many quadrature subdivisions as
+   * reference cells fit across it (diameter over the reference's largest
+   * cell diameter, at most 2^reference_refinements), instead of
+   * 2^reference_refinements everywhere (which on fine adapted meshes costs
+   * cells x 4^R points for nothing).
    */
   class ReferenceSolutionStress : public ReferenceStress
   {
@@ -63,12 +72,14 @@ namespace coulomb_adapt
                             const Scene &                     scene,
                             const Parameters &                parameters,
                             const unsigned int                global_refinements,
-                            const unsigned int                reference_refinements);
+                            const unsigned int                reference_refinements,
+                            const bool for_adapted_meshes = false);
     ~ReferenceSolutionStress() override;
     std::vector<SymmetricTensor<2, 2>>
     stresses(const unsigned int b, const std::vector<Point<2>> &points) const override;
     unsigned int
-    quadrature_subdivisions() const override;
+    quadrature_subdivisions(const unsigned int b,
+                            const double       cell_diameter) const override;
     std::string
     description() const override;
     /** Newton iterations of the reference contact solve. */
@@ -78,6 +89,9 @@ namespace coulomb_adapt
   private:
     ConditionalOStream                          quiet;
     unsigned int                                reference_refinements;
+    bool                                        for_adapted_meshes;
+    /** Largest cell diameter of each reference body. */
+    std::array<double, 2>                       largest_cell_diameter;
     std::array<std::unique_ptr<ElasticBody>, 2> bodies;
     std::unique_ptr<ContactSolver>              contact_solver;
     unsigned int                                n_newton_iterations = 0;
