@@ -148,21 +148,27 @@ namespace coulomb_adapt
       }
     result.n_singular_cells = Utilities::MPI::sum(result.n_singular_cells, comm);
 
-    // r_E for the multiplier exp(L), bounded.
-    auto ratio = [&](const CellData &c, const double L) {
+    // r_E for the multiplier exp(L), bounded above, and below if
+    // lower_bound. The multiplier is found without the lower bound: cells
+    // that want to shrink more than min_ratio allows are capped afterwards
+    // (the next cycle refines them again) rather than compensated by
+    // refining every other cell more, which overshot the cell count of the
+    // first cycle several times over (blocks, 4.6 % -> 1 %: 19,806 DoFs
+    // instead of 8,548).
+    auto ratio = [&](const CellData &c, const double L, const bool lower_bound) {
       if (c.epsilon_squared <= 0)
         return max_ratio;
       const double log_r =
         (std::log(dimension / (2 * c.rate * c.epsilon_squared)) - L) /
         (2 * c.rate + dimension);
       return std::clamp(std::exp(std::clamp(log_r, -300., 300.)),
-                        min_ratio,
+                        lower_bound ? min_ratio : 0.,
                         max_ratio);
     };
-    auto predicted_error_squared = [&](const double L) {
+    auto predicted_error_squared = [&](const double L, const bool lower_bound) {
       double sum = 0;
       for (const auto &c : cells)
-        sum += std::pow(ratio(c, L), 2 * c.rate) * c.epsilon_squared;
+        sum += std::pow(ratio(c, L, lower_bound), 2 * c.rate) * c.epsilon_squared;
       return Utilities::MPI::sum(sum, comm);
     };
 
@@ -172,7 +178,7 @@ namespace coulomb_adapt
     for (unsigned int k = 0; k < 200 && L_high - L_low > 1e-12; ++k)
       {
         const double L = 0.5 * (L_low + L_high);
-        if (predicted_error_squared(L) > target2)
+        if (predicted_error_squared(L, false) > target2)
           L_low = L;
         else
           L_high = L;
@@ -181,14 +187,14 @@ namespace coulomb_adapt
     double n_cells = 0;
     for (const auto &c : cells)
       {
-        const double r              = ratio(c, L_high);
+        const double r              = ratio(c, L_high, true);
         result.ratio[c.body](c.index) = r;
         n_cells += std::pow(r, -dimension);
         result.n_at_min_ratio += (r <= min_ratio * (1 + 1e-12));
         result.n_at_max_ratio += (r >= max_ratio * (1 - 1e-12));
       }
     result.predicted_n_cells = Utilities::MPI::sum(n_cells, comm);
-    result.predicted_epsilon = std::sqrt(predicted_error_squared(L_high));
+    result.predicted_epsilon = std::sqrt(predicted_error_squared(L_high, true));
     result.n_at_min_ratio    = Utilities::MPI::sum(result.n_at_min_ratio, comm);
     result.n_at_max_ratio    = Utilities::MPI::sum(result.n_at_max_ratio, comm);
     return result;
