@@ -219,7 +219,8 @@ namespace coulomb_adapt
     CoarseMeshData
     mesh_in_gmsh(const Triangulation<2> &              geometry,
                  const std::vector<SizeFieldTriangle> &size_field,
-                 const std::string &                   body_name)
+                 const std::string &                   body_name,
+                 const int                             algorithm)
     {
       const std::vector<Curve> curves   = boundary_curves(geometry, body_name);
       const auto &             vertices = geometry.get_vertices();
@@ -317,6 +318,7 @@ namespace coulomb_adapt
       // gmsh's PostView gives a huge size: keep to the field's range.
       gmsh::option::setNumber("Mesh.MeshSizeMin", h_min);
       gmsh::option::setNumber("Mesh.MeshSizeMax", h_max);
+      gmsh::option::setNumber("Mesh.Algorithm", algorithm);
       gmsh::model::mesh::generate(2);
 
       std::vector<std::size_t> node_tags;
@@ -422,8 +424,11 @@ namespace coulomb_adapt
   remesh_with_gmsh(const Triangulation<2> &              geometry,
                    const std::vector<SizeFieldTriangle> &size_field,
                    const std::string &                   body_name,
-                   const MPI_Comm                        comm)
+                   const MPI_Comm                        comm,
+                   const std::string &                   algorithm)
   {
+    // gmsh's Mesh.Algorithm numbers.
+    const int algorithm_number = algorithm == "delaunay" ? 5 : 6;
     // One rank meshes (gmsh is serial), every rank gets the mesh.
     std::vector<double> data;
     std::string         error;
@@ -434,7 +439,8 @@ namespace coulomb_adapt
         gmsh::option::setNumber("General.Verbosity", 0);
         try
           {
-            data = pack(mesh_in_gmsh(geometry, size_field, body_name));
+            data = pack(
+              mesh_in_gmsh(geometry, size_field, body_name, algorithm_number));
           }
         catch (const std::exception &e)
           {

@@ -63,7 +63,8 @@ namespace coulomb_adapt
               remesh_with_gmsh(geometry,
                                field,
                                bodies[b]->name(),
-                               bodies[b]->dof_handler().get_communicator()));
+                               bodies[b]->dof_handler().get_communicator(),
+                               parameters.remeshing_algorithm));
           }
         return report;
       }

@@ -45,13 +45,15 @@ namespace coulomb_adapt
    * with the same boundary id and manifold id that are straight (flat
    * manifold) or lie on one SphericalManifold (circle arcs); boundary ids
    * and manifold ids are carried over. Rank 0 of @p comm meshes, every
-   * rank receives the mesh. @p body_name is for messages.
+   * rank receives the mesh. @p body_name is for messages; @p algorithm is
+   * gmsh's 2D algorithm, "frontal-delaunay" or "delaunay".
    */
   CoarseMeshData
   remesh_with_gmsh(const Triangulation<2> &              geometry,
                    const std::vector<SizeFieldTriangle> &size_field,
                    const std::string &                   body_name,
-                   const MPI_Comm                        comm);
+                   const MPI_Comm                        comm,
+                   const std::string &                   algorithm);
 } // namespace coulomb_adapt
 
 #endif

@@ -146,6 +146,8 @@ namespace coulomb_adapt
       double       singular_rate;
       /** Start Newton from the previous cycle's contact sets. */
       bool         warm_start;
+      /** gmsh's 2D algorithm for remesh: "frontal-delaunay", "delaunay". */
+      std::string  remeshing_algorithm;
 
       static void
       declare_parameters(ParameterHandler &prm);
