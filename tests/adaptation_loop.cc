@@ -1,5 +1,6 @@
 // The adaptation loop of theory.md section 4 on the seed's scene (blocks):
-//  - remesh (P1 triangles, gmsh) and refine (Q1, hanging nodes, flags from
+//  - remesh (P1 triangles, gmsh frontal-Delaunay and Delaunay) and refine
+//    (Q1, hanging nodes, flags from
 //    r_E; and GridRefinement-style 'optimize') reach epsilon <= epsilon_0
 //    for epsilon_0 = 5 % and 2 %, and stop for that reason;
 //  - the first remesh step from the seed's mesh (408 P1 triangles) lands
@@ -195,6 +196,13 @@ main(int argc, char **argv)
   out << "remesh, P1, epsilon_0 = 2 %" << std::endl;
   run_loop(blocks("triangle", "remesh", "3, 3", "6, 7", "2", "output-r2"),
            0.02, true, true, out);
+  {
+    out << "remesh (gmsh Delaunay), P1, epsilon_0 = 2 %" << std::endl;
+    auto settings =
+      blocks("triangle", "remesh", "3, 3", "6, 7", "2", "output-d2");
+    settings.push_back({"Adaptation/Remeshing algorithm", "delaunay"});
+    run_loop(settings, 0.02, true, true, out);
+  }
   out << "refine (size ratio), Q1, epsilon_0 = 5 %" << std::endl;
   run_loop(blocks("quadrilateral", "refine", "2, 2", "4, 4", "5", "output-q5"),
            0.05, false, false, out);
