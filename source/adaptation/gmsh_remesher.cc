@@ -16,8 +16,9 @@ namespace coulomb_adapt
   std::vector<SizeFieldTriangle>
   nodal_size_field(const ElasticBody &body, const Vector<double> &ratio)
   {
-    // Per owned cell: three vertices and h*_E, packed for the gather.
-    std::vector<double> local;
+    // Per owned cell, packed for the gather: three vertices, h*_E, |E|.
+    constexpr unsigned int n_values = 8;
+    std::vector<double>    local;
     for (const auto &cell : body.triangulation().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -30,44 +31,35 @@ namespace coulomb_adapt
             }
           const double h = std::sqrt(4 * cell->measure() / std::sqrt(3.));
           local.push_back(ratio(cell->active_cell_index()) * h);
+          local.push_back(cell->measure());
         }
-    const MPI_Comm comm = body.dof_handler().get_communicator();
-    // In a fixed order, whatever the partition: gmsh's result depends on
-    // the order of the view's triangles and on the last bits of the sizes,
-    // and the mesh must not depend on the number of ranks. The sizes are
-    // rounded to float for the same reason (r_E comes from MPI sums).
-    std::vector<std::array<double, 7>> cells;
-    for (const auto &part : Utilities::MPI::all_gather(comm, local))
-      for (std::size_t c = 0; c < part.size(); c += 7)
+    // Only rank 0 meshes. The cells are put in a fixed order, whatever the
+    // partition: gmsh's result depends on the order of the view's
+    // triangles and on the last bits of the sizes, and the mesh must not
+    // depend on the number of ranks. The sizes are rounded to float for the
+    // same reason (r_E comes from MPI sums).
+    const auto gathered =
+      Utilities::MPI::gather(body.dof_handler().get_communicator(), local, 0);
+    std::vector<std::array<double, n_values>> cells;
+    for (const auto &part : gathered)
+      for (std::size_t c = 0; c < part.size(); c += n_values)
         {
-          std::array<double, 7> cell;
-          std::copy(part.begin() + c, part.begin() + c + 7, cell.begin());
+          std::array<double, n_values> cell;
+          std::copy(part.begin() + c, part.begin() + c + n_values, cell.begin());
           cell[6] = static_cast<float>(cell[6]);
           cells.push_back(cell);
         }
     std::sort(cells.begin(), cells.end());
-    std::vector<double> all;
-    for (const auto &cell : cells)
-      all.insert(all.end(), cell.begin(), cell.end());
 
     // Geometric mean at the vertices: sizes vary over orders of magnitude.
     std::map<std::pair<double, double>, std::pair<double, unsigned int>>
       log_sum;
-    for (std::size_t c = 0; c < all.size(); c += 7)
+    for (const auto &cell : cells)
       for (unsigned int v = 0; v < 3; ++v)
         {
-          auto &entry = log_sum[{all[c + 2 * v], all[c + 2 * v + 1]}];
-          entry.first += std::log(all[c + 6]);
+          auto &entry = log_sum[{cell[2 * v], cell[2 * v + 1]}];
+          entry.first += std::log(cell[6]);
           ++entry.second;
-        }
-    std::vector<SizeFieldTriangle> field(all.size() / 7);
-    for (std::size_t c = 0; c < field.size(); ++c)
-      for (unsigned int v = 0; v < 3; ++v)
-        {
-          const double x = all[7 * c + 2 * v], y = all[7 * c + 2 * v + 1];
-          const auto & entry      = log_sum[{x, y}];
-          field[c].vertices[v] = Point<2>(x, y);
-          field[c].size[v]     = std::exp(entry.first / entry.second);
         }
 
     // Smoothing must not change the cell count the optimum asked for: the
@@ -76,22 +68,27 @@ namespace coulomb_adapt
     // (integrated at the edge midpoints). Near a singular point the
     // smoothed field is much finer on average, so without this scaling the
     // new mesh has up to a third more cells than N*.
-    double n_wanted = 0, n_smoothed = 0;
-    for (std::size_t c = 0; c < field.size(); ++c)
+    std::vector<SizeFieldTriangle> field(cells.size());
+    double                         n_wanted = 0, n_smoothed = 0;
+    for (std::size_t c = 0; c < cells.size(); ++c)
       {
-        const auto & t    = field[c];
-        const double area = 0.5 * std::abs((t.vertices[1] - t.vertices[0])[0] *
-                                             (t.vertices[2] - t.vertices[0])[1] -
-                                           (t.vertices[1] - t.vertices[0])[1] *
-                                             (t.vertices[2] - t.vertices[0])[0]);
-        n_wanted += area / (all[7 * c + 6] * all[7 * c + 6]);
+        const double area = cells[c][7];
         for (unsigned int v = 0; v < 3; ++v)
           {
-            const double h = 0.5 * (t.size[v] + t.size[(v + 1) % 3]);
+            const auto &entry =
+              log_sum[{cells[c][2 * v], cells[c][2 * v + 1]}];
+            field[c].vertices[v] = Point<2>(cells[c][2 * v], cells[c][2 * v + 1]);
+            field[c].size[v]     = std::exp(entry.first / entry.second);
+          }
+        n_wanted += area / (cells[c][6] * cells[c][6]);
+        for (unsigned int v = 0; v < 3; ++v)
+          {
+            const double h =
+              0.5 * (field[c].size[v] + field[c].size[(v + 1) % 3]);
             n_smoothed += area / 3 / (h * h);
           }
       }
-    const double scale = std::sqrt(n_smoothed / n_wanted);
+    const double scale = n_wanted > 0 ? std::sqrt(n_smoothed / n_wanted) : 1;
     for (auto &t : field)
       for (double &h : t.size)
         h = static_cast<float>(h * scale);

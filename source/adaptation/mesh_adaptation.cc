@@ -16,10 +16,12 @@ namespace coulomb_adapt
   {
     MeshAdaptationReport report;
     report.strategy = parameters.strategy;
+    // The recovered stresses live on the meshes about to change; what
+    // follows needs only the cells' epsilon_E.
+    for (auto &recovered : estimate.recovered)
+      recovered.reset();
     if (parameters.strategy == "uniform")
       {
-        for (auto &recovered : estimate.recovered)
-          recovered.reset();
         for (ElasticBody *body : bodies)
           body->refine_uniformly();
         return report;
@@ -47,10 +49,6 @@ namespace coulomb_adapt
         report.n_at_min_ratio    = ratios.n_at_min_ratio;
         report.n_at_max_ratio    = ratios.n_at_max_ratio;
       }
-
-    // The recovered stresses live on the meshes about to change.
-    for (auto &recovered : estimate.recovered)
-      recovered.reset();
 
     if (parameters.strategy == "remesh")
       {
@@ -90,8 +88,6 @@ namespace coulomb_adapt
     const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
     report.n_refine_flags  = Utilities::MPI::sum(report.n_refine_flags, comm);
     report.n_coarsen_flags = Utilities::MPI::sum(report.n_coarsen_flags, comm);
-    for (auto &recovered : estimate.recovered)
-      recovered.reset();
     for (unsigned int b = 0; b < 2; ++b)
       bodies[b]->refine_and_coarsen(decisions[b]);
     return report;

@@ -25,7 +25,8 @@ namespace coulomb_adapt
   };
 
   /**
-   * The size field h*(x) of a triangle mesh, on every rank: h*_E = r_E h_E
+   * The size field h*(x) of a triangle mesh, on rank 0 (empty on the
+   * others, which do not mesh): h*_E = r_E h_E
    * with h_E = (4 |E| / sqrt 3)^1/2, the edge of the equilateral triangle of
    * the same area (so that the cell count of the new mesh is sum_E r_E^-2
    * for any shape), smoothed by taking at each vertex the geometric mean of
