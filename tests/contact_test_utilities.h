@@ -30,8 +30,10 @@ namespace coulomb_adapt
       std::ostringstream log;
     };
 
+    /** The scene's bodies set up and assembled, the solver created but
+     * not run. */
     inline std::unique_ptr<SolvedContactProblem>
-    solve_contact(
+    solve_contact_setup(
       const std::vector<std::pair<std::string, std::string>> &settings)
     {
       auto p        = std::make_unique<SolvedContactProblem>();
@@ -55,6 +57,15 @@ namespace coulomb_adapt
                                                   p->parameters.contact,
                                                   p->parameters.linear_solver,
                                                   quiet);
+      return p;
+    }
+
+    /** The same, solved from the initial gap. */
+    inline std::unique_ptr<SolvedContactProblem>
+    solve_contact(
+      const std::vector<std::pair<std::string, std::string>> &settings)
+    {
+      auto p    = solve_contact_setup(settings);
       p->report = p->solver->solve();
       return p;
     }

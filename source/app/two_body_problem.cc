@@ -3,6 +3,8 @@
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/bodies/elasticity_errors.h>
 #include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/contact/nested_iteration.h>
+#include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/indicator/exact_error.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 
@@ -120,13 +122,17 @@ namespace coulomb_adapt
                                                      parameters.contact,
                                                      parameters.linear_solver,
                                                      pcout);
+    const bool static_problem = scene->n_load_steps() == 1;
     const bool warm_start = parameters.adaptation.warm_start &&
                             !previous_contact_states.empty() &&
-                            scene->n_load_steps() == 1;
+                            static_problem;
     if (warm_start)
       contact_solver->warm_start_from(previous_contact_states);
+    const bool nested = !warm_start && static_problem &&
+                        !last_adaptation && start_from_coarser_meshes();
     pcout << "  contact: Newton starts from "
           << (warm_start ? "the previous cycle's contact sets (warm start)" :
+              nested     ? "the sets of the coarser meshes (nested iteration)" :
                            "the initial gap")
           << std::endl;
     cycle_record["warm_start"] = warm_start;
@@ -172,6 +178,84 @@ namespace coulomb_adapt
     cycle_record["max_contact_pressure"] = report.max_contact_pressure;
     cycle_record["frictionless"]         = report.frictionless;
     cycle_record["residual_history"]     = report.residual_history;
+  }
+
+
+
+  // Nested iteration (contact/nested_iteration.h) on the first cycle: the
+  // bodies are still the scene's meshes with 'Global refinements', so the
+  // coarser ones are the same meshes with fewer. Whether it runs, and why
+  // not, goes to the log and summary.json.
+  bool
+  TwoBodyProblem::start_from_coarser_meshes()
+  {
+    const auto &c = parameters.contact;
+    const types::global_dof_index n_dofs =
+      bodies[0]->dof_handler().n_dofs() + bodies[1]->dof_handler().n_dofs();
+    const unsigned int n_levels =
+      std::min(c.nested_iteration_levels, parameters.mesh.global_refinements);
+    nlohmann::json record = {{"levels", nlohmann::json::array()}};
+    std::string    skipped;
+    if (c.nested_iteration_levels == 0)
+      skipped = "switched off ('Contact/Nested iteration levels' = 0)";
+    else if (n_levels == 0)
+      skipped = "no coarser mesh ('Mesh/Global refinements' = 0)";
+    else if (n_dofs <= c.nested_iteration_min_dofs)
+      skipped = std::to_string(n_dofs) + " DoFs <= 'Contact/Nested iteration "
+                "minimum DoFs' (" + std::to_string(c.nested_iteration_min_dofs) +
+                ")";
+    if (!skipped.empty())
+      {
+        pcout << "  contact: nested iteration skipped: " << skipped
+              << std::endl;
+        record["skipped"]              = skipped;
+        cycle_record["nested_iteration"] = record;
+        return false;
+      }
+
+    std::vector<NestedIterationLevel> levels;
+    try
+      {
+        const std::vector<ContactNodeState> states =
+          predict_contact_sets_on_coarser_meshes(
+            mpi_communicator,
+            *scene,
+            parameters.mesh.cell_type,
+            parameters.mesh.global_refinements,
+            n_levels,
+            parameters.finite_elements,
+            parameters.contact,
+            parameters.linear_solver,
+            levels);
+        contact_solver->warm_start_from(states);
+      }
+    catch (const std::exception &e)
+      {
+        // A coarse mesh that does not converge says nothing about the fine
+        // one: the fine solve starts cold and decides for itself.
+        const std::string what = user_message(e);
+        pcout << "  contact: nested iteration abandoned, a coarser solve "
+                 "failed: "
+              << what << std::endl;
+        record["skipped"] = "a coarser solve failed: " + what;
+        cycle_record["nested_iteration"] = record;
+        return false;
+      }
+    for (const NestedIterationLevel &l : levels)
+      {
+        pcout << "  contact: nested iteration, " << l.global_refinements
+              << " global refinements: " << l.n_dofs << " DoFs, "
+              << l.newton_iterations << " Newton steps, " << l.n_active
+              << " active nodes, " << std::setprecision(3) << l.wall_time
+              << " s" << std::endl;
+        record["levels"].push_back({{"global_refinements", l.global_refinements},
+                                    {"n_dofs", l.n_dofs},
+                                    {"newton_iterations", l.newton_iterations},
+                                    {"active_nodes", l.n_active},
+                                    {"wall_time_s", l.wall_time}});
+      }
+    cycle_record["nested_iteration"] = record;
+    return true;
   }
 
 

@@ -215,6 +215,24 @@ namespace coulomb_adapt
                           "slip sets no longer change and the residual of "
                           "the complementarity conditions, relative to the "
                           "largest contact pressure, is below this.");
+        prm.declare_entry("Nested iteration levels",
+                          "3",
+                          Patterns::Integer(0),
+                          "Static contact without a previous cycle's sets: "
+                          "solve the same problem first on up to this many "
+                          "meshes with fewer uniform refinements (at most "
+                          "'Mesh/Global refinements' of them), each starting "
+                          "from the sets of the one before, and start the "
+                          "Newton iteration from the last one's sets. Fewer "
+                          "Newton steps on the fine mesh (hertz, 1.4e5 DoFs: "
+                          "3 instead of 11); the solution is the same. 0 "
+                          "switches it off.");
+        prm.declare_entry("Nested iteration minimum DoFs",
+                          "20000",
+                          Patterns::Integer(0),
+                          "Nested iteration only when both bodies together "
+                          "have more DoFs than this: below, a few extra "
+                          "Newton steps cost less than the coarser solves.");
       }
       prm.leave_subsection();
     }
@@ -230,6 +248,10 @@ namespace coulomb_adapt
         complementarity_scale = prm.get_double("Complementarity scale");
         max_newton_iterations = prm.get_integer("Maximum Newton iterations");
         tolerance             = prm.get_double("Tolerance");
+        nested_iteration_levels =
+          prm.get_integer("Nested iteration levels");
+        nested_iteration_min_dofs =
+          prm.get_integer("Nested iteration minimum DoFs");
         require_parameter(complementarity_scale > 0,
                           "Contact/Complementarity scale",
                           complementarity_scale,

@@ -67,6 +67,9 @@ namespace coulomb_adapt
     has_contact() const;
     void
     solve_contact();
+    /** Nested iteration for the first Newton step; false if skipped. */
+    bool
+    start_from_coarser_meshes();
     void
     solve_separately();
     void

@@ -95,6 +95,10 @@ namespace coulomb_adapt
       unsigned int max_newton_iterations;
       /** Relative residual of the complementarity functions. */
       double       tolerance;
+      /** Coarser meshes solved first for the initial sets (0: none). */
+      unsigned int nested_iteration_levels;
+      /** Nested iteration only for problems with more DoFs than this. */
+      unsigned int nested_iteration_min_dofs;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -1,0 +1,179 @@
+// Nested iteration for the first contact solve (contact/nested_iteration.h):
+// the sets predicted on coarser meshes of the same scene must
+//  - lead to the same solution as the cold start from the initial gap
+//    (same node-wise sets; pressure and tangential traction to 1e-8 of the
+//    largest pressure; displacements to 1e-8 relative), since the fine
+//    Newton iteration runs to its own convergence;
+//  - need fewer Newton steps on the fine mesh, at most 4 (the hertz cold
+//    start needs 9 here: its first step activates about twice the zone);
+// for hertz (graded quadrilaterals, mu = 0.3 and the frictionless path) and
+// blocks (triangles, rebuilt from the coarse mesh, mu = 0.3).
+// The program's log says what the coarser meshes did, or why they were
+// skipped. Run on 1 and 2 ranks with the same output.
+
+#include <coulomb_adapt/app/two_body_problem.h>
+#include <coulomb_adapt/contact/nested_iteration.h>
+
+#include "contact_test_utilities.h"
+
+using namespace coulomb_adapt;
+
+namespace
+{
+  std::string
+  signature(const std::vector<ContactNodeState> &states)
+  {
+    std::string s;
+    for (const auto &n : states)
+      s += to_string(n.status)[0];
+    return s;
+  }
+
+  double
+  global_norm(const ElasticBody &body)
+  {
+    double squares = 0;
+    for (const auto i : body.locally_owned_dof_set())
+      squares += std::pow(body.solution()[i], 2);
+    return std::sqrt(Utilities::MPI::sum(squares, MPI_COMM_WORLD));
+  }
+
+  double
+  global_difference(const ElasticBody &a, const ElasticBody &b)
+  {
+    double squares = 0;
+    for (const auto i : a.locally_owned_dof_set())
+      squares += std::pow(a.solution()[i] - b.solution()[i], 2);
+    return std::sqrt(Utilities::MPI::sum(squares, MPI_COMM_WORLD));
+  }
+
+  void
+  compare(const std::string &                                      name,
+          const std::vector<std::pair<std::string, std::string>> &settings,
+          const unsigned int                                       n_levels,
+          ConditionalOStream &                                     out)
+  {
+    const auto cold = testing::solve_contact(settings);
+
+    // The same problem again, its sets predicted on n_levels coarser meshes.
+    auto nested        = testing::solve_contact_setup(settings);
+    const auto &p      = nested->parameters;
+    std::vector<NestedIterationLevel> levels;
+    nested->solver->warm_start_from(predict_contact_sets_on_coarser_meshes(
+      MPI_COMM_WORLD,
+      *nested->scene,
+      p.mesh.cell_type,
+      p.mesh.global_refinements,
+      n_levels,
+      p.finite_elements,
+      p.contact,
+      p.linear_solver,
+      levels));
+    nested->report = nested->solver->solve();
+
+    AssertThrow(levels.size() == n_levels, ExcInternalError());
+    const auto &a = cold->solver->node_states();
+    const auto &b = nested->solver->node_states();
+    AssertThrow(signature(a) == signature(b),
+                ExcMessage(name + ": sets differ:\n" + signature(a) + "\n" +
+                           signature(b)));
+    double p_max = 0, d = 0;
+    for (unsigned int j = 0; j < a.size(); ++j)
+      {
+        p_max = std::max(p_max, a[j].pressure);
+        d     = std::max({d,
+                      std::abs(a[j].pressure - b[j].pressure),
+                      std::abs(a[j].tangential_traction -
+                               b[j].tangential_traction)});
+      }
+    AssertThrow(d <= 1e-8 * p_max,
+                ExcMessage(name + ": tractions differ by " +
+                           std::to_string(d / p_max)));
+    double u_difference = 0;
+    for (unsigned int k = 0; k < 2; ++k)
+      u_difference = std::max(u_difference,
+                              global_difference(*cold->bodies[k],
+                                                *nested->bodies[k]) /
+                                global_norm(*cold->bodies[k]));
+    AssertThrow(u_difference <= 1e-8,
+                ExcMessage(name + ": displacements differ by " +
+                           std::to_string(u_difference)));
+    const unsigned int n_cold   = cold->report.newton_iterations;
+    const unsigned int n_nested = nested->report.newton_iterations;
+    AssertThrow(n_nested < n_cold && n_nested <= 4,
+                ExcMessage(name + ": Newton steps cold " +
+                           std::to_string(n_cold) + ", nested " +
+                           std::to_string(n_nested)));
+
+    out << name << ": " << a.size() << " slave nodes, "
+        << cold->report.n_active << " active; Newton steps on the fine mesh: "
+        << n_cold << " from the initial gap, " << n_nested
+        << " after nested iteration (coarser meshes:";
+    for (const auto &l : levels)
+      out << " " << l.n_dofs << " DoFs " << l.newton_iterations << " steps;";
+    out << " same sets: yes, tractions within 1e-8, displacements within "
+           "1e-8)"
+        << std::endl;
+  }
+
+  // The program: nested iteration on the first cycle, or the reason why not.
+  void
+  check_log(const std::vector<std::pair<std::string, std::string>> &settings,
+            const std::string &                                      expected,
+            ConditionalOStream &                                     out)
+  {
+    ParameterHandler   prm;
+    const Parameters   parameters = testing::make_parameters(prm, settings);
+    std::ostringstream log;
+    TwoBodyProblem     problem(MPI_COMM_WORLD, parameters, prm, "test", log);
+    problem.run();
+    const bool found = log.str().find(expected) != std::string::npos;
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      AssertThrow(found,
+                  ExcMessage("log lacks '" + expected + "':\n" + log.str()));
+    out << "log: '" << expected << "' found" << std::endl;
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  auto                             out = testing::root_output();
+
+  compare("hertz Q1, mu = 0.3",
+          {{"Scene/Name", "hertz"}, {"Mesh/Global refinements", "1"}},
+          1,
+          out);
+  compare("hertz Q1, mu = 0",
+          {{"Scene/Name", "hertz"},
+           {"Contact/Friction coefficient", "0"},
+           {"Scene/Hertz/Hold axis", "true"},
+           {"Mesh/Global refinements", "1"}},
+          1,
+          out);
+  compare("blocks P1, mu = 0.3",
+          {{"Scene/Name", "blocks"},
+           {"Mesh/Cell type", "triangle"},
+           {"Mesh/Global refinements", "3"}},
+          2,
+          out);
+
+  const std::string output_off = "/tmp/coulomb-adapt-test-nested";
+  check_log({{"Scene/Name", "blocks"},
+             {"Mesh/Global refinements", "2"},
+             {"Adaptation/Number of cycles", "1"},
+             {"Contact/Nested iteration minimum DoFs", "0"},
+             {"Output/Write VTU", "false"},
+             {"Output/Output directory", output_off}},
+            "nested iteration, 1 global refinements",
+            out);
+  check_log({{"Scene/Name", "blocks"},
+             {"Mesh/Global refinements", "1"},
+             {"Adaptation/Number of cycles", "1"},
+             {"Output/Write VTU", "false"},
+             {"Output/Output directory", output_off}},
+            "nested iteration skipped: 740 DoFs <= 'Contact/Nested "
+            "iteration minimum DoFs' (20000)",
+            out);
+}
