@@ -7,11 +7,11 @@
 namespace coulomb_adapt
 {
   std::map<CellId, unsigned int>
-  owned_cell_indices(const ElasticBody &body)
+  owned_boundary_cell_indices(const ElasticBody &body)
   {
     std::map<CellId, unsigned int> indices;
     for (const auto &cell : body.triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
+      if (cell->is_locally_owned() && cell->at_boundary())
         indices.emplace(cell->id(), cell->active_cell_index());
     return indices;
   }
@@ -133,7 +133,7 @@ namespace coulomb_adapt
     if (estimate.has_contact)
       for (unsigned int b = 0; b < 2; ++b)
         {
-          const auto cells = owned_cell_indices(*bodies[b]);
+          const auto cells = owned_boundary_cell_indices(*bodies[b]);
           for (const auto &[id, value] :
                (b == 0 ? estimate.contact.slave_cells :
                          estimate.contact.master_cells))

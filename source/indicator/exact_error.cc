@@ -245,7 +245,7 @@ namespace coulomb_adapt
     if (estimate.has_contact)
       for (unsigned int b = 0; b < 2; ++b)
         {
-          const auto cells = owned_cell_indices(*bodies[b]);
+          const auto cells = owned_boundary_cell_indices(*bodies[b]);
           for (const auto &[id, value] :
                (b == 0 ? estimate.contact.slave_cells :
                          estimate.contact.master_cells))

@@ -57,10 +57,12 @@ namespace coulomb_adapt
                  const StressRecoveryMethod                recovery,
                  const parameters::LinearSolver &          solver_parameters);
 
-  /** For a per-cell quantity of a body: the locally owned cells' CellId
-   * and active index. */
+  /** For a per-cell quantity on the boundary (the contact term): the
+   * locally owned boundary cells' CellId and active index. Interior cells
+   * are left out: a CellId costs more than the rest of the indicator's
+   * per-cell work. */
   std::map<CellId, unsigned int>
-  owned_cell_indices(const ElasticBody &body);
+  owned_boundary_cell_indices(const ElasticBody &body);
 } // namespace coulomb_adapt
 
 #endif
