@@ -585,6 +585,15 @@ namespace coulomb_adapt
   ContactSolver::update_sets()
   {
     unsigned int n_changed = 0;
+    // Within the convergence tolerance of the cone's edge, stick and slip
+    // describe the same state (no slip increment, traction on the edge):
+    // a node there keeps its status. Otherwise round-off decides, and the
+    // sets can flip back and forth for ever (every slip node of the
+    // previous step sits there in a load step that adds no load).
+    double p_max = 0;
+    for (const auto &s : states)
+      p_max = std::max(p_max, std::abs(s.pressure));
+    const double tie = contact_parameters.tolerance * p_max;
     for (unsigned int j = 0; j < states.size(); ++j)
       {
         ContactNodeState &s      = states[j];
@@ -600,7 +609,11 @@ namespace coulomb_adapt
           {
             const double trial =
               s.tangential_traction + c * slip_increment(j);
-            if (std::abs(trial) < mu * normal)
+            const bool at_edge =
+              std::abs(std::abs(trial) - mu * normal) <= tie &&
+              s.status != ContactStatus::open;
+            if (at_edge ? s.status == ContactStatus::stick :
+                          std::abs(trial) < mu * normal)
               status = ContactStatus::stick;
             else
               {
@@ -721,6 +734,9 @@ namespace coulomb_adapt
     report.frictionless = (mu == 0);
     std::vector<std::string> history = {set_signature()};
     std::vector<std::vector<unsigned int>> changed_nodes;
+    // Ten-fold reductions of c when the sets cycle (at most 100-fold).
+    unsigned int       n_damping_steps   = 0;
+    const unsigned int max_damping_steps = 2;
 
     for (unsigned int k = 1; k <= contact_parameters.max_newton_iterations;
          ++k)
@@ -813,6 +829,25 @@ namespace coulomb_adapt
         // A set configuration seen before, other than the last one: the
         // iteration cycles and will not converge.
         const auto seen = std::find(history.begin(), history.end(), after);
+        // Damping: a cycle is broken by smaller c_n, c_t, which make the
+        // rule move fewer nodes per step (the solution does not depend on
+        // c). Quasi-static tangential steps between dissimilar bodies need
+        // it: cattaneo with nu_1 = 0.1 cycles at c = E_c/D and converges at
+        // 0.1 E_c/D.
+        if (n_changed > 0 && seen != history.end() &&
+            n_damping_steps < max_damping_steps)
+          {
+            ++n_damping_steps;
+            for (double &c : complementarity_constant)
+              c *= 0.1;
+            update_sets();
+            pcout << "    the sets repeat those of step "
+                  << (seen - history.begin()) << ": c_n, c_t reduced to "
+                  << std::pow(0.1, n_damping_steps)
+                  << " times their value (damped set changes)" << std::endl;
+            history.assign(1, set_signature());
+            continue;
+          }
         AssertThrow(
           n_changed == 0 || seen == history.end(),
           ExcMessage("The semismooth Newton iteration cycles: after step " +
@@ -835,7 +870,10 @@ namespace coulomb_adapt
                            << states[changed[i]].position[1] << ") ";
                        return s.str();
                      }() +
-                     ". Try another 'Contact/Complementarity scale'" +
+                     ". c_n, c_t were reduced " +
+                     std::to_string(n_damping_steps) +
+                     " times ten-fold before. Try another 'Contact/"
+                     "Complementarity scale'" +
                      (solver_parameters.type == "amg" ?
                         ", or 'Linear solver/Type = direct' (an inexact "
                         "iterative solve can make the sets cycle)" :
@@ -862,7 +900,10 @@ namespace coulomb_adapt
       }
 
     for (unsigned int j = 0; j < states.size(); ++j)
-      previous_weighted_slip[j] = states[j].slip * states[j].weight;
+      {
+        states[j].slip_increment = slip_increment(j);
+        previous_weighted_slip[j] = states[j].slip * states[j].weight;
+      }
 
     for (const auto &s : states)
       {

@@ -285,7 +285,8 @@ namespace coulomb_adapt
         corrected.fields[j].pressure            = projected[0];
         corrected.fields[j].tangential_traction = projected[1];
         corrected.fields[j].gap                 = s.gap;
-        corrected.fields[j].slip                = s.slip;
+        // The incremental law's slip: W_t of this load step.
+        corrected.fields[j].slip                = s.slip_increment;
         change_norm += D[j] * change[j].norm_square();
         norm += D[j] * (s.pressure * s.pressure +
                         s.tangential_traction * s.tangential_traction);
@@ -345,7 +346,9 @@ namespace coulomb_adapt
             {
               corrected.fields[j].gap =
                 (gaps[j] - jump[j] * nodes[j].normal) / D[j];
-              corrected.fields[j].slip = jump[j] * nodes[j].tangent / D[j];
+              corrected.fields[j].slip = jump[j] * nodes[j].tangent / D[j] -
+                                         (states[j].slip -
+                                          states[j].slip_increment);
             }
       }
 

@@ -44,6 +44,10 @@ namespace coulomb_adapt
     double        gap;
     /** Tangential jump W_t = (u^1 - u^2) . t (mm). */
     double        slip;
+    /** W_t gained in the last load step (mm): the slip of the static
+     * problem, the increment of a quasi-static one (the slip of the
+     * incremental Coulomb law and of its error indicator). */
+    double        slip_increment;
     /** Whether the master surface lies opposite the node (covers its
      * support); if not, the node cannot touch and gap/slip are not
      * defined (reported as 0). */
