@@ -154,7 +154,31 @@ namespace coulomb_adapt
                 body->assemble_system();
               }
           }
-        report = contact_solver->solve();
+        try
+          {
+            report = contact_solver->solve();
+          }
+        catch (const std::exception &e)
+          {
+            // Sets predicted on another mesh (warm start, nested iteration)
+            // can start the iteration on the wrong side of a diagnosis (an
+            // all-slip first step): such a failure is not the problem's,
+            // so the solve is repeated once from the initial gap, which
+            // then decides.
+            if (!(warm_start || nested))
+              throw;
+            pcout << "  contact: the solve from the predicted sets stopped ("
+                  << user_message(e).substr(0, 160)
+                  << " ...); solving again from the initial gap" << std::endl;
+            cycle_record["retried_from_initial_gap"] = true;
+            contact_solver = std::make_unique<ContactSolver>(
+              *bodies[0],
+              *bodies[1],
+              parameters.contact,
+              parameters.linear_solver,
+              pcout);
+            report = contact_solver->solve();
+          }
         total_newton_iterations += report.newton_iterations;
       }
     report.newton_iterations = total_newton_iterations;
