@@ -500,6 +500,10 @@ namespace coulomb_adapt
     parameters::LinearSolver settings = solver_parameters;
     if (settings.type == "auto")
       settings.type = "direct";
+    // The multipliers are differences of large nodal forces (f - K u at the
+    // slave rows): an iterative solve to 1e-10 leaves the complementarity
+    // residual near 1e-9 (hertz), above the default Contact/Tolerance.
+    settings.relative_tolerance = std::min(settings.relative_tolerance, 1e-12);
     last_linear_solve = solve_linear_system(matrix,
                                             solution,
                                             rhs,
