@@ -40,6 +40,13 @@ Usage:
   run_contact_benchmark.py --quick              small sizes only (smoke test)
   run_contact_benchmark.py --plot-only          re-plot from results.csv
   run_contact_benchmark.py --table              print the README table
+Nested iteration (ae9a23c): --nested-levels N passes 'Contact/Nested
+iteration levels=N' (0 = cold start; default: the program's default, 3);
+rows carry start = nested / cold and the coarse levels from summary.json
+(coarse_newton_by_level, coarse_time_s, ...). --series (e.g. hertz or
+hertz:0,blocks:0.3) runs a subset, --no-elastic keeps the CSV's elastic
+references, --append keeps rows of other series and of the other start.
+--table also prints a cold-vs-nested comparison.
 Options: --exe, --blocks-max-ref (7), --hertz-max-ref (4), --max-run-s (480:
 skip a size whose predicted run time exceeds it), --budget-s (1800: total
 run time, waits not counted), --retries (2: reruns of a run disturbed by
@@ -92,6 +99,10 @@ FIELDS = [
     "ratio_step_elastic", "ratio_step_single", "peak_memory_MiB",
     "linear_solver", "repeats", "other_cpu_s", "clean", "version",
     "message",
+    # nested iteration (ae9a23c): how the first static solve started
+    "start", "nested_levels_setting", "nested_status", "coarse_levels",
+    "coarse_newton_by_level", "coarse_newton_total", "coarse_time_s",
+    "fine_solve_s", "solve_over_elastic",
 ]
 
 NEWTON_LINE = re.compile(
@@ -233,12 +244,15 @@ def base_args(exe, out_dir, refinements):
             "-s", "Output/Output directory=" + out_dir]
 
 
-def contact_args(exe, out_dir, scene, mu, refinements, sub=4):
+def contact_args(exe, out_dir, scene, mu, refinements, sub=4,
+                 nested_levels=None):
     args = base_args(exe, out_dir, refinements) + [
         "-s", "Scene/Name=" + scene,
         "-s", "Contact/Friction coefficient=%g" % mu,
         "-s", "Linear solver/Type=direct",
         "-s", "Linear solver/Direct solver=Amesos_Mumps"]
+    if nested_levels is not None:
+        args += ["-s", "Contact/Nested iteration levels=%d" % nested_levels]
     if scene == "blocks":
         args += ["-s", "Scene/Blocks/Upper body subdivisions=%d, %d" % (
                      sub, sub),
@@ -303,15 +317,26 @@ def read_summary(out_dir):
         return None, None
 
 
-def run_contact(exe, scene, mu, refinements, timeout, sub=4):
+def start_mode(nested_levels):
+    """'cold' if nested iteration is switched off, else 'nested' (whether it
+    actually ran is in nested_status)."""
+    return "cold" if nested_levels == 0 else "nested"
+
+
+def run_contact(exe, scene, mu, refinements, timeout, sub=4,
+                nested_levels=None):
     out_dir = tempfile.mkdtemp(prefix="coulomb-contact-bench-")
     rc, out, err, wall, other = execute(
-        contact_args(exe, out_dir, scene, mu, refinements, sub), timeout)
+        contact_args(exe, out_dir, scene, mu, refinements, sub,
+                     nested_levels), timeout)
     row = {k: "" for k in FIELDS}
     row.update(kind="contact", scene=scene, mu=mu, refinements=refinements,
                subdivisions=sub if scene == "blocks" else "",
                process_wall_s=wall, other_cpu_s=other,
-               clean=int(other < CLEAN_FRACTION * wall + CLEAN_ALLOWANCE_S))
+               clean=int(other < CLEAN_FRACTION * wall + CLEAN_ALLOWANCE_S),
+               start=start_mode(nested_levels),
+               nested_levels_setting="default (3)" if nested_levels is None
+               else nested_levels)
     steps = []
     for line in out.splitlines():
         m = NEWTON_LINE.match(line)
@@ -335,6 +360,30 @@ def run_contact(exe, scene, mu, refinements, timeout, sub=4):
             linear_solver=(cyc.get("linear_solver") or {}).get("method", "")
             if isinstance(cyc.get("linear_solver"), dict) else "",
             version=summary.get("version", ""))
+        nested = cyc.get("nested_iteration")
+        if nested is None:
+            row["nested_status"] = "not in summary.json (older build)"
+        elif nested.get("skipped"):
+            row["nested_status"] = "skipped: " + nested["skipped"]
+        levels = (nested or {}).get("levels") or []
+        if levels:
+            row["nested_status"] = "ran, %d level(s)" % len(levels)
+            row["coarse_levels"] = "; ".join(
+                "r%d: %d DoFs, %d its, %d active, %.3g s" % (
+                    l["global_refinements"], l["n_dofs"],
+                    l["newton_iterations"], l["active_nodes"],
+                    l["wall_time_s"]) for l in levels)
+            row["coarse_newton_by_level"] = "/".join(
+                str(l["newton_iterations"]) for l in levels)
+            row["coarse_newton_total"] = sum(l["newton_iterations"]
+                                             for l in levels)
+            row["coarse_time_s"] = sum(l["wall_time_s"] for l in levels)
+        else:
+            row["coarse_newton_total"] = 0
+            row["coarse_time_s"] = 0.0
+        if row["contact_solve_s"] != "":
+            row["fine_solve_s"] = row["contact_solve_s"] - \
+                row["coarse_time_s"]
     if steps:
         tot = [a + s for a, s in steps]
         row.update(step_mean_s=statistics.mean(tot),
@@ -407,7 +456,8 @@ def median_rows(rows, keys):
 TIME_KEYS = ["contact_solve_s", "cycle_wall_s", "process_wall_s",
              "step_mean_s", "step_assembly_mean_s", "step_solve_mean_s",
              "step_min_s", "step_max_s", "elastic_solve_s",
-             "elastic_body1_s", "elastic_body2_s", "peak_memory_MiB"]
+             "elastic_body1_s", "elastic_body2_s", "peak_memory_MiB",
+             "coarse_time_s", "fine_solve_s"]
 
 
 def run_clean(fn, args, retries, quiet_wait):
@@ -457,6 +507,9 @@ def fill_references(rows, curve):
         else:
             r["elastic_ref_s"] = interp
             r["elastic_ref_source"] = "interpolated (elasticity/results.csv)"
+        if r.get("contact_solve_s") not in ("", None):
+            r["solve_over_elastic"] = r["contact_solve_s"] / \
+                r["elastic_ref_s"]
         if r["step_mean_s"] not in ("", None):
             r["ratio_step_elastic"] = r["step_mean_s"] / r["elastic_ref_s"]
             r["ratio_step_single"] = (r["step_mean_s"] /
@@ -483,7 +536,9 @@ def read_csv(path):
         for r in csv.DictReader(f):
             for k, v in r.items():
                 if k in ("kind", "scene", "status", "elastic_ref_source",
-                         "linear_solver", "version", "message"):
+                         "linear_solver", "version", "message", "start",
+                         "nested_levels_setting", "nested_status",
+                         "coarse_levels", "coarse_newton_by_level"):
                     continue
                 try:
                     r[k] = float(v) if v not in ("", None) else ""
@@ -492,6 +547,11 @@ def read_csv(path):
             if r.get("subdivisions") in ("", None) and \
                     r["scene"] != "hertz":
                 r["subdivisions"] = 4
+            # rows of builds before nested iteration: cold start
+            if r["kind"] == "contact" and not r.get("start"):
+                r["start"] = "cold"
+            if r["kind"] == "elastic":
+                r["start"] = ""
             for k in ("subdivisions", "refinements", "n_dofs",
                       "n_dofs_body1", "n_dofs_body2", "newton_iterations"):
                 if r.get(k) not in ("", None):
@@ -512,33 +572,47 @@ def plot(rows, path):
     import matplotlib.pyplot as plt
     import matplotlib.ticker
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4.2))
+    fig, (ax1, ax3, ax2) = plt.subplots(1, 3, figsize=(15, 4.6))
     styles = {("blocks", 0.0): ("C0", "o"), ("blocks", 0.3): ("C1", "s"),
               ("hertz", 0.0): ("C2", "^"), ("hertz", 0.3): ("C3", "D")}
-    for scene, mu in SERIES:
-        pts = [r for r in sorted_rows(rows, "contact", scene, mu)
-               if r["status"] == "ok"]
-        if not pts:
-            continue
-        c, m = styles[(scene, mu)]
-        x = [r["n_dofs"] for r in pts]
-        ax1.plot(x, [r["newton_iterations"] for r in pts], color=c,
-                 marker=m, label=label(scene, mu))
-        ax2.plot(x, [r["ratio_step_elastic"] for r in pts], color=c,
-                 marker=m, label=label(scene, mu))
-        ax2.plot(x, [r["ratio_step_single"] for r in pts], color=c,
-                 marker=m, ls=":", mfc="none", alpha=0.6)
+    for start in STARTS:
+        ls, mfc = ("-", None) if start == "nested" else ("--", "none")
+        for scene, mu in SERIES:
+            pts = [r for r in sorted_rows(rows, "contact", scene, mu, start)
+                   if r["status"] == "ok"]
+            if not pts:
+                continue
+            c, m = styles[(scene, mu)]
+            x = [r["n_dofs"] for r in pts]
+            kw = dict(color=c, marker=m, ls=ls, label="%s, %s" % (
+                label(scene, mu), start))
+            if mfc:
+                kw["mfc"] = mfc
+            ax1.plot(x, [r["newton_iterations"] for r in pts], **kw)
+            ax3.plot(x, [r["contact_solve_s"] for r in pts], **kw)
+            ax2.plot(x, [r["ratio_step_elastic"] for r in pts], **kw)
+    el = [r for r in sorted_rows(rows, "elastic") if r["status"] == "ok"]
+    if el:
+        ax3.plot([r["n_dofs"] for r in el],
+                 [r["elastic_solve_s"] for r in el], color="k", ls=":",
+                 marker=".", label="one elastic solve (blocks mesh)")
     ax1.axhline(10, color="k", ls="--", lw=1, label="target ≤ 10")
     ax1.set_xscale("log")
     ax1.set_xlabel("DoFs (both bodies)")
-    ax1.set_ylabel("Newton iterations")
+    ax1.set_ylabel("Newton iterations on the fine mesh")
     ax1.set_ylim(0, 14)
-    ax1.set_title("Semismooth Newton iterations")
+    ax1.set_title("Semismooth Newton iterations (fine mesh)", fontsize=10)
     ax1.grid(True, which="both", alpha=0.3)
-    ax1.legend(fontsize=8, loc="upper left")
+    ax1.legend(fontsize=6.5, loc="upper left", ncol=2)
+    ax3.set_xscale("log")
+    ax3.set_yscale("log")
+    ax3.set_xlabel("DoFs (both bodies)")
+    ax3.set_ylabel("contact solve [s]")
+    ax3.set_title("Contact solve (coarse levels + fine Newton)",
+                  fontsize=10)
+    ax3.grid(True, which="both", alpha=0.3)
+    ax3.legend(fontsize=6.5, loc="upper left")
     ax2.axhline(2, color="k", ls="--", lw=1, label="target ≤ 2")
-    ax2.plot([], [], color="gray", ls=":", marker="o", mfc="none",
-             label="vs one system of the same size")
     ax2.set_xscale("log")
     ax2.set_yscale("log")
     ax2.set_ylim(0.25, 3.0)
@@ -547,12 +621,12 @@ def plot(rows, path):
     ax2.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax2.set_xlabel("DoFs (both bodies)")
     ax2.set_ylabel("time per Newton step / elastic solve")
-    ax2.set_title("Newton step (assembly + solve) / elastic direct solve",
+    ax2.set_title("Fine Newton step (assembly + solve) / elastic solve",
                   fontsize=10)
     ax2.grid(True, which="both", alpha=0.3)
-    ax2.legend(fontsize=7, loc="lower center", ncol=2)
+    ax2.legend(fontsize=7, loc="lower center")
     fig.tight_layout()
-    fig.savefig(path, dpi=90)
+    fig.savefig(path, dpi=85)
     plt.close(fig)
 
 
@@ -564,39 +638,91 @@ def mesh_label(r):
                                        r["refinements"])
 
 
-def sorted_rows(rows, kind, scene=None, mu=None):
+def sorted_rows(rows, kind, scene=None, mu=None, start=None):
     def dofs(r):
         return float(r["n_dofs"]) if r["n_dofs"] not in ("", None) else 0.
     return sorted((r for r in rows if r["kind"] == kind and
                    (scene is None or r["scene"] == scene) and
-                   (mu is None or float(r["mu"]) == mu)), key=dofs)
+                   (mu is None or float(r["mu"]) == mu) and
+                   (start is None or r.get("start") == start)), key=dofs)
+
+
+STARTS = ("cold", "nested")
 
 
 def table(rows):
     lines = [
-        "| scene | μ | mesh | DoFs | Newton its | contact solve [s] | "
+        "| scene | μ | start | mesh | DoFs | fine Newton its | coarse its "
+        "(coarse → fine) | coarse time [s] | contact solve [s] | "
         "step mean [s] (assembly + solve) | elastic solve [s] | "
-        "step / elastic | step / one N-DoF system | peak mem [MiB] |",
-        "|---|---|---|---|---|---|---|---|---|---|---|"]
+        "step / elastic | step / one N-DoF system | contact solve / "
+        "elastic | peak mem [MiB] |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for scene, mu in SERIES:
-        for r in sorted_rows(rows, "contact", scene, mu):
-            if r["status"] != "ok":
-                lines.append("| %s | %g | %s | %s | %s | | | | | | |" % (
-                    scene, mu, mesh_label(r), r["n_dofs"] or "—",
-                    r["status"] + (": " + r["message"] if r["message"]
-                                   else "")))
-                continue
-            src = "" if r["elastic_ref_source"].startswith("measured") \
-                else " (i)"
-            lines.append(
-                "| %s | %g | %s | %d | %d | %.3g | %.3g (%.2g + %.3g) | "
-                "%.3g%s | **%.2f** | %.2f | %.0f |" % (
-                    scene, mu, mesh_label(r), r["n_dofs"],
-                    r["newton_iterations"], r["contact_solve_s"],
-                    r["step_mean_s"], r["step_assembly_mean_s"],
-                    r["step_solve_mean_s"], r["elastic_ref_s"], src,
-                    r["ratio_step_elastic"], r["ratio_step_single"],
-                    r["peak_memory_MiB"]))
+        for start in STARTS:
+            for r in sorted_rows(rows, "contact", scene, mu, start):
+                if r["status"] != "ok":
+                    lines.append("| %s | %g | %s | %s | %s | %s |"
+                                 " | | | | | | | | |" % (
+                                     scene, mu, start, mesh_label(r),
+                                     r["n_dofs"] or "—", r["status"] + (
+                                         ": " + r["message"] if r["message"]
+                                         else "")))
+                    continue
+                src = "" if r["elastic_ref_source"].startswith(
+                    "measured") else " (i)"
+                coarse = r.get("coarse_newton_by_level") or (
+                    "– (off)" if start == "cold" else "– (skipped)")
+                ctime = r.get("coarse_time_s")
+                lines.append(
+                    "| %s | %g | %s | %s | %d | %d | %s | %s | %.3g%s | "
+                    "%.3g (%.2g + %.3g) | %.3g%s | **%.2f** | %.2f | "
+                    "%.1f | %.0f |" % (
+                        scene, mu, start, mesh_label(r), r["n_dofs"],
+                        r["newton_iterations"], coarse,
+                        "%.3g" % ctime if ctime not in ("", None, 0, 0.0)
+                        else "–",
+                        r["contact_solve_s"], dist(r), r["step_mean_s"],
+                        r["step_assembly_mean_s"], r["step_solve_mean_s"],
+                        r["elastic_ref_s"], src, r["ratio_step_elastic"],
+                        r["ratio_step_single"], r["solve_over_elastic"],
+                        r["peak_memory_MiB"]))
+    return "\n".join(lines)
+
+
+def dist(r):
+    """Marks a run during which other processes used the CPU."""
+    return "" if r.get("clean") in (1, 1.0, "1") else " †"
+
+
+def compare_table(rows):
+    """Cold start against nested iteration, per series and size (†: other
+    processes used more than 10 % of a core during the run)."""
+    lines = ["| series | DoFs | Newton its cold | nested: fine its | "
+             "nested: coarse its (coarse → fine) | contact solve cold [s] | "
+             "nested [s] (coarse part) | speed-up | step / elastic cold, "
+             "nested |", "|---|---|---|---|---|---|---|---|---|"]
+    for scene, mu in SERIES:
+        cold = {r["n_dofs"]: r for r in sorted_rows(
+            rows, "contact", scene, mu, "cold") if r["status"] == "ok"}
+        nest = {r["n_dofs"]: r for r in sorted_rows(
+            rows, "contact", scene, mu, "nested") if r["status"] == "ok"}
+        for n in sorted(set(cold) | set(nest)):
+            c, m = cold.get(n), nest.get(n)
+            lines.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s |" % (
+                label(scene, mu), n,
+                c["newton_iterations"] if c else "–",
+                m["newton_iterations"] if m else "–",
+                (m.get("coarse_newton_by_level") or "– (skipped)")
+                if m else "–",
+                "%.3g%s" % (c["contact_solve_s"], dist(c)) if c else "–",
+                "%.3g (%.3g)%s" % (m["contact_solve_s"],
+                                   m["coarse_time_s"] or 0, dist(m))
+                if m else "–",
+                "%.2f×" % (c["contact_solve_s"] / m["contact_solve_s"])
+                if c and m else "–",
+                ", ".join("%.2f" % r["ratio_step_elastic"] if r else "–"
+                          for r in (c, m))))
     return "\n".join(lines)
 
 
@@ -613,24 +739,30 @@ def elastic_table(rows):
             continue
         interp = loglog_interp(curve, r["n_dofs_body1"]) + \
             loglog_interp(curve, r["n_dofs_body2"])
-        lines.append("| %s | %d | %.3g | %.3g | %.3g | %.3g |" % (
+        lines.append("| %s | %d | %.3g | %.3g | %.3g%s | %.3g |" % (
             mesh_label(r), r["n_dofs"], r["elastic_body1_s"],
-            r["elastic_body2_s"], r["elastic_solve_s"], interp))
+            r["elastic_body2_s"], r["elastic_solve_s"], dist(r), interp))
     return "\n".join(lines)
 
 
 def summary_table(rows):
     """Compact table: iterations and step ratio per series and size."""
     lines = ["| series | " + " | ".join(
-        "%s" % m for m in ("DoFs", "Newton its", "step / elastic")) + " |",
-        "|---|---|---|---|"]
+        "%s" % m for m in ("DoFs", "Newton its (fine)",
+                           "contact solve [s]", "step / elastic")) + " |",
+        "|---|---|---|---|---|"]
     for scene, mu in SERIES:
-        pts = [r for r in sorted_rows(rows, "contact", scene, mu)
-               if r["status"] == "ok"]
-        lines.append("| %s, μ = %g | %s | %s | %s |" % (
-            scene, mu, ", ".join("%.3g" % r["n_dofs"] for r in pts),
-            ", ".join("%d" % r["newton_iterations"] for r in pts),
-            ", ".join("%.2f" % r["ratio_step_elastic"] for r in pts)))
+        for start in STARTS:
+            pts = [r for r in sorted_rows(rows, "contact", scene, mu, start)
+                   if r["status"] == "ok"]
+            if not pts:
+                continue
+            lines.append("| %s, μ = %g, %s | %s | %s | %s | %s |" % (
+                scene, mu, start,
+                ", ".join("%.3g" % r["n_dofs"] for r in pts),
+                ", ".join("%d" % r["newton_iterations"] for r in pts),
+                ", ".join("%.3g" % r["contact_solve_s"] for r in pts),
+                ", ".join("%.2f" % r["ratio_step_elastic"] for r in pts)))
     return "\n".join(lines)
 
 
@@ -654,6 +786,16 @@ def main():
     p.add_argument("--append", action="store_true",
                    help="keep the finished runs of --csv, run the rest")
     p.add_argument("--quick", action="store_true")
+    p.add_argument("--nested-levels", type=int, default=None,
+                   help="'Contact/Nested iteration levels' of the contact "
+                   "runs (default: the program's default, 3); 0 = cold "
+                   "start. Rows are tagged start = nested / cold, and "
+                   "--append keeps the rows of the other start.")
+    p.add_argument("--series", default="",
+                   help="comma-separated series to run, e.g. "
+                   "'hertz' or 'hertz:0,blocks:0.3' (default: all)")
+    p.add_argument("--no-elastic", action="store_true",
+                   help="do not (re)run the elastic references")
     p.add_argument("--plot-only", action="store_true")
     p.add_argument("--table", action="store_true")
     a = p.parse_args()
@@ -670,6 +812,8 @@ def main():
             print(elastic_table(rows))
             print()
             print(summary_table(rows))
+            print()
+            print(compare_table(rows))
         return 0
 
     if a.quick:
@@ -683,16 +827,32 @@ def main():
     start = time.perf_counter()
 
     # Jobs: (kind, scene, mu, subdivisions, refinements).
+    start_tag = start_mode(a.nested_levels)
+
+    def wanted(scene, mu):
+        if not a.series:
+            return True
+        for item in a.series.split(","):
+            name, _, m = item.strip().partition(":")
+            if name == scene and (m == "" or float(m) == mu):
+                return True
+        return False
+
+    # Jobs: (kind, scene, mu, subdivisions, refinements, start).
     jobs = []
     blocks_meshes = [(4, r) for r in range(a.blocks_max_ref + 1)] + \
         list(extensions)
     for sub, r in blocks_meshes:
-        jobs.append(("elastic", ELASTIC_SCENE, "", sub, r))
+        if not a.no_elastic and (wanted("blocks", 0.0) or
+                                 wanted("blocks", 0.3)):
+            jobs.append(("elastic", ELASTIC_SCENE, "", sub, r, ""))
         for mu in (0.0, 0.3):
-            jobs.append(("contact", "blocks", mu, sub, r))
+            if wanted("blocks", mu):
+                jobs.append(("contact", "blocks", mu, sub, r, start_tag))
     for r in range(a.hertz_max_ref + 1):
         for mu in (0.0, 0.3):
-            jobs.append(("contact", "hertz", mu, "", r))
+            if wanted("hertz", mu):
+                jobs.append(("contact", "hertz", mu, "", r, start_tag))
 
     def est(job):
         return estimated_dofs("hertz" if job[1] == "hertz" else "blocks",
@@ -704,22 +864,28 @@ def main():
     def job_key(r):
         return (r["kind"], r["scene"],
                 "" if r["kind"] == "elastic" else float(r["mu"]),
-                r["subdivisions"], r["refinements"])
+                r["subdivisions"], r["refinements"],
+                "" if r["kind"] == "elastic" else r.get("start") or "cold")
 
     done = {}
+    kept = []     # --append: rows of other series / starts, kept as they are
+    job_set = set(jobs)
     if a.append and os.path.exists(a.csv):
         for r in read_csv(a.csv):
-            if r["status"] == "ok":
+            if job_key(r) not in job_set:
+                kept.append(r)
+            elif r["status"] == "ok":
                 done[job_key(r)] = r
-        print("reusing %d finished runs from %s" % (len(done), a.csv),
-              flush=True)
+        print("reusing %d finished runs from %s, keeping %d other rows" % (
+            len(done), a.csv, len(kept)), flush=True)
 
-    rows = []
+    rows = list(kept)
     last = {}     # per series: the largest finished run (for predictions)
     for job in jobs:
-        kind, scene, mu, sub, r = job
-        series = (kind, scene, mu)
-        what = "%s %s mu=%s sub=%s r=%d" % (kind, scene, mu, sub, r)
+        kind, scene, mu, sub, r, job_start = job
+        series = (kind, scene, mu, job_start)
+        what = "%s %s mu=%s sub=%s r=%d %s" % (kind, scene, mu, sub, r,
+                                               job_start)
         if job in done:
             row = done[job]
             rows.append(row)
@@ -745,7 +911,8 @@ def main():
                 rows.append(dict({k: "" for k in FIELDS}, kind=kind,
                                  scene=scene, mu=mu, subdivisions=sub,
                                  refinements=r, n_dofs=int(est(job)),
-                                 status="skipped", message=reason))
+                                 status="skipped", message=reason,
+                                 start=job_start))
                 continue
         load = wait_for_quiet(max_wait=a.quiet_wait)
         timeout = 2.5 * a.max_run_s
@@ -762,18 +929,22 @@ def main():
                       load), flush=True)
         else:
             row = run_repeated(run_contact,
-                               (exe, scene, mu, r, timeout, sub or 4),
+                               (exe, scene, mu, r, timeout, sub or 4,
+                                a.nested_levels),
                                a.repeats, a.repeat_below_s, a.retries,
                                a.quiet_wait)
             print("%-6s mu=%-3g sub=%s r=%d n=%s: %s, %s its, step %s s "
                   "(asm %s, solve %s), contact solve %s s, wall %.1f s, "
-                  "%s MiB (load before %.2f)%s" % (
+                  "%s MiB (load before %.2f) [%s: %s %s, %s s]%s" % (
                       scene, mu, sub, r, row["n_dofs"], row["status"],
                       row["newton_iterations"], num(row["step_mean_s"]),
                       num(row["step_assembly_mean_s"]),
                       num(row["step_solve_mean_s"]),
                       num(row["contact_solve_s"]), row["process_wall_s"],
                       num(row["peak_memory_MiB"], "%.0f"), load,
+                      row["start"], row["nested_status"],
+                      row["coarse_newton_by_level"],
+                      num(row["coarse_time_s"]),
                       "" if row["status"] == "ok" else " " + row["message"]),
                   flush=True)
         if os.path.getmtime(exe) != exe_mtime:
