@@ -124,6 +124,7 @@ namespace
   {
     ParameterHandler   prm;
     const Parameters   parameters = testing::make_parameters(prm, settings);
+    prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
     std::ostringstream log;
     TwoBodyProblem     problem(MPI_COMM_WORLD, parameters, prm, "test", log);
     problem.run();
@@ -159,20 +160,20 @@ main(int argc, char *argv[])
           2,
           out);
 
-  const std::string output_off = "/tmp/coulomb-adapt-test-nested";
+  const std::string output_directory = "/tmp/coulomb-adapt-test-nested";
   check_log({{"Scene/Name", "blocks"},
              {"Mesh/Global refinements", "2"},
              {"Adaptation/Number of cycles", "1"},
              {"Contact/Nested iteration minimum DoFs", "0"},
              {"Output/Write VTU", "false"},
-             {"Output/Output directory", output_off}},
+             {"Output/Output directory", output_directory}},
             "nested iteration, 1 global refinements",
             out);
   check_log({{"Scene/Name", "blocks"},
              {"Mesh/Global refinements", "1"},
              {"Adaptation/Number of cycles", "1"},
              {"Output/Write VTU", "false"},
-             {"Output/Output directory", output_off}},
+             {"Output/Output directory", output_directory}},
             "nested iteration skipped: 740 DoFs <= 'Contact/Nested "
             "iteration minimum DoFs' (20000)",
             out);

@@ -18,7 +18,6 @@
 
 #include "test_utilities.h"
 
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -70,7 +69,7 @@ namespace
        {"Adaptation/Number of cycles", "1"},
        {"Output/Write VTU", "false"},
        {"Output/Output directory", output_directory}});
-    std::filesystem::create_directories(output_directory);
+    prepare_output_directory(output_directory, MPI_COMM_WORLD);
     std::ostringstream log;
     TwoBodyProblem     problem(MPI_COMM_WORLD, parameters, prm, "test", log);
     problem.run(); // throws with a diagnosis if it does not converge

@@ -117,11 +117,15 @@ namespace coulomb_adapt
                                  std::string("frictionless (mu = 0): no "
                                              "stick/slip sets"))
           << std::endl;
-    contact_solver = std::make_unique<ContactSolver>(*bodies[0],
-                                                     *bodies[1],
-                                                     parameters.contact,
-                                                     parameters.linear_solver,
-                                                     pcout);
+    // A solver from the initial gap (again, if a predicted start fails).
+    const auto new_contact_solver = [&]() {
+      contact_solver = std::make_unique<ContactSolver>(*bodies[0],
+                                                       *bodies[1],
+                                                       parameters.contact,
+                                                       parameters.linear_solver,
+                                                       pcout);
+    };
+    new_contact_solver();
     const bool static_problem = scene->n_load_steps() == 1;
     const bool warm_start = parameters.adaptation.warm_start &&
                             !previous_contact_states.empty() &&
@@ -171,12 +175,7 @@ namespace coulomb_adapt
                   << user_message(e).substr(0, 160)
                   << " ...); solving again from the initial gap" << std::endl;
             cycle_record["retried_from_initial_gap"] = true;
-            contact_solver = std::make_unique<ContactSolver>(
-              *bodies[0],
-              *bodies[1],
-              parameters.contact,
-              parameters.linear_solver,
-              pcout);
+            new_contact_solver();
             report = contact_solver->solve();
           }
         total_newton_iterations += report.newton_iterations;

@@ -144,7 +144,7 @@ namespace coulomb_adapt
                            "9.4 refines triangles only globally)"));
     // Cells to refine again after this round, by CellId (p4est may move
     // the children to another rank when it repartitions).
-    std::map<std::string, int> again;
+    std::map<CellId, int> again;
     for (const auto &cell : tria->active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -154,18 +154,17 @@ namespace coulomb_adapt
           else if (d < 0)
             cell->set_coarsen_flag();
           if (d > 1)
-            again[cell->id().to_string()] = d - 1;
+            again[cell->id()] = d - 1;
         }
     tria->prepare_coarsening_and_refinement();
     tria->execute_coarsening_and_refinement();
 
     while (true)
       {
-        std::map<std::string, int> all;
+        std::map<CellId, int> all;
         for (const auto &part : Utilities::MPI::all_gather(
                mpi_communicator,
-               std::vector<std::pair<std::string, int>>(again.begin(),
-                                                        again.end())))
+               std::vector<std::pair<CellId, int>>(again.begin(), again.end())))
           all.insert(part.begin(), part.end());
         if (all.empty())
           break;
@@ -173,12 +172,12 @@ namespace coulomb_adapt
         for (const auto &cell : tria->active_cell_iterators())
           if (cell->is_locally_owned() && cell->level() > 0)
             {
-              const auto parent = all.find(cell->parent()->id().to_string());
+              const auto parent = all.find(cell->parent()->id());
               if (parent == all.end())
                 continue;
               cell->set_refine_flag();
               if (parent->second > 1)
-                again[cell->id().to_string()] = parent->second - 1;
+                again[cell->id()] = parent->second - 1;
             }
         tria->prepare_coarsening_and_refinement();
         tria->execute_coarsening_and_refinement();

@@ -109,8 +109,8 @@ namespace coulomb_adapt
                                   mu);
       }
     else
-      estimate.correction.displacement = {bodies[0]->solution(),
-                                          bodies[1]->solution()};
+      estimate.correction.displacement = {{bodies[0]->solution(),
+                                          bodies[1]->solution()}};
 
     std::array<double, 2> volume_squared;
     double                normalisation_squared = 0;

@@ -5,10 +5,14 @@
 
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
+#include <deal.II/hp/fe_collection.h>
+#include <deal.II/hp/fe_values.h>
+#include <deal.II/hp/mapping_collection.h>
+#include <deal.II/hp/q_collection.h>
+
 #include <coulomb_adapt/indicator/exact_error.h>
 
 #include <algorithm>
-#include <map>
 #include <cmath>
 
 namespace coulomb_adapt
@@ -178,26 +182,33 @@ namespace coulomb_adapt
         const ElasticBody &body   = *bodies[b];
         const unsigned int degree = body.dof_handler().get_fe().degree;
         // A piecewise reference field on n x n sub-cells: the iterated
-        // rule integrates each piece on its own. One FEValues per n.
-        std::map<unsigned int, std::unique_ptr<Quadrature<2>>> quadratures;
-        std::map<unsigned int, std::unique_ptr<FEValues<2>>>   all_fe_values;
-        auto fe_values_for = [&](const unsigned int n_sub) -> FEValues<2> & {
-          auto it = all_fe_values.find(n_sub);
-          if (it != all_fe_values.end())
-            return *it->second;
+        // rule integrates each piece on its own. n varies from cell to
+        // cell on adapted meshes: hp::FEValues selects the rule (entry
+        // n - 1 of the collection) per cell.
+        std::vector<unsigned int> subdivisions;
+        for (const auto &cell : body.dof_handler().active_cell_iterators())
+          if (cell->is_locally_owned())
+            subdivisions.push_back(
+              reference.quadrature_subdivisions(b, cell->diameter()));
+        const unsigned int max_subdivisions =
+          subdivisions.empty() ?
+            1 :
+            *std::max_element(subdivisions.begin(), subdivisions.end());
+        hp::QCollection<2> quadratures;
+        for (unsigned int n = 1; n <= max_subdivisions; ++n)
           if (body.is_simplex_mesh())
-            quadratures[n_sub] = std::make_unique<QIteratedSimplex<2>>(
-              QGaussSimplex<2>(std::min(degree + 2, 4u)), n_sub);
+            quadratures.push_back(QIteratedSimplex<2>(
+              QGaussSimplex<2>(std::min(degree + 2, 4u)), n));
           else
-            quadratures[n_sub] =
-              std::make_unique<QIterated<2>>(QGauss<1>(degree + 2), n_sub);
-          return *(all_fe_values[n_sub] = std::make_unique<FEValues<2>>(
-                     body.mapping(),
-                     body.dof_handler().get_fe(),
-                     *quadratures[n_sub],
-                     update_gradients | update_quadrature_points |
-                       update_JxW_values));
-        };
+            quadratures.push_back(QIterated<2>(QGauss<1>(degree + 2), n));
+        const hp::MappingCollection<2> mappings(body.mapping());
+        const hp::FECollection<2>      elements(body.dof_handler().get_fe());
+        hp::FEValues<2>                hp_fe_values(mappings,
+                                     elements,
+                                     quadratures,
+                                     update_gradients |
+                                       update_quadrature_points |
+                                       update_JxW_values);
         const FEValuesExtractors::Vector u(0);
         std::vector<SymmetricTensor<2, 2>> strains;
 
@@ -207,12 +218,13 @@ namespace coulomb_adapt
         std::vector<SymmetricTensor<2, 2>> sigma_c;
         std::vector<double>                JxW;
         std::vector<unsigned int>          cell_of_point;
+        unsigned int owned_cell = 0;
         for (const auto &cell : body.dof_handler().active_cell_iterators())
           if (cell->is_locally_owned())
             {
-              FEValues<2> &fe_values = fe_values_for(
-                reference.quadrature_subdivisions(b, cell->diameter()));
-              fe_values.reinit(cell);
+              hp_fe_values.reinit(cell, subdivisions[owned_cell++] - 1);
+              const FEValues<2> &fe_values =
+                hp_fe_values.get_present_fe_values();
               strains.resize(fe_values.n_quadrature_points);
               fe_values[u].get_function_symmetric_gradients(
                 estimate.correction.displacement[b], strains);

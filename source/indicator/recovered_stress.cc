@@ -150,7 +150,6 @@ namespace coulomb_adapt
     TrilinosWrappers::PreconditionJacobi jacobi;
     jacobi.initialize(mass);
     std::array<TrilinosWrappers::MPI::Vector, 3> component;
-    n_cg_iterations = 0;
     for (unsigned int c = 0; c < 3; ++c)
       {
         TrilinosWrappers::MPI::Vector solution(scalar_owned, comm);
@@ -161,7 +160,6 @@ namespace coulomb_adapt
             SolverControl              control(1000, 1e-12 * rhs[c].l2_norm());
             SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
             cg.solve(mass, solution, rhs[c], jacobi);
-            n_cg_iterations = std::max(n_cg_iterations, control.last_step());
           }
         scalar_constraints.distribute(solution);
         component[c].reinit(scalar_owned, scalar_relevant, comm);
@@ -206,11 +204,4 @@ namespace coulomb_adapt
     return recovered;
   }
 
-
-
-  unsigned int
-  RecoveredStress::projection_iterations() const
-  {
-    return n_cg_iterations;
-  }
 } // namespace coulomb_adapt

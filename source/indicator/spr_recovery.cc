@@ -596,7 +596,6 @@ namespace coulomb_adapt
         }
     owned_values.compress(VectorOperation::insert);
     constraints.distribute(owned_values);
-    recovered       = owned_values;
-    n_cg_iterations = 0;
+    recovered = owned_values;
   }
 } // namespace coulomb_adapt

@@ -67,10 +67,6 @@ namespace coulomb_adapt
     const TrilinosWrappers::MPI::Vector &
     values() const;
 
-    /** CG iterations of the last L2 projection (0 for SPR). */
-    unsigned int
-    projection_iterations() const;
-
   private:
     void
     project_l2(const TrilinosWrappers::MPI::Vector &displacement);
@@ -85,7 +81,6 @@ namespace coulomb_adapt
     IndexSet                      relevant_dofs;
     AffineConstraints<double>     constraints;
     TrilinosWrappers::MPI::Vector recovered;
-    unsigned int                  n_cg_iterations = 0;
   };
 
   /** sigma as the three components (xx, yy, xy) the stress space uses. */
