@@ -245,11 +245,11 @@ def base_args(exe, out_dir, refinements):
 
 
 def contact_args(exe, out_dir, scene, mu, refinements, sub=4,
-                 nested_levels=None):
+                 nested_levels=None, linear_solver="direct"):
     args = base_args(exe, out_dir, refinements) + [
         "-s", "Scene/Name=" + scene,
         "-s", "Contact/Friction coefficient=%g" % mu,
-        "-s", "Linear solver/Type=direct",
+        "-s", "Linear solver/Type=" + linear_solver,
         "-s", "Linear solver/Direct solver=Amesos_Mumps"]
     if nested_levels is not None:
         args += ["-s", "Contact/Nested iteration levels=%d" % nested_levels]
@@ -323,12 +323,23 @@ def start_mode(nested_levels):
     return "cold" if nested_levels == 0 else "nested"
 
 
+def describe_linear_solver(record):
+    """summary.json's linear_solver: a dict (elastic runs) or a list of
+    dicts, one per load step (contact runs: the last Newton step's solve)."""
+    if isinstance(record, dict):
+        record = [record]
+    if not isinstance(record, list):
+        return ""
+    return " ".join("%s:%s" % (r.get("method", ""), r.get("iterations", ""))
+                    for r in record)
+
+
 def run_contact(exe, scene, mu, refinements, timeout, sub=4,
-                nested_levels=None):
+                nested_levels=None, linear_solver="direct"):
     out_dir = tempfile.mkdtemp(prefix="coulomb-contact-bench-")
     rc, out, err, wall, other = execute(
         contact_args(exe, out_dir, scene, mu, refinements, sub,
-                     nested_levels), timeout)
+                     nested_levels, linear_solver), timeout)
     row = {k: "" for k in FIELDS}
     row.update(kind="contact", scene=scene, mu=mu, refinements=refinements,
                subdivisions=sub if scene == "blocks" else "",
@@ -357,8 +368,7 @@ def run_contact(exe, scene, mu, refinements, timeout, sub=4,
             contact_solve_s=cyc.get("timings_s", {}).get("contact solve", ""),
             cycle_wall_s=cyc.get("wall_time_s", ""),
             peak_memory_MiB=cyc.get("peak_memory_MiB", ""),
-            linear_solver=(cyc.get("linear_solver") or {}).get("method", "")
-            if isinstance(cyc.get("linear_solver"), dict) else "",
+            linear_solver=describe_linear_solver(cyc.get("linear_solver")),
             version=summary.get("version", ""))
         nested = cyc.get("nested_iteration")
         if nested is None:
@@ -791,6 +801,12 @@ def main():
                    "runs (default: the program's default, 3); 0 = cold "
                    "start. Rows are tagged start = nested / cold, and "
                    "--append keeps the rows of the other start.")
+    p.add_argument("--linear-solver", default="direct",
+                   choices=["direct", "amg", "auto"],
+                   help="'Linear solver/Type' of the contact runs (default "
+                   "direct: MUMPS on the row-replacing system; amg: "
+                   "Krylov + AMG on the eliminated system). Use another "
+                   "--csv for each.")
     p.add_argument("--series", default="",
                    help="comma-separated series to run, e.g. "
                    "'hertz' or 'hertz:0,blocks:0.3' (default: all)")
@@ -930,7 +946,7 @@ def main():
         else:
             row = run_repeated(run_contact,
                                (exe, scene, mu, r, timeout, sub or 4,
-                                a.nested_levels),
+                                a.nested_levels, a.linear_solver),
                                a.repeats, a.repeat_below_s, a.retries,
                                a.quiet_wait)
             print("%-6s mu=%-3g sub=%s r=%d n=%s: %s, %s its, step %s s "

@@ -4,11 +4,10 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_control.h>
 
-#include <Epetra_CrsMatrix.h>
-
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
+#include <coulomb_adapt/solvers/matrix_rows.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,29 +33,6 @@ namespace coulomb_adapt
 
 
 
-  namespace
-  {
-    // Calls f(column, value) for the entries of a locally owned row,
-    // through Epetra's row view: deal.II's Trilinos matrix iterators copy
-    // the row at every step, which made the assembly quadratic.
-    template <typename Function>
-    void
-    for_each_entry(const TrilinosWrappers::SparseMatrix &matrix,
-                   const types::global_dof_index         row,
-                   const Function &                      f)
-    {
-      const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
-      const int local_row       = A.RowMap().LID(static_cast<int>(row));
-      Assert(local_row >= 0, ExcInternalError());
-      int     n_entries;
-      double *values;
-      int *   local_columns;
-      A.ExtractMyRowView(local_row, n_entries, values, local_columns);
-      for (int e = 0; e < n_entries; ++e)
-        f(static_cast<types::global_dof_index>(A.ColMap().GID(local_columns[e])),
-          values[e]);
-    }
-  } // namespace
 
 
 
@@ -172,9 +148,58 @@ namespace coulomb_adapt
     // The gap rows are scaled like the rows of K^1 they replace.
     row_scale = slave.description().material.youngs_modulus;
 
-    // Sparsity: K^1 and K^2 (shifted), the slave rows (both K^1 rows of the
-    // node, the node's own DoFs and the coupled master DoFs), and in the
-    // master rows the K^1 rows of the coupled slave nodes.
+    iterative = solver_parameters.type == "amg" ||
+                (solver_parameters.type == "auto" &&
+                 owned.size() > solver_parameters.max_dofs_for_direct_contact);
+    if (iterative)
+      eliminated_system.reinit(K1,
+                               master.system_matrix(),
+                               f1,
+                               master.system_rhs(),
+                               owned,
+                               offset,
+                               mpi_communicator);
+    else
+      build_row_replacing_pattern();
+
+    // The states (sets and slip history) persist from one load step to the
+    // next on the same mesh.
+    const bool first_step = states.size() != n_slave;
+    if (first_step)
+      {
+        states.assign(n_slave, {});
+        previous_weighted_slip.assign(n_slave, 0.);
+      }
+    for (unsigned int j = 0; j < n_slave; ++j)
+      {
+        states[j].position = nodes[j].position;
+        states[j].normal   = nodes[j].normal;
+        states[j].tangent  = nodes[j].tangent;
+        states[j].weight   = D[j];
+      }
+    if (first_step)
+      {
+        initialize_sets();
+        if (!warm_start_states.empty())
+          transfer_warm_start_sets();
+      }
+  }
+
+
+
+  // Sparsity of the row-replacing system, which does not depend on the
+  // sets: K^1 and K^2 (shifted), the slave rows (both K^1 rows of the
+  // node, the node's own DoFs and the coupled master DoFs), and in the
+  // master rows the K^1 rows of the coupled slave nodes.
+  void
+  ContactSolver::build_row_replacing_pattern()
+  {
+    const auto &nodes        = mortar.slave_nodes();
+    const auto &master_nodes = mortar.master_nodes();
+    const auto &M            = mortar.master_coupling();
+    const auto &K1           = slave.system_matrix();
+    const IndexSet &owned_1  = slave.locally_owned_dof_set();
+    const IndexSet &owned_2  = master.locally_owned_dof_set();
     DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
     const auto &K2 = master.system_matrix();
     for (const auto row : owned_1)
@@ -210,28 +235,6 @@ namespace coulomb_adapt
       }
     matrix.reinit(owned, owned, dsp, mpi_communicator);
     rhs.reinit(owned, mpi_communicator);
-
-    // The states (sets and slip history) persist from one load step to the
-    // next on the same mesh.
-    const bool first_step = states.size() != n_slave;
-    if (first_step)
-      {
-        states.assign(n_slave, {});
-        previous_weighted_slip.assign(n_slave, 0.);
-      }
-    for (unsigned int j = 0; j < n_slave; ++j)
-      {
-        states[j].position = nodes[j].position;
-        states[j].normal   = nodes[j].normal;
-        states[j].tangent  = nodes[j].tangent;
-        states[j].weight   = D[j];
-      }
-    if (first_step)
-      {
-        initialize_sets();
-        if (!warm_start_states.empty())
-          transfer_warm_start_sets();
-      }
   }
 
 
@@ -358,6 +361,9 @@ namespace coulomb_adapt
   void
   ContactSolver::assemble_newton_system()
   {
+    // The iterative path builds its (eliminated) system in the solve.
+    if (iterative)
+      return;
     matrix = 0;
     rhs    = 0;
     const auto &nodes        = mortar.slave_nodes();
@@ -492,24 +498,24 @@ namespace coulomb_adapt
   ContactSolver::solve_newton_system()
   {
     TrilinosWrappers::MPI::Vector solution(owned, mpi_communicator);
-    // The condensed contact system is not symmetric. 'auto' solves it
-    // directly at every size: GMRES + AMG (Type = amg) needs many
-    // iterations on the rows the contact conditions replace, and an
-    // inexact solve can make the active set iteration cycle, so it is only
-    // used on request (experimental; see doc/contact.md).
     parameters::LinearSolver settings = solver_parameters;
-    if (settings.type == "auto")
-      settings.type = "direct";
+    settings.type = iterative ? "amg" : "direct";
     // The multipliers are differences of large nodal forces (f - K u at the
     // slave rows): an iterative solve to 1e-10 leaves the complementarity
     // residual near 1e-9 (hertz), above the default Contact/Tolerance.
     settings.relative_tolerance = std::min(settings.relative_tolerance, 1e-12);
-    last_linear_solve = solve_linear_system(matrix,
-                                            solution,
-                                            rhs,
-                                            rigid_body_modes(),
-                                            settings,
-                                            /*symmetric=*/false);
+    if (iterative)
+      last_linear_solve = eliminated_system.solve(eliminated_slave_nodes(),
+                                                  rigid_body_modes(),
+                                                  settings,
+                                                  solution);
+    else
+      last_linear_solve = solve_linear_system(matrix,
+                                              solution,
+                                              rhs,
+                                              rigid_body_modes(),
+                                              settings,
+                                              /*symmetric=*/false);
 
     TrilinosWrappers::MPI::Vector u1(slave.locally_owned_dof_set(),
                                      mpi_communicator);
@@ -523,6 +529,50 @@ namespace coulomb_adapt
     u2.compress(VectorOperation::insert);
     slave.set_solution(u1);
     master.set_solution(u2);
+  }
+
+
+
+  std::vector<EliminatedContactSystem::SlaveNode>
+  ContactSolver::eliminated_slave_nodes() const
+  {
+    const auto &nodes        = mortar.slave_nodes();
+    const auto &master_nodes = mortar.master_nodes();
+    const auto &D            = mortar.slave_weights();
+    const auto &M            = mortar.master_coupling();
+    const auto &gaps         = mortar.weighted_initial_gaps();
+    const auto &constraints  = master.constraints();
+
+    std::vector<EliminatedContactSystem::SlaveNode> result;
+    for (const unsigned int j : owned_slave_nodes)
+      {
+        EliminatedContactSystem::SlaveNode node;
+        node.dofs    = nodes[j].dofs;
+        node.normal  = nodes[j].normal;
+        node.tangent = nodes[j].tangent;
+        node.weight  = D[j];
+        node.active  = mortar.is_covered(j) &&
+                      states[j].status != ContactStatus::open;
+        node.stick   = states[j].status == ContactStatus::stick;
+        node.weighted_gap         = gaps[j];
+        node.weighted_slip        = previous_weighted_slip[j];
+        node.slip_sign            = states[j].slip_sign;
+        node.friction_coefficient = mu;
+        for (const auto &[l, m] : M[j])
+          {
+            EliminatedContactSystem::SlaveNode::Coupling coupling;
+            for (unsigned int d = 0; d < 2; ++d)
+              {
+                coupling.dofs[d] = offset + master_nodes[l].dofs[d];
+                coupling.constrained[d] =
+                  constraints.is_constrained(master_nodes[l].dofs[d]);
+              }
+            coupling.value = m;
+            node.couplings.push_back(coupling);
+          }
+        result.push_back(node);
+      }
+    return result;
   }
 
 

@@ -128,13 +128,15 @@ namespace coulomb_adapt
                           Patterns::Selection("auto|direct|amg"),
                           "direct: sparse direct factorisation (Trilinos "
                           "Amesos). amg: Krylov solver preconditioned by ML "
-                          "algebraic multigrid with the rigid body modes as "
-                          "near null space: CG for elasticity, GMRES for the "
-                          "non-symmetric contact system (experimental: it "
-                          "may fail to converge there). auto: for "
-                          "elasticity direct up to 'Maximum DoFs for "
-                          "direct' and amg above; for contact always "
-                          "direct.");
+                          "smoothed-aggregation algebraic multigrid with "
+                          "the rigid body modes as near null space: CG for "
+                          "elasticity; for contact, the Newton systems with "
+                          "the contact conditions eliminated (CG if "
+                          "frictionless, GMRES otherwise; doc/contact.md). "
+                          "auto: direct up to 'Maximum DoFs for direct' "
+                          "(elasticity, per body) or 'Maximum DoFs for "
+                          "direct contact' (contact, both bodies), amg "
+                          "above.");
         prm.declare_entry("Maximum DoFs for direct",
                           "10000",
                           Patterns::Integer(0),
@@ -143,6 +145,14 @@ namespace coulomb_adapt
                           "above. benchmarks/elasticity measured the "
                           "crossover at about 3000 DoFs on 1 rank, and AMG "
                           "4x faster than MUMPS at 1e6 DoFs.");
+        prm.declare_entry("Maximum DoFs for direct contact",
+                          "200000",
+                          Patterns::Integer(0),
+                          "Largest contact system (DoFs of both bodies) "
+                          "that 'auto' solves directly; Krylov + AMG on the "
+                          "eliminated system above. benchmarks/contact "
+                          "measured the crossover (one Newton step, 1 "
+                          "rank).");
         prm.declare_entry("Direct solver",
                           "Amesos_Mumps",
                           Patterns::Selection("Amesos_Mumps|Amesos_Klu"),
@@ -173,6 +183,8 @@ namespace coulomb_adapt
       {
         type                = prm.get("Type");
         max_dofs_for_direct = prm.get_integer("Maximum DoFs for direct");
+        max_dofs_for_direct_contact =
+          prm.get_integer("Maximum DoFs for direct contact");
         direct_solver       = prm.get("Direct solver");
         relative_tolerance  = prm.get_double("Relative tolerance");
         max_iterations      = prm.get_integer("Maximum iterations");

@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/eliminated_contact_system.h>
 #include <coulomb_adapt/contact/mortar_interface.h>
 #include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
@@ -141,6 +142,12 @@ namespace coulomb_adapt
     void
     setup();
     void
+    build_row_replacing_pattern();
+    /** The slave nodes this rank owns, with their current conditions, for
+     * EliminatedContactSystem. */
+    std::vector<EliminatedContactSystem::SlaveNode>
+    eliminated_slave_nodes() const;
+    void
     initialize_sets();
     void
     transfer_warm_start_sets();
@@ -189,6 +196,11 @@ namespace coulomb_adapt
     std::vector<double>              complementarity_constant;
     double                           row_scale;
 
+    /** Krylov + AMG: the Newton systems are solved with the contact
+     * conditions eliminated (direct solves take the row-replacing
+     * matrix below). Decided in setup() from 'Linear solver/Type'. */
+    bool                             iterative = false;
+    EliminatedContactSystem          eliminated_system;
     TrilinosWrappers::SparseMatrix   matrix;
     LinearSolverReport               last_linear_solve;
     TrilinosWrappers::MPI::Vector    rhs;

@@ -79,6 +79,9 @@ namespace coulomb_adapt
       std::string  direct_solver;
       double       relative_tolerance;
       unsigned int max_iterations;
+      /** 'Maximum DoFs for direct' for the contact system (DoFs of both
+       * bodies). */
+      unsigned int max_dofs_for_direct_contact;
 
       static void
       declare_parameters(ParameterHandler &prm);

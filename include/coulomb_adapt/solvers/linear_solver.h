@@ -20,16 +20,19 @@ namespace coulomb_adapt
   };
 
   /**
-   * Solve A x = b: symmetric positive definite (elasticity) or, with
-   * @p symmetric false, a general system (the condensed contact system).
+   * Solve A x = b: symmetric positive definite (elasticity, the
+   * frictionless eliminated contact system) or, with @p symmetric false,
+   * a non-symmetric one (the frictional eliminated contact system, a
+   * pinned floating body, or the row-replacing contact system, which
+   * only the direct solver takes).
    *
    * Small systems go to a sparse direct solver (Trilinos Amesos, which
    * gathers the matrix in parallel); large ones to CG (GMRES if not
-   * symmetric) preconditioned by ML algebraic multigrid, whose near null
-   * space is given the rigid body
-   * modes of elasticity (@p near_null_space, one vector of locally owned
-   * values per mode): with only the translations, aggregation-based AMG
-   * converges much more slowly on elasticity.
+   * symmetric) preconditioned by ML smoothed-aggregation algebraic
+   * multigrid, whose near null space is given the rigid body modes of
+   * elasticity (@p near_null_space, one vector of locally owned values per
+   * mode): with only the translations, aggregation-based AMG converges
+   * much more slowly on elasticity.
    *
    * Failure to converge throws with the residual reached.
    */

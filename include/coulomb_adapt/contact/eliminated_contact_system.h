@@ -1,0 +1,118 @@
+#ifndef coulomb_adapt_contact_eliminated_contact_system_h
+#define coulomb_adapt_contact_eliminated_contact_system_h
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/solvers/linear_solver.h>
+
+#include <array>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  using namespace dealii;
+
+  /**
+   * The Newton system of one active-set step with the contact conditions
+   * eliminated, for Krylov + AMG solves (doc/contact.md, "Linear solves").
+   *
+   * The row-replacing system that the direct solver takes puts gap rows
+   * (scaled D and M entries) and traction rows in place of the slave rows
+   * of K; algebraic multigrid sees no elliptic operator there and GMRES
+   * needed hundreds of iterations. Here the same discrete problem is
+   * written on the null space of the constraints, as Dirichlet data are:
+   *
+   *   u = Z u~ + u_g,   (Z~^T K Z) u~ = Z~^T (f - K u_g),
+   *
+   * K = diag(K^1, K^2) the bodies' stiffness, f their loads. Z eliminates
+   * at every active slave node j the constrained displacement components
+   * in favour of the node's free component and the master displacements
+   * (the dual basis makes D diagonal, so u^1_j is explicit):
+   * n . (D_jj u^1_j - sum_l M_jl u^2_l) = g~_j, and at stick nodes also
+   * t . (...) = the weighted slip of the previous load step. Z~ spans the
+   * test functions that do no work against the contact traction: for a
+   * frictionless or stick node Z~ = Z, so frictionless problems give a
+   * symmetric positive definite matrix (elasticity of the two bodies tied
+   * normally); at a slip node the traction lies along
+   * n + mu s t, not n, which makes the matrix non-symmetric in those rows
+   * only. Open nodes keep their rows (lambda_j = 0).
+   *
+   * The solution is that of the row-replacing system (tested to 1e-8 in
+   * contact_linear_solvers); the multipliers follow from f^1 - K^1 u^1 as
+   * before. Eliminated rows get K's diagonal entry and a zero right hand
+   * side.
+   */
+  class EliminatedContactSystem
+  {
+  public:
+    /** One slave node, as the current sets see it. */
+    struct SlaveNode
+    {
+      /** Combined indices of the node's x and y displacement. */
+      std::array<types::global_dof_index, 2> dofs;
+      Tensor<1, 2>                           normal;
+      Tensor<1, 2>                           tangent;
+      /** D_jj (mm). */
+      double weight;
+      /** Combined indices of the master DoFs of the coupled master nodes
+       * (x and y), with M_jl, and whether that DoF is constrained in body
+       * 2 (its row stays K^2's and receives no contact force). */
+      struct Coupling
+      {
+        std::array<types::global_dof_index, 2> dofs;
+        std::array<bool, 2>                    constrained;
+        double                                 value;
+      };
+      std::vector<Coupling> couplings;
+      /** Normal condition active (the node touches: stick or slip). */
+      bool active;
+      /** Tangential condition active too (stick). */
+      bool stick;
+      /** g~_j (mm^2) and, at stick nodes, the weighted slip it keeps. */
+      double weighted_gap;
+      double weighted_slip;
+      /** Direction of the tangential traction at a slip node (+1, -1),
+       * and the friction coefficient: the traction lies along
+       * n + mu s t. */
+      int    slip_sign;
+      double friction_coefficient;
+    };
+
+    /**
+     * Copy K^1, K^2 and f^1, f^2 into the combined index space (body 2
+     * shifted by @p offset); once per mesh and load step.
+     */
+    void
+    reinit(const TrilinosWrappers::SparseMatrix &K1,
+           const TrilinosWrappers::SparseMatrix &K2,
+           const TrilinosWrappers::MPI::Vector & f1,
+           const TrilinosWrappers::MPI::Vector & f2,
+           const IndexSet &                      owned,
+           const types::global_dof_index         offset,
+           const MPI_Comm                        communicator);
+
+    /**
+     * Build Z, Z~, u_g and the reduced system for the sets given by
+     * @p nodes (the slave nodes this rank owns), and solve it.
+     * @p solution receives u (combined index space, owned entries).
+     */
+    LinearSolverReport
+    solve(const std::vector<SlaveNode> &          nodes,
+          const std::vector<std::vector<double>> &near_null_space,
+          const parameters::LinearSolver &        settings,
+          TrilinosWrappers::MPI::Vector &         solution);
+
+  private:
+    IndexSet                       owned;
+    MPI_Comm                       communicator;
+    TrilinosWrappers::SparseMatrix stiffness;
+    TrilinosWrappers::MPI::Vector  load;
+  };
+} // namespace coulomb_adapt
+
+#endif

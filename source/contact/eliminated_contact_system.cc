@@ -1,0 +1,228 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <coulomb_adapt/contact/eliminated_contact_system.h>
+#include <coulomb_adapt/solvers/matrix_rows.h>
+
+#include <cmath>
+#include <map>
+
+namespace coulomb_adapt
+{
+  void
+  EliminatedContactSystem::reinit(const TrilinosWrappers::SparseMatrix &K1,
+                                  const TrilinosWrappers::SparseMatrix &K2,
+                                  const TrilinosWrappers::MPI::Vector & f1,
+                                  const TrilinosWrappers::MPI::Vector & f2,
+                                  const IndexSet &                      owned,
+                                  const types::global_dof_index         offset,
+                                  const MPI_Comm communicator)
+  {
+    this->owned        = owned;
+    this->communicator = communicator;
+
+    DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
+    for (const auto row : K1.locally_owned_range_indices())
+      for_each_entry(K1, row, [&](const auto column, const double) {
+        dsp.add(row, column);
+      });
+    for (const auto row : K2.locally_owned_range_indices())
+      for_each_entry(K2, row, [&](const auto column, const double) {
+        dsp.add(offset + row, offset + column);
+      });
+    stiffness.reinit(owned, owned, dsp, communicator);
+
+    std::vector<types::global_dof_index> columns;
+    std::vector<double>                  values;
+    const auto copy_rows = [&](const TrilinosWrappers::SparseMatrix &K,
+                               const types::global_dof_index         shift) {
+      for (const auto row : K.locally_owned_range_indices())
+        {
+          columns.clear();
+          values.clear();
+          for_each_entry(K, row, [&](const auto column, const double value) {
+            columns.push_back(shift + column);
+            values.push_back(value);
+          });
+          stiffness.set(shift + row,
+                        columns.size(),
+                        columns.data(),
+                        values.data());
+        }
+    };
+    copy_rows(K1, 0);
+    copy_rows(K2, offset);
+    stiffness.compress(VectorOperation::insert);
+
+    load.reinit(owned, communicator);
+    for (const auto i : f1.locally_owned_elements())
+      load(i) = f1(i);
+    for (const auto i : f2.locally_owned_elements())
+      load(offset + i) = f2(i);
+    load.compress(VectorOperation::insert);
+  }
+
+
+
+  LinearSolverReport
+  EliminatedContactSystem::solve(
+    const std::vector<SlaveNode> &          nodes,
+    const std::vector<std::vector<double>> &near_null_space,
+    const parameters::LinearSolver &        settings,
+    TrilinosWrappers::MPI::Vector &         solution)
+  {
+    // The rows of Z and Z~ that differ from the identity: an eliminated
+    // component is a combination of other DoFs (its own entry is stored as
+    // a zero, so that the products keep a diagonal entry to set below).
+    struct Row
+    {
+      std::map<types::global_dof_index, std::array<double, 2>> entries;
+      double                                                   shift = 0;
+    };
+    std::map<types::global_dof_index, Row> eliminated;
+    bool                                   symmetric = true;
+
+    for (const SlaveNode &node : nodes)
+      {
+        if (!node.active)
+          continue;
+        const Tensor<1, 2> &n = node.normal;
+        const Tensor<1, 2> &t = node.tangent;
+        const double        D = node.weight;
+        if (node.stick)
+          {
+            // u^1_j = (g~ n + s~ t) / D + sum_l M_jl / D u^2_l.
+            for (unsigned int c = 0; c < 2; ++c)
+              {
+                Row &row = eliminated[node.dofs[c]];
+                row.entries[node.dofs[c]] = {{0., 0.}};
+                for (const auto &m : node.couplings)
+                  {
+                    const double z = m.value / D;
+                    row.entries[m.dofs[c]] = {
+                      {z, m.constrained[c] ? 0. : z}};
+                    symmetric = symmetric && !m.constrained[c];
+                  }
+                row.shift =
+                  (node.weighted_gap * n[c] + node.weighted_slip * t[c]) / D;
+              }
+            continue;
+          }
+        // Slip: the normal condition eliminates component c, the test
+        // space is orthogonal to the traction direction w = n + mu s t.
+        // c is chosen so that both n_c and w_c are far from zero: one of
+        // the two components always qualifies, whatever mu.
+        const Tensor<1, 2> w =
+          n + node.friction_coefficient * node.slip_sign * t;
+        const auto quality = [&](const unsigned int c) {
+          return std::min(std::abs(n[c]), std::abs(w[c]) / w.norm());
+        };
+        const unsigned int c = quality(0) >= quality(1) ? 0 : 1;
+        const unsigned int o = 1 - c;
+        Row &              row = eliminated[node.dofs[c]];
+        row.entries[node.dofs[c]] = {{0., 0.}};
+        row.entries[node.dofs[o]] = {{-n[o] / n[c], -w[o] / w[c]}};
+        for (const auto &m : node.couplings)
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              const double z = m.value / D;
+              row.entries[m.dofs[d]] = {
+                {z * n[d] / n[c], m.constrained[d] ? 0. : z * w[d] / w[c]}};
+              symmetric = symmetric && !m.constrained[d];
+            }
+        row.shift = node.weighted_gap / (D * n[c]);
+        symmetric = symmetric && node.friction_coefficient == 0;
+      }
+    symmetric = Utilities::MPI::min(symmetric ? 1 : 0, communicator) == 1;
+
+    DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
+    for (const auto i : owned)
+      {
+        const auto row = eliminated.find(i);
+        if (row == eliminated.end())
+          dsp.add(i, i);
+        else
+          for (const auto &[column, value] : row->second.entries)
+            dsp.add(i, column);
+      }
+    TrilinosWrappers::SparseMatrix Z, Z_test;
+    Z.reinit(owned, owned, dsp, communicator);
+    Z_test.reinit(owned, owned, dsp, communicator);
+    TrilinosWrappers::MPI::Vector shift(owned, communicator);
+    for (const auto i : owned)
+      {
+        const auto row = eliminated.find(i);
+        if (row == eliminated.end())
+          {
+            Z.set(i, i, 1.);
+            Z_test.set(i, i, 1.);
+            continue;
+          }
+        for (const auto &[column, value] : row->second.entries)
+          {
+            Z.set(i, column, value[0]);
+            Z_test.set(i, column, value[1]);
+          }
+        shift(i) = row->second.shift;
+      }
+    Z.compress(VectorOperation::insert);
+    Z_test.compress(VectorOperation::insert);
+    shift.compress(VectorOperation::insert);
+
+    TrilinosWrappers::SparseMatrix KZ, product;
+    stiffness.mmult(KZ, Z);
+    Z_test.Tmmult(product, KZ);
+    // The product has no entries in the rows and columns of eliminated
+    // components (Trilinos drops the zeros): they get a decoupled row with
+    // K's diagonal entry, so that the operator keeps the scale AMG's
+    // smoother expects there. A copy, as a filled Epetra matrix takes no
+    // new entries.
+    DynamicSparsityPattern reduced_pattern(owned.size(), owned.size(), owned);
+    for (const auto i : owned)
+      {
+        reduced_pattern.add(i, i);
+        for_each_entry(product, i, [&](const auto column, const double) {
+          reduced_pattern.add(i, column);
+        });
+      }
+    TrilinosWrappers::SparseMatrix reduced;
+    reduced.reinit(owned, owned, reduced_pattern, communicator);
+    {
+      std::vector<types::global_dof_index> columns;
+      std::vector<double>                  values;
+      for (const auto i : owned)
+        {
+          columns.clear();
+          values.clear();
+          for_each_entry(product, i, [&](const auto column, const double v) {
+            columns.push_back(column);
+            values.push_back(v);
+          });
+          reduced.set(i, columns.size(), columns.data(), values.data());
+        }
+    }
+    for (const auto &[i, row] : eliminated)
+      reduced.set(i, i, stiffness.diag_element(i));
+    reduced.compress(VectorOperation::insert);
+
+    TrilinosWrappers::MPI::Vector residual(owned, communicator);
+    stiffness.vmult(residual, shift);
+    residual.sadd(-1., 1., load);
+    TrilinosWrappers::MPI::Vector reduced_rhs(owned, communicator);
+    Z_test.Tvmult(reduced_rhs, residual);
+
+    TrilinosWrappers::MPI::Vector reduced_solution(owned, communicator);
+    const LinearSolverReport report = solve_linear_system(reduced,
+                                                          reduced_solution,
+                                                          reduced_rhs,
+                                                          near_null_space,
+                                                          settings,
+                                                          symmetric);
+    solution.reinit(owned, communicator);
+    Z.vmult(solution, reduced_solution);
+    solution += shift;
+    return report;
+  }
+} // namespace coulomb_adapt
+

@@ -1,0 +1,223 @@
+// The contact Newton systems solved by Krylov + AMG on the eliminated system
+// (contact/eliminated_contact_system.h) against the sparse direct solver on
+// the row-replacing system: both are the same discrete problem, so every
+// Newton step must select the same sets and the converged solutions must
+// agree (node-wise sets; pressure and tangential traction to 1e-8 of the
+// largest pressure; displacements to 1e-8 relative):
+//  - hertz Q1, mu = 0.3: stick and slip nodes (GMRES: the slip rows make
+//    the eliminated matrix non-symmetric), curved interface;
+//  - hertz Q1, mu = 0 (held axis): the frictionless system is symmetric,
+//    CG is used;
+//  - blocks P1, mu = 0.3: triangles, non-matching, master DoFs with
+//    Dirichlet data coupled to the interface;
+//  - the patch test (uniform pressure on non-matching meshes): exact to
+//    1e-8 with the iterative solver too.
+// And the correction of the contact fields (a floating body under
+// prescribed tractions, pinned) with AMG against direct: the corrected
+// displacements of hertz with reactions pushed out of the Coulomb cone
+// agree to 1e-8. (The failure that made the correction solve for the
+// increment u_c - u_h, an AMG solve for u_c off by 17 % at 5.6e5 DoFs,
+// does not show at this size; doc/indicator.md.)
+// 1 and 2 ranks.
+
+#include <coulomb_adapt/indicator/contact_correction.h>
+
+#include "contact_test_utilities.h"
+
+#include <cmath>
+
+using namespace coulomb_adapt;
+
+namespace
+{
+  using Settings = std::vector<std::pair<std::string, std::string>>;
+
+  std::string
+  signature(const std::vector<ContactNodeState> &states)
+  {
+    std::string s;
+    for (const auto &n : states)
+      s += to_string(n.status)[0];
+    return s;
+  }
+
+  // max over the bodies of |a - b| / |a|, over the locally owned entries
+  // (the bodies' solution vectors have ghost entries).
+  double
+  relative_difference(const std::array<TrilinosWrappers::MPI::Vector, 2> &a,
+                      const std::array<TrilinosWrappers::MPI::Vector, 2> &b)
+  {
+    double worst = 0;
+    for (unsigned int k = 0; k < 2; ++k)
+      {
+        double difference = 0, norm = 0;
+        for (const auto i : a[k].locally_owned_elements())
+          {
+            difference += std::pow(a[k][i] - b[k][i], 2);
+            norm += std::pow(a[k][i], 2);
+          }
+        worst =
+          std::max(worst,
+                   std::sqrt(Utilities::MPI::sum(difference, MPI_COMM_WORLD) /
+                             Utilities::MPI::sum(norm, MPI_COMM_WORLD)));
+      }
+    return worst;
+  }
+
+  std::array<TrilinosWrappers::MPI::Vector, 2>
+  displacements(const testing::SolvedContactProblem &p)
+  {
+    return {{p.bodies[0]->solution(), p.bodies[1]->solution()}};
+  }
+
+  Settings
+  with_solver(Settings settings, const std::string &type)
+  {
+    settings.emplace_back("Linear solver/Type", type);
+    return settings;
+  }
+
+  void
+  compare(const std::string &name,
+          const Settings &   settings,
+          ConditionalOStream &out)
+  {
+    const auto direct = testing::solve_contact(with_solver(settings, "direct"));
+    const auto amg    = testing::solve_contact(with_solver(settings, "amg"));
+
+    const auto &a = direct->solver->node_states();
+    const auto &b = amg->solver->node_states();
+    AssertThrow(signature(a) == signature(b),
+                ExcMessage(name + ": sets differ:\n" + signature(a) + "\n" +
+                           signature(b)));
+    AssertThrow(direct->report.newton_iterations ==
+                  amg->report.newton_iterations,
+                ExcMessage(name + ": Newton steps " +
+                           std::to_string(direct->report.newton_iterations) +
+                           " (direct) and " +
+                           std::to_string(amg->report.newton_iterations) +
+                           " (amg)"));
+    double p_max = 0, d = 0;
+    for (unsigned int j = 0; j < a.size(); ++j)
+      {
+        p_max = std::max(p_max, a[j].pressure);
+        d     = std::max({d,
+                      std::abs(a[j].pressure - b[j].pressure),
+                      std::abs(a[j].tangential_traction -
+                               b[j].tangential_traction)});
+      }
+    AssertThrow(d <= 1e-8 * p_max,
+                ExcMessage(name + ": tractions differ by " +
+                           std::to_string(d / p_max)));
+    const double u_difference =
+      relative_difference(displacements(*direct), displacements(*amg));
+    AssertThrow(u_difference <= 1e-8,
+                ExcMessage(name + ": displacements differ by " +
+                           std::to_string(u_difference)));
+    const std::string method = amg->solver->last_linear_solver_report().method;
+
+    out << name << ": " << amg->report.n_active << " active ("
+        << amg->report.n_stick << " stick, " << amg->report.n_slip
+        << " slip), " << amg->report.newton_iterations
+        << " Newton steps with either solver, " << method
+        << ": same sets, tractions and displacements within 1e-8"
+        << std::endl;
+  }
+
+  // Uniform pressure p on non-matching meshes (1:3), solved iteratively.
+  void
+  patch_test(ConditionalOStream &out)
+  {
+    const double p = 2.5;
+    for (const std::string degree : {"1", "2"})
+      for (const std::string cell_type : {"quadrilateral", "triangle"})
+        {
+          const auto problem = testing::solve_contact(
+            {{"Scene/Name", "patch"},
+             {"Mesh/Cell type", cell_type},
+             {"Finite elements/Polynomial degree", degree},
+             {"Mesh/Global refinements", "1"},
+             {"Scene/Patch/Pressure", "2.5"},
+             {"Scene/Patch/Upper body subdivisions", "3, 2"},
+             {"Scene/Patch/Lower body subdivisions", "10, 4"},
+             {"Contact/Friction coefficient", "0.3"},
+             {"Linear solver/Type", "amg"}});
+          double worst = 0;
+          for (const auto &s : problem->solver->node_states())
+            worst = std::max(worst, std::abs(s.pressure - p) / p);
+          AssertThrow(worst < 1e-8,
+                      ExcMessage("patch test with amg: pressure error " +
+                                 std::to_string(worst)));
+          out << "patch, degree " << degree << ", " << cell_type << ", "
+              << problem->solver->last_linear_solver_report().method
+              << ": pressure = p at all "
+              << problem->solver->node_states().size()
+              << " slave nodes (1e-8)" << std::endl;
+        }
+  }
+
+  // The correction's solves under prescribed tractions, body 1 floating
+  // vertically (hertz with the axis held).
+  void
+  correction(ConditionalOStream &out)
+  {
+    const Settings settings = {{"Scene/Name", "hertz"},
+                               {"Scene/Hertz/Hold axis", "true"},
+                               {"Mesh/Global refinements", "1"}};
+    const double mu = 0.3;
+    std::array<std::array<TrilinosWrappers::MPI::Vector, 2>, 2> corrected;
+    unsigned int                                                n_projected = 0;
+    for (const unsigned int k : {0u, 1u})
+      {
+        const auto p = testing::solve_contact(
+          with_solver(settings, k == 0 ? "direct" : "amg"));
+        // Push the stick nodes' tractions out of the cone, outwards from
+        // the axis (the sign of the tangential traction itself is
+        // round-off near the axis).
+        auto states = p->solver->node_states();
+        for (auto &s : states)
+          if (s.status == ContactStatus::stick)
+            s.tangential_traction =
+              3 * s.tangential_traction +
+              std::copysign(1.5 * mu * s.pressure, s.position[0]);
+        const auto c = correct_contact_solution(*p->bodies[0],
+                                                *p->bodies[1],
+                                                p->solver->mortar_interface(),
+                                                states,
+                                                mu,
+                                                p->parameters.linear_solver);
+        AssertThrow(!c.skipped, ExcMessage("correction skipped"));
+        corrected[k]  = c.displacement;
+        n_projected   = c.n_projected_nodes;
+      }
+    const double difference = relative_difference(corrected[0], corrected[1]);
+    AssertThrow(difference <= 1e-8,
+                ExcMessage("corrected displacements differ by " +
+                           std::to_string(difference)));
+    out << "correction, hertz (body 1 floating), " << n_projected
+        << " reactions projected: corrected displacements with amg = "
+           "direct (1e-8)"
+        << std::endl;
+  }
+} // namespace
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  auto                             out = testing::root_output();
+
+  compare("hertz Q1, mu = 0.3", {{"Scene/Name", "hertz"}}, out);
+  compare("hertz Q1, mu = 0",
+          {{"Scene/Name", "hertz"},
+           {"Contact/Friction coefficient", "0"},
+           {"Scene/Hertz/Hold axis", "true"}},
+          out);
+  compare("blocks P1, mu = 0.3",
+          {{"Scene/Name", "blocks"},
+           {"Mesh/Cell type", "triangle"},
+           {"Mesh/Global refinements", "2"}},
+          out);
+  patch_test(out);
+  correction(out);
+}
