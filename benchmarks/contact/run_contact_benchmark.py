@@ -640,6 +640,70 @@ def plot(rows, path):
     plt.close(fig)
 
 
+def solver_comparison(direct_csv, amg_csv, png):
+    """Direct (MUMPS, row-replacing system) against Krylov + AMG (the
+    eliminated system) on the same meshes: a markdown table, and a plot
+    of the fine Newton step's time and the Krylov iterations."""
+    def key(r):
+        return (r["scene"], r["mu"], r["subdivisions"] or 4, r["refinements"])
+    direct = {key(r): r for r in read_csv(direct_csv) if r["status"] == "ok"}
+    amg = {key(r): r for r in read_csv(amg_csv) if r["status"] == "ok"}
+    common = sorted(set(direct) & set(amg),
+                    key=lambda k: (k[0], k[1], direct[k]["n_dofs"]))
+    lines = ["| scene | μ | mesh | DoFs | Newton its (direct / amg) | "
+             "Krylov its (last step) | step direct [s] | step amg [s] | "
+             "step direct / amg | contact solve direct / amg [s] | "
+             "peak mem direct / amg [MiB] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for k in common:
+        d, g = direct[k], amg[k]
+        lines.append("| %s | %g | %s | %d | %s / %s | %s | %s | %s | **%.2f** "
+                     "| %s / %s | %.0f / %.0f |" % (
+                         d["scene"], d["mu"], mesh_label(d), d["n_dofs"],
+                         d["newton_iterations"], g["newton_iterations"],
+                         g["linear_solver"], num(d["step_mean_s"], "%.3g"),
+                         num(g["step_mean_s"], "%.3g"),
+                         d["step_mean_s"] / g["step_mean_s"],
+                         num(d["contact_solve_s"], "%.3g"),
+                         num(g["contact_solve_s"], "%.3g"),
+                         d["peak_memory_MiB"], g["peak_memory_MiB"]))
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
+    styles = {("blocks", 0.0): ("C0", "o"), ("blocks", 0.3): ("C1", "s"),
+              ("hertz", 0.0): ("C2", "^"), ("hertz", 0.3): ("C3", "D")}
+    for scene, mu in SERIES:
+        ks = [k for k in common if k[0] == scene and k[1] == mu]
+        if not ks:
+            continue
+        c, m = styles[(scene, mu)]
+        x = [direct[k]["n_dofs"] for k in ks]
+        ax1.plot(x, [direct[k]["step_mean_s"] for k in ks], color=c,
+                 marker=m, ls="--", mfc="none",
+                 label="%s, direct" % label(scene, mu))
+        ax1.plot(x, [amg[k]["step_mean_s"] for k in ks], color=c, marker=m,
+                 label="%s, amg" % label(scene, mu))
+        its = [int(amg[k]["linear_solver"].split(":")[-1]) for k in ks]
+        ax2.plot(x, its, color=c, marker=m, label=label(scene, mu))
+    for ax in (ax1, ax2):
+        ax.set_xscale("log")
+        ax.set_xlabel("DoFs (both bodies)")
+        ax.grid(True, which="both", alpha=0.3)
+    ax1.set_yscale("log")
+    ax1.set_ylabel("time per fine Newton step [s]")
+    ax1.set_title("Direct (dashed) and Krylov + AMG (solid)", fontsize=10)
+    ax1.legend(fontsize=6.5)
+    ax2.set_ylabel("CG / GMRES iterations (to 1e-12)")
+    ax2.set_title("Krylov iterations of the last Newton step", fontsize=10)
+    ax2.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=85)
+    plt.close(fig)
+    return "\n".join(lines)
+
+
 def mesh_label(r):
     if r["scene"] == "hertz":
         return "graded, r = %d" % r["refinements"]
@@ -814,7 +878,15 @@ def main():
                    help="do not (re)run the elastic references")
     p.add_argument("--plot-only", action="store_true")
     p.add_argument("--table", action="store_true")
+    p.add_argument("--solver-table", nargs=3,
+                   metavar=("DIRECT_CSV", "AMG_CSV", "PNG"),
+                   help="compare runs with --linear-solver direct and amg: "
+                   "print a table, draw PNG, run nothing")
     a = p.parse_args()
+
+    if a.solver_table:
+        print(solver_comparison(*a.solver_table))
+        return 0
 
     if a.plot_only or a.table:
         rows = read_csv(a.csv)

@@ -146,13 +146,15 @@ namespace coulomb_adapt
                           "crossover at about 3000 DoFs on 1 rank, and AMG "
                           "4x faster than MUMPS at 1e6 DoFs.");
         prm.declare_entry("Maximum DoFs for direct contact",
-                          "200000",
+                          "50000",
                           Patterns::Integer(0),
                           "Largest contact system (DoFs of both bodies) "
                           "that 'auto' solves directly; Krylov + AMG on the "
                           "eliminated system above. benchmarks/contact "
-                          "measured the crossover (one Newton step, 1 "
-                          "rank).");
+                          "(README, 'Direct against Krylov + AMG') measured "
+                          "the crossover of one Newton step at about 4e4 "
+                          "DoFs on 1 rank; AMG is 1.8-3.6x faster from "
+                          "5e5 DoFs.");
         prm.declare_entry("Direct solver",
                           "Amesos_Mumps",
                           Patterns::Selection("Amesos_Mumps|Amesos_Klu"),
