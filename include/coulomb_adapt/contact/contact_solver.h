@@ -170,6 +170,10 @@ namespace coulomb_adapt
     complementarity_residual() const;
     std::string
     set_signature() const;
+    /** The complementarity residual that round-off alone can leave:
+     * multiplier_round_off / (largest pressure). */
+    double
+    residual_round_off_floor() const;
     /** Tangential slip of node j in the current load step (mm). */
     double
     slip_increment(const unsigned int j) const;
@@ -194,6 +198,9 @@ namespace coulomb_adapt
     /** For a master node: the slave nodes coupled to it with M_jl. */
     std::vector<std::vector<std::pair<unsigned int, double>>> master_to_slave;
     std::vector<double>              complementarity_constant;
+    /** Bound on the round-off of the nodal multipliers at the last
+     * evaluation (MPa): (row length + 1) eps sum |terms of f - K u| / D. */
+    double                           multiplier_round_off = 0;
     double                           row_scale;
 
     /** Krylov + AMG: the Newton systems are solved with the contact

@@ -1,0 +1,88 @@
+// A stiff, nearly incompressible body 1 on a soft one (blocks, E1/E2 = 1e3,
+// nu = 0.499 on both, mu = 1.5; stability sweep case 118): the multipliers
+// are differences of nodal forces about 1e6 times larger than themselves,
+// so the complementarity residual cannot drop below about 1e-9, above the
+// default tolerance 1e-10. The solver must accept the converged sets at
+// that round-off floor (it stopped with "the linear solver is not accurate
+// enough" before), and the solution must still be right:
+//  - contact force = applied load (1e-8 relative);
+//  - every traction in the Coulomb cone and every slip node on its edge,
+//    to the round-off floor times the largest pressure;
+//  - open nodes carry no pressure.
+// 1 and 2 ranks.
+
+#include "contact_test_utilities.h"
+
+#include <cmath>
+
+using namespace coulomb_adapt;
+
+int
+main(int argc, char *argv[])
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  auto                             out = testing::root_output();
+
+  const std::string b = "Scene/Blocks/";
+  const auto        p = testing::solve_contact(
+    {{"Scene/Name", "blocks"},
+     {b + "Pressure", "10"},
+     {b + "Upper body subdivisions", "4, 4"},
+     {b + "Lower body subdivisions", "8, 8"},
+     {b + "Hold centre line", "false"},
+     {b + "Body 1/Young's modulus", "130000000"},
+     {b + "Body 2/Young's modulus", "130000"},
+     {b + "Body 1/Poisson's ratio", "0.499"},
+     {b + "Body 2/Poisson's ratio", "0.499"},
+     {"Mesh/Global refinements", "1"},
+     {"Contact/Friction coefficient", "1.5"}});
+  const double mu = 1.5;
+
+  AssertThrow(p->report.converged, ExcMessage("not converged"));
+  const double residual = p->report.residual_history.back();
+  AssertThrow(residual > 1e-10,
+              ExcMessage("the residual reached the tolerance: this test no "
+                         "longer exercises the round-off floor"));
+
+  const Tensor<1, 2> applied({0., -10. * 100.});
+  const double       imbalance =
+    (p->report.contact_force + applied).norm() / applied.norm();
+  AssertThrow(imbalance < 1e-8,
+              ExcMessage("contact force off by " + std::to_string(imbalance)));
+
+  double p_max = 0;
+  for (const auto &s : p->solver->node_states())
+    p_max = std::max(p_max, s.pressure);
+  double worst_cone = 0, worst_edge = 0, worst_open = 0;
+  for (const auto &s : p->solver->node_states())
+    {
+      if (s.status == ContactStatus::open)
+        worst_open = std::max(worst_open, std::abs(s.pressure));
+      else
+        {
+          worst_cone = std::max(worst_cone,
+                                std::abs(s.tangential_traction) -
+                                  mu * s.pressure);
+          if (s.status == ContactStatus::slip)
+            worst_edge =
+              std::max(worst_edge,
+                       std::abs(std::abs(s.tangential_traction) -
+                                mu * s.pressure));
+        }
+    }
+  // 1e-8 of the largest pressure: the floor here is ~1e-9.
+  AssertThrow(worst_cone <= 1e-8 * p_max && worst_edge <= 1e-8 * p_max &&
+                worst_open <= 1e-8 * p_max,
+              ExcMessage("contact conditions violated: cone " +
+                         std::to_string(worst_cone / p_max) + ", edge " +
+                         std::to_string(worst_edge / p_max) + ", open " +
+                         std::to_string(worst_open / p_max)));
+
+  out << "blocks, E1/E2 = 1e3, nu = 0.499, mu = 1.5: converged in "
+      << p->report.newton_iterations << " Newton steps ("
+      << p->report.n_stick << " stick, " << p->report.n_slip
+      << " slip), residual above the tolerance 1e-10 but at the round-off "
+         "floor: yes; contact force = load (1e-8): yes; tractions in the "
+         "cone, slip nodes on its edge, open nodes free (1e-8 p_max): yes"
+      << std::endl;
+}
