@@ -362,9 +362,11 @@ namespace coulomb_adapt
   void
   ContactSolver::assemble_newton_system()
   {
-    // The iterative path builds its (eliminated) system in the solve.
     if (iterative)
-      return;
+      {
+        eliminated_system.assemble(eliminated_slave_nodes());
+        return;
+      }
     matrix = 0;
     rhs    = 0;
     const auto &nodes        = mortar.slave_nodes();
@@ -506,10 +508,8 @@ namespace coulomb_adapt
     // residual near 1e-9 (hertz), above the default Contact/Tolerance.
     settings.relative_tolerance = std::min(settings.relative_tolerance, 1e-12);
     if (iterative)
-      last_linear_solve = eliminated_system.solve(eliminated_slave_nodes(),
-                                                  rigid_body_modes(),
-                                                  settings,
-                                                  solution);
+      last_linear_solve =
+        eliminated_system.solve(rigid_body_modes(), settings, solution);
     else
       last_linear_solve = solve_linear_system(matrix,
                                               solution,

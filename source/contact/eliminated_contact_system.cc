@@ -65,12 +65,8 @@ namespace coulomb_adapt
 
 
 
-  LinearSolverReport
-  EliminatedContactSystem::solve(
-    const std::vector<SlaveNode> &          nodes,
-    const std::vector<std::vector<double>> &near_null_space,
-    const parameters::LinearSolver &        settings,
-    TrilinosWrappers::MPI::Vector &         solution)
+  void
+  EliminatedContactSystem::assemble(const std::vector<SlaveNode> &nodes)
   {
     // The rows of Z and Z~ that differ from the identity: an eliminated
     // component is a combination of other DoFs (its own entry is stored as
@@ -81,7 +77,7 @@ namespace coulomb_adapt
       double                                                   shift = 0;
     };
     std::map<types::global_dof_index, Row> eliminated;
-    bool                                   symmetric = true;
+    symmetric = true;
 
     for (const SlaveNode &node : nodes)
       {
@@ -146,10 +142,10 @@ namespace coulomb_adapt
           for (const auto &[column, value] : row->second.entries)
             dsp.add(i, column);
       }
-    TrilinosWrappers::SparseMatrix Z, Z_test;
+    TrilinosWrappers::SparseMatrix Z_test;
     Z.reinit(owned, owned, dsp, communicator);
     Z_test.reinit(owned, owned, dsp, communicator);
-    TrilinosWrappers::MPI::Vector shift(owned, communicator);
+    shift.reinit(owned, communicator);
     for (const auto i : owned)
       {
         const auto row = eliminated.find(i);
@@ -186,7 +182,6 @@ namespace coulomb_adapt
           reduced_pattern.add(i, column);
         });
       }
-    TrilinosWrappers::SparseMatrix reduced;
     reduced.reinit(owned, owned, reduced_pattern, communicator);
     {
       std::vector<types::global_dof_index> columns;
@@ -209,9 +204,18 @@ namespace coulomb_adapt
     TrilinosWrappers::MPI::Vector residual(owned, communicator);
     stiffness.vmult(residual, shift);
     residual.sadd(-1., 1., load);
-    TrilinosWrappers::MPI::Vector reduced_rhs(owned, communicator);
+    reduced_rhs.reinit(owned, communicator);
     Z_test.Tvmult(reduced_rhs, residual);
+  }
 
+
+
+  LinearSolverReport
+  EliminatedContactSystem::solve(
+    const std::vector<std::vector<double>> &near_null_space,
+    const parameters::LinearSolver &        settings,
+    TrilinosWrappers::MPI::Vector &         solution) const
+  {
     TrilinosWrappers::MPI::Vector reduced_solution(owned, communicator);
     const LinearSolverReport report = solve_linear_system(reduced,
                                                           reduced_solution,

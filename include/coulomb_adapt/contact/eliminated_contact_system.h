@@ -98,20 +98,33 @@ namespace coulomb_adapt
 
     /**
      * Build Z, Z~, u_g and the reduced system for the sets given by
-     * @p nodes (the slave nodes this rank owns), and solve it.
-     * @p solution receives u (combined index space, owned entries).
+     * @p nodes (the slave nodes this rank owns); once per Newton step.
+     */
+    void
+    assemble(const std::vector<SlaveNode> &nodes);
+
+    /**
+     * Solve the reduced system; @p solution receives u (combined index
+     * space, owned entries).
      */
     LinearSolverReport
-    solve(const std::vector<SlaveNode> &          nodes,
-          const std::vector<std::vector<double>> &near_null_space,
+    solve(const std::vector<std::vector<double>> &near_null_space,
           const parameters::LinearSolver &        settings,
-          TrilinosWrappers::MPI::Vector &         solution);
+          TrilinosWrappers::MPI::Vector &         solution) const;
 
   private:
     IndexSet                       owned;
     MPI_Comm                       communicator;
     TrilinosWrappers::SparseMatrix stiffness;
     TrilinosWrappers::MPI::Vector  load;
+
+    TrilinosWrappers::SparseMatrix Z;
+    TrilinosWrappers::MPI::Vector  shift; // u_g
+    TrilinosWrappers::SparseMatrix reduced;
+    TrilinosWrappers::MPI::Vector  reduced_rhs;
+    /** No slip node with friction and no coupling to a constrained master
+     * DoF anywhere: Z~ = Z, CG applies. */
+    bool symmetric = true;
   };
 } // namespace coulomb_adapt
 
