@@ -32,44 +32,6 @@ namespace
 {
   using Settings = std::vector<std::pair<std::string, std::string>>;
 
-  std::string
-  signature(const std::vector<ContactNodeState> &states)
-  {
-    std::string s;
-    for (const auto &n : states)
-      s += to_string(n.status)[0];
-    return s;
-  }
-
-  // max over the bodies of |a - b| / |a|, over the locally owned entries
-  // (the bodies' solution vectors have ghost entries).
-  double
-  relative_difference(const std::array<TrilinosWrappers::MPI::Vector, 2> &a,
-                      const std::array<TrilinosWrappers::MPI::Vector, 2> &b)
-  {
-    double worst = 0;
-    for (unsigned int k = 0; k < 2; ++k)
-      {
-        double difference = 0, norm = 0;
-        for (const auto i : a[k].locally_owned_elements())
-          {
-            difference += std::pow(a[k][i] - b[k][i], 2);
-            norm += std::pow(a[k][i], 2);
-          }
-        worst =
-          std::max(worst,
-                   std::sqrt(Utilities::MPI::sum(difference, MPI_COMM_WORLD) /
-                             Utilities::MPI::sum(norm, MPI_COMM_WORLD)));
-      }
-    return worst;
-  }
-
-  std::array<TrilinosWrappers::MPI::Vector, 2>
-  displacements(const testing::SolvedContactProblem &p)
-  {
-    return {{p.bodies[0]->solution(), p.bodies[1]->solution()}};
-  }
-
   Settings
   with_solver(Settings settings, const std::string &type)
   {
@@ -85,11 +47,7 @@ namespace
     const auto direct = testing::solve_contact(with_solver(settings, "direct"));
     const auto amg    = testing::solve_contact(with_solver(settings, "amg"));
 
-    const auto &a = direct->solver->node_states();
-    const auto &b = amg->solver->node_states();
-    AssertThrow(signature(a) == signature(b),
-                ExcMessage(name + ": sets differ:\n" + signature(a) + "\n" +
-                           signature(b)));
+    testing::assert_same_contact_solution(name, *direct, *amg);
     AssertThrow(direct->report.newton_iterations ==
                   amg->report.newton_iterations,
                 ExcMessage(name + ": Newton steps " +
@@ -97,23 +55,6 @@ namespace
                            " (direct) and " +
                            std::to_string(amg->report.newton_iterations) +
                            " (amg)"));
-    double p_max = 0, d = 0;
-    for (unsigned int j = 0; j < a.size(); ++j)
-      {
-        p_max = std::max(p_max, a[j].pressure);
-        d     = std::max({d,
-                      std::abs(a[j].pressure - b[j].pressure),
-                      std::abs(a[j].tangential_traction -
-                               b[j].tangential_traction)});
-      }
-    AssertThrow(d <= 1e-8 * p_max,
-                ExcMessage(name + ": tractions differ by " +
-                           std::to_string(d / p_max)));
-    const double u_difference =
-      relative_difference(displacements(*direct), displacements(*amg));
-    AssertThrow(u_difference <= 1e-8,
-                ExcMessage(name + ": displacements differ by " +
-                           std::to_string(u_difference)));
     const std::string method = amg->solver->last_linear_solver_report().method;
 
     out << name << ": " << amg->report.n_active << " active ("
@@ -190,7 +131,8 @@ namespace
         corrected[k]  = c.displacement;
         n_projected   = c.n_projected_nodes;
       }
-    const double difference = relative_difference(corrected[0], corrected[1]);
+    const double difference =
+      testing::relative_difference(corrected[0], corrected[1]);
     AssertThrow(difference <= 1e-8,
                 ExcMessage("corrected displacements differ by " +
                            std::to_string(difference)));

@@ -10,6 +10,9 @@
 
 #include "test_utilities.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -68,6 +71,74 @@ namespace coulomb_adapt
       auto p    = solve_contact_setup(settings);
       p->report = p->solver->solve();
       return p;
+    }
+
+    /** max over the bodies of |a - b| / |a|, over the locally owned
+     * entries (solution vectors have ghost entries). */
+    inline double
+    relative_difference(const std::array<TrilinosWrappers::MPI::Vector, 2> &a,
+                        const std::array<TrilinosWrappers::MPI::Vector, 2> &b)
+    {
+      double worst = 0;
+      for (unsigned int k = 0; k < 2; ++k)
+        {
+          double difference = 0, norm = 0;
+          for (const auto i : a[k].locally_owned_elements())
+            {
+              difference += std::pow(a[k][i] - b[k][i], 2);
+              norm += std::pow(a[k][i], 2);
+            }
+          worst = std::max(
+            worst,
+            std::sqrt(Utilities::MPI::sum(difference, MPI_COMM_WORLD) /
+                      Utilities::MPI::sum(norm, MPI_COMM_WORLD)));
+        }
+      return worst;
+    }
+
+    /** The solved problem's displacements, body 1 and body 2. */
+    inline std::array<TrilinosWrappers::MPI::Vector, 2>
+    displacements(const SolvedContactProblem &p)
+    {
+      return {{p.bodies[0]->solution(), p.bodies[1]->solution()}};
+    }
+
+    /** Two solutions of the same contact problem agree: node-wise sets,
+     * pressure and tangential traction to 1e-8 of the largest pressure,
+     * displacements to 1e-8 relative. Throws with @p name otherwise. */
+    inline void
+    assert_same_contact_solution(const std::string &         name,
+                                 const SolvedContactProblem &a,
+                                 const SolvedContactProblem &b)
+    {
+      const auto &s = a.solver->node_states();
+      const auto &t = b.solver->node_states();
+      const auto  signature = [](const std::vector<ContactNodeState> &states) {
+        std::string result;
+        for (const auto &n : states)
+          result += to_string(n.status)[0];
+        return result;
+      };
+      AssertThrow(signature(s) == signature(t),
+                  ExcMessage(name + ": sets differ:\n" + signature(s) +
+                             "\n" + signature(t)));
+      double p_max = 0, d = 0;
+      for (unsigned int j = 0; j < s.size(); ++j)
+        {
+          p_max = std::max(p_max, s[j].pressure);
+          d     = std::max({d,
+                        std::abs(s[j].pressure - t[j].pressure),
+                        std::abs(s[j].tangential_traction -
+                                 t[j].tangential_traction)});
+        }
+      AssertThrow(d <= 1e-8 * p_max,
+                  ExcMessage(name + ": tractions differ by " +
+                             std::to_string(d / p_max)));
+      const double u_difference =
+        relative_difference(displacements(a), displacements(b));
+      AssertThrow(u_difference <= 1e-8,
+                  ExcMessage(name + ": displacements differ by " +
+                             std::to_string(u_difference)));
     }
   } // namespace testing
 } // namespace coulomb_adapt

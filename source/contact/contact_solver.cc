@@ -889,7 +889,11 @@ namespace coulomb_adapt
               << std::setprecision(2) << residual << std::defaultfloat
               << " (assembly " << std::setprecision(2)
               << assembly_timer.wall_time() << " s, solve "
-              << solve_timer.wall_time() << " s)" << std::endl;
+              << solve_timer.wall_time() << " s";
+        if (iterative)
+          pcout << ", " << last_linear_solve.method << " "
+                << last_linear_solve.n_iterations << " its";
+        pcout << ")" << std::endl;
 
         // The residual cannot drop below the round-off of the multipliers,
         // which are differences of nodal forces: with a stiff, nearly

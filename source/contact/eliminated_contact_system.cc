@@ -69,8 +69,7 @@ namespace coulomb_adapt
   EliminatedContactSystem::assemble(const std::vector<SlaveNode> &nodes)
   {
     // The rows of Z and Z~ that differ from the identity: an eliminated
-    // component is a combination of other DoFs (its own entry is stored as
-    // a zero, so that the products keep a diagonal entry to set below).
+    // component is a combination of other DoFs, with no entry of its own.
     struct Row
     {
       std::map<types::global_dof_index, std::array<double, 2>> entries;
@@ -92,7 +91,6 @@ namespace coulomb_adapt
             for (unsigned int c = 0; c < 2; ++c)
               {
                 Row &row = eliminated[node.dofs[c]];
-                row.entries[node.dofs[c]] = {{0., 0.}};
                 for (const auto &m : node.couplings)
                   {
                     const double z = m.value / D;
@@ -117,7 +115,6 @@ namespace coulomb_adapt
         const unsigned int c = quality(0) >= quality(1) ? 0 : 1;
         const unsigned int o = 1 - c;
         Row &              row = eliminated[node.dofs[c]];
-        row.entries[node.dofs[c]] = {{0., 0.}};
         row.entries[node.dofs[o]] = {{-n[o] / n[c], -w[o] / w[c]}};
         for (const auto &m : node.couplings)
           for (unsigned int d = 0; d < 2; ++d)
@@ -170,10 +167,9 @@ namespace coulomb_adapt
     stiffness.mmult(KZ, Z);
     Z_test.Tmmult(product, KZ);
     // The product has no entries in the rows and columns of eliminated
-    // components (Trilinos drops the zeros): they get a decoupled row with
-    // K's diagonal entry, so that the operator keeps the scale AMG's
-    // smoother expects there. A copy, as a filled Epetra matrix takes no
-    // new entries.
+    // components: they get a decoupled row with K's diagonal entry, so that
+    // the operator keeps the scale AMG's smoother expects there. A copy,
+    // as a filled Epetra matrix takes no new entries.
     DynamicSparsityPattern reduced_pattern(owned.size(), owned.size(), owned);
     for (const auto i : owned)
       {

@@ -19,7 +19,7 @@ namespace coulomb_adapt
 
   /**
    * The Newton system of one active-set step with the contact conditions
-   * eliminated, for Krylov + AMG solves (doc/contact.md, "Linear solves").
+   * eliminated, for Krylov + AMG solves (doc/contact.md section 2, "Linear solvers").
    *
    * The row-replacing system that the direct solver takes puts gap rows
    * (scaled D and M entries) and traction rows in place of the slave rows
