@@ -91,7 +91,7 @@ check(const std::string &label, const Scene &scene, const unsigned int n_bodies)
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
         parameters::FiniteElements fe{degree, PlaneModel::plane_strain};
-        parameters::LinearSolver   solver{"direct", 0, "Amesos_Mumps", 1e-12, 100};
+        parameters::LinearSolver   solver{"direct", 0, "Amesos_Mumps", 1e-12, 100, 0};
         ElasticBody body(MPI_COMM_WORLD, scene, b, CellType::quadrilateral, 0, fe);
         body.setup_system();
         body.assemble_system();

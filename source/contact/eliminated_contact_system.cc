@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_control.h>
 
 #include <coulomb_adapt/contact/eliminated_contact_system.h>
 #include <coulomb_adapt/solvers/matrix_rows.h>
@@ -19,6 +20,14 @@ namespace coulomb_adapt
                                   const types::global_dof_index         offset,
                                   const MPI_Comm communicator)
   {
+    // A new load step or mesh: K may have changed, so the hierarchy is
+    // rebuilt; u of the last solve stays the initial guess on the same
+    // index space (the previous load step's solution).
+    amg.reset();
+    amg_matrix.reset();
+    reduced.reset();
+    if (owned != this->owned)
+      last_solution.clear();
     this->owned        = owned;
     this->communicator = communicator;
 
@@ -75,6 +84,24 @@ namespace coulomb_adapt
       std::map<types::global_dof_index, std::array<double, 2>> entries;
       double                                                   shift = 0;
     };
+    // The same sets and data as the last call (a repeated solve of
+    // converged sets, ContactSolver::solve): the system is built already.
+    std::vector<std::array<int, 3>> states;
+    std::vector<std::array<double, 2>> data;
+    for (const SlaveNode &node : nodes)
+      {
+        states.push_back({{node.active,
+                           node.stick,
+                           node.active && !node.stick ? node.slip_sign : 0}});
+        data.push_back({{node.weighted_gap, node.weighted_slip}});
+      }
+    const bool unchanged =
+      reduced && states == node_states && data == node_data;
+    if (Utilities::MPI::min(unchanged ? 1 : 0, communicator) == 1)
+      return;
+    node_states = std::move(states);
+    node_data   = std::move(data);
+
     std::map<types::global_dof_index, Row> eliminated;
     symmetric = true;
 
@@ -178,7 +205,8 @@ namespace coulomb_adapt
           reduced_pattern.add(i, column);
         });
       }
-    reduced.reinit(owned, owned, reduced_pattern, communicator);
+    reduced = std::make_shared<TrilinosWrappers::SparseMatrix>();
+    reduced->reinit(owned, owned, reduced_pattern, communicator);
     {
       std::vector<types::global_dof_index> columns;
       std::vector<double>                  values;
@@ -190,12 +218,16 @@ namespace coulomb_adapt
             columns.push_back(column);
             values.push_back(v);
           });
-          reduced.set(i, columns.size(), columns.data(), values.data());
+          reduced->set(i, columns.size(), columns.data(), values.data());
         }
     }
+    eliminated_dofs.clear();
     for (const auto &[i, row] : eliminated)
-      reduced.set(i, i, stiffness.diag_element(i));
-    reduced.compress(VectorOperation::insert);
+      {
+        reduced->set(i, i, stiffness.diag_element(i));
+        eliminated_dofs.push_back(i);
+      }
+    reduced->compress(VectorOperation::insert);
 
     TrilinosWrappers::MPI::Vector residual(owned, communicator);
     stiffness.vmult(residual, shift);
@@ -210,19 +242,79 @@ namespace coulomb_adapt
   EliminatedContactSystem::solve(
     const std::vector<std::vector<double>> &near_null_space,
     const parameters::LinearSolver &        settings,
-    TrilinosWrappers::MPI::Vector &         solution) const
+    TrilinosWrappers::MPI::Vector &         solution)
   {
+    // Initial guess: the last u on the components that stay unknowns; an
+    // eliminated component's reduced unknown is zero (decoupled row, zero
+    // right hand side).
     TrilinosWrappers::MPI::Vector reduced_solution(owned, communicator);
-    const LinearSolverReport report = solve_linear_system(reduced,
-                                                          reduced_solution,
-                                                          reduced_rhs,
-                                                          near_null_space,
-                                                          settings,
-                                                          symmetric);
+    if (last_solution.size() == owned.size())
+      {
+        reduced_solution = last_solution;
+        for (const auto i : eliminated_dofs)
+          reduced_solution(i) = 0.;
+        reduced_solution.compress(VectorOperation::insert);
+      }
+    const TrilinosWrappers::MPI::Vector initial_guess = reduced_solution;
+
+    const auto solve_fresh = [&]() {
+      amg.reset();
+      amg = std::make_unique<ElasticityAMG>();
+      amg->initialize(*reduced, near_null_space);
+      amg_matrix         = reduced;
+      states_at_build    = node_states;
+      reduced_solution   = initial_guess;
+      LinearSolverReport report = solve_krylov(*reduced,
+                                               reduced_solution,
+                                               reduced_rhs,
+                                               amg->preconditioner,
+                                               settings,
+                                               symmetric);
+      fresh_iterations = report.n_iterations;
+      return report;
+    };
+
+    // The previous hierarchy is reused when few slave nodes changed set
+    // since it was built, and while it still needs few iterations. Its
+    // attempt is capped, and a failed one is repeated with a fresh
+    // hierarchy, so a poor guess costs a few iterations, not the solve.
+    LinearSolverReport report;
+    if (amg && states_at_build.size() == node_states.size() &&
+        last_iterations <= fresh_iterations * 3 / 2 + 5)
+      {
+        unsigned int n_changed = 0;
+        for (unsigned int j = 0; j < node_states.size(); ++j)
+          n_changed += (node_states[j] != states_at_build[j]);
+        n_changed = Utilities::MPI::sum(n_changed, communicator);
+        if (n_changed <= max_changed_nodes_for_reuse)
+          try
+            {
+              parameters::LinearSolver capped = settings;
+              capped.max_iterations =
+                std::min(settings.max_iterations, 2 * fresh_iterations + 10);
+              report = solve_krylov(*reduced,
+                                    reduced_solution,
+                                    reduced_rhs,
+                                    amg->preconditioner,
+                                    capped,
+                                    symmetric);
+              report.preconditioner_reused = true;
+            }
+          catch (const SolverControl::NoConvergence &)
+            {
+              report = solve_fresh();
+            }
+        else
+          report = solve_fresh();
+      }
+    else
+      report = solve_fresh();
+    last_iterations = report.n_iterations;
+
     solution.reinit(owned, communicator);
     Z.vmult(solution, reduced_solution);
     solution += shift;
+    last_solution = solution;
     return report;
   }
 } // namespace coulomb_adapt
-

@@ -280,7 +280,7 @@ namespace coulomb_adapt
 
     CorrectedContactSolution corrected;
     corrected.fields.resize(states.size());
-    corrected.displacement = {slave.solution(), master.solution()};
+    corrected.displacement = {{slave.solution(), master.solution()}};
 
     // R_c: the nodal reactions projected onto the Coulomb cone. Changes at
     // the level of the condensation's round-off are not corrections.

@@ -47,74 +47,98 @@ namespace coulomb_adapt
               const parameters::LinearSolver &        settings,
               const bool                              symmetric)
     {
-      TrilinosWrappers::PreconditionAMG::AdditionalData data;
-      // Smoothed aggregation for elasticity, also for the (nearly
-      // symmetric) eliminated contact system and a pinned floating body:
-      // ML's non-symmetric variant took 2.6x longer to set up on the
-      // contact system and saved no GMRES iteration (hertz, 140,316 DoFs:
-      // 46 iterations either way).
-      data.elliptic              = true;
-      data.higher_order_elements = false;
-      data.smoother_sweeps       = 2;
-      // Drop only very weak connections when aggregating: with 0.02 the
-      // GMRES iterations on the eliminated contact system grew from 39 to
-      // 64 between 1.7e5 and 6.6e5 DoFs (blocks, mu = 0.3); with 1e-4 they
-      // are 23 and 25 (hertz at 5.6e5 DoFs: 36 instead of 70). Elasticity
-      // on uniform meshes is indifferent (15 and 13 CG iterations at 1e6
-      // DoFs either way).
-      data.aggregation_threshold = 1e-4;
-
-      // deal.II 9.4 can only hand ML constant modes; the rotation needs the
-      // mode values, so we fill ML's null space entries ourselves.
-      Teuchos::ParameterList              ml_parameters;
-      std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
-      data.set_parameters(ml_parameters, unused_constant_modes, A);
-
-      const unsigned int  n_modes = near_null_space.size();
-      const unsigned int  n_local = A.local_size();
-      std::vector<double> modes(n_modes * n_local);
-      for (unsigned int m = 0; m < n_modes; ++m)
-        {
-          AssertDimension(near_null_space[m].size(), n_local);
-          std::copy(near_null_space[m].begin(),
-                    near_null_space[m].end(),
-                    modes.begin() + m * n_local);
-        }
-      // Aggregate the two displacement components of a node together:
-      // without this ML treats every DoF as its own PDE and its iteration
-      // count grows with refinement (benchmarks/elasticity: 41 instead of
-      // 15 iterations at 1e6 DoFs).
-      ml_parameters.set("PDE equations", 2);
-      if (n_modes > 0)
-        {
-          ml_parameters.set("null space: type", "pre-computed");
-          ml_parameters.set("null space: dimension", static_cast<int>(n_modes));
-          ml_parameters.set("null space: vectors", modes.data());
-        }
-
-      TrilinosWrappers::PreconditionAMG amg;
-      amg.initialize(A, ml_parameters);
-
-      SolverControl control(settings.max_iterations,
-                            settings.relative_tolerance * b.l2_norm());
-      if (symmetric)
-        {
-          SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-          cg.solve(A, x, b, amg);
-          return {"cg+amg", control.last_step()};
-        }
-      // Right preconditioning: GMRES then stops on the true residual. With
-      // left preconditioning it stopped on the preconditioned one, and on
-      // the contact system the true residual stayed large enough to leave
-      // the complementarity residual at 3e-4 (hertz, 3.6e4 DoFs).
-      SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
-        control,
-        SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
-          100, /*right_preconditioning=*/true));
-      gmres.solve(A, x, b, amg);
-      return {"gmres+amg", control.last_step()};
+      ElasticityAMG amg;
+      amg.initialize(A, near_null_space);
+      return solve_krylov(A, x, b, amg.preconditioner, settings, symmetric);
     }
   } // namespace
+
+
+
+  void
+  ElasticityAMG::initialize(
+    const TrilinosWrappers::SparseMatrix &  A,
+    const std::vector<std::vector<double>> &near_null_space)
+  {
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    // Smoothed aggregation for elasticity, also for the (nearly
+    // symmetric) eliminated contact system and a pinned floating body:
+    // ML's non-symmetric variant took 2.6x longer to set up on the
+    // contact system and saved no GMRES iteration (hertz, 140,316 DoFs:
+    // 46 iterations either way).
+    data.elliptic              = true;
+    data.higher_order_elements = false;
+    data.smoother_sweeps       = 2;
+    // Drop only very weak connections when aggregating: with 0.02 the
+    // GMRES iterations on the eliminated contact system grew from 39 to
+    // 64 between 1.7e5 and 6.6e5 DoFs (blocks, mu = 0.3); with 1e-4 they
+    // are 23 and 25 (hertz at 5.6e5 DoFs: 36 instead of 70). Elasticity
+    // on uniform meshes is indifferent (15 and 13 CG iterations at 1e6
+    // DoFs either way).
+    data.aggregation_threshold = 1e-4;
+
+    // deal.II 9.4 can only hand ML constant modes; the rotation needs the
+    // mode values, so we fill ML's null space entries ourselves.
+    Teuchos::ParameterList              ml_parameters;
+    std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
+    data.set_parameters(ml_parameters, unused_constant_modes, A);
+
+    const unsigned int  n_modes = near_null_space.size();
+    const unsigned int  n_local = A.local_size();
+    // ML is handed a pointer to the mode values: they live as long as
+    // the preconditioner, which may be kept across solves.
+    modes.assign(n_modes * n_local, 0.);
+    for (unsigned int m = 0; m < n_modes; ++m)
+      {
+        AssertDimension(near_null_space[m].size(), n_local);
+        std::copy(near_null_space[m].begin(),
+                  near_null_space[m].end(),
+                  modes.begin() + m * n_local);
+      }
+    // Aggregate the two displacement components of a node together:
+    // without this ML treats every DoF as its own PDE and its iteration
+    // count grows with refinement (benchmarks/elasticity: 41 instead of
+    // 15 iterations at 1e6 DoFs).
+    ml_parameters.set("PDE equations", 2);
+    if (n_modes > 0)
+      {
+        ml_parameters.set("null space: type", "pre-computed");
+        ml_parameters.set("null space: dimension", static_cast<int>(n_modes));
+        ml_parameters.set("null space: vectors", modes.data());
+      }
+
+    preconditioner.initialize(A, ml_parameters);
+  }
+
+
+
+  LinearSolverReport
+  solve_krylov(const TrilinosWrappers::SparseMatrix &A,
+               TrilinosWrappers::MPI::Vector &       x,
+               const TrilinosWrappers::MPI::Vector & b,
+               const TrilinosWrappers::PreconditionBase &preconditioner,
+               const parameters::LinearSolver &      settings,
+               const bool                            symmetric)
+  {
+    SolverControl control(settings.max_iterations,
+                          settings.relative_tolerance * b.l2_norm());
+    if (symmetric)
+      {
+        SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+        cg.solve(A, x, b, preconditioner);
+        return {"cg+amg", control.last_step()};
+      }
+    // Right preconditioning: GMRES then stops on the true residual. With
+    // left preconditioning it stopped on the preconditioned one, and on
+    // the contact system the true residual stayed large enough to leave
+    // the complementarity residual at 3e-4 (hertz, 3.6e4 DoFs).
+    SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+      control,
+      SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
+        100, /*right_preconditioning=*/true));
+    gmres.solve(A, x, b, preconditioner);
+    return {"gmres+amg", control.last_step()};
+  }
 
 
 

@@ -1,6 +1,7 @@
 #ifndef coulomb_adapt_solvers_linear_solver_h
 #define coulomb_adapt_solvers_linear_solver_h
 
+#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -17,6 +18,9 @@ namespace coulomb_adapt
     /** "direct (Amesos_Mumps)", "cg+amg" or "gmres+amg". */
     std::string  method;
     unsigned int n_iterations = 0;
+    /** The AMG hierarchy of an earlier matrix was reused
+     * (EliminatedContactSystem). */
+    bool preconditioner_reused = false;
   };
 
   /**
@@ -43,6 +47,36 @@ namespace coulomb_adapt
                       const std::vector<std::vector<double>> &near_null_space,
                       const parameters::LinearSolver &        settings,
                       const bool                              symmetric = true);
+
+  /**
+   * ML smoothed-aggregation AMG for elasticity-like systems, with the
+   * given near null space (rigid body modes, one vector of locally owned
+   * values per mode) and two unknowns per node. Kept as an object so that
+   * a caller can reuse one hierarchy for several solves (the Newton steps
+   * of a contact solve, EliminatedContactSystem).
+   */
+  struct ElasticityAMG
+  {
+    void
+    initialize(const TrilinosWrappers::SparseMatrix &  A,
+               const std::vector<std::vector<double>> &near_null_space);
+
+    TrilinosWrappers::PreconditionAMG preconditioner;
+    std::vector<double>               modes;
+  };
+
+  /**
+   * CG (@p symmetric) or right-preconditioned GMRES(100) on A x = b to
+   * settings.relative_tolerance times |b|, starting from the given @p x.
+   * Failure to converge throws SolverControl::NoConvergence.
+   */
+  LinearSolverReport
+  solve_krylov(const TrilinosWrappers::SparseMatrix &    A,
+               TrilinosWrappers::MPI::Vector &           x,
+               const TrilinosWrappers::MPI::Vector &     b,
+               const TrilinosWrappers::PreconditionBase &preconditioner,
+               const parameters::LinearSolver &          settings,
+               const bool                                symmetric);
 } // namespace coulomb_adapt
 
 #endif
