@@ -107,7 +107,7 @@ FIELDS = [
 
 NEWTON_LINE = re.compile(
     r"^\s*Newton\s+(?P<k>\d+):.*\(assembly (?P<a>[0-9.eE+-]+) s, "
-    r"solve (?P<s>[0-9.eE+-]+) s\)\s*$")
+    r"solve (?P<s>[0-9.eE+-]+) s(?:, [^)]*)?\)\s*$")
 SOLVED_LINE = re.compile(
     r"^\s*(?P<body>.+?): solved by (?P<method>.+?)"
     r"(?: \((?P<its>\d+) iterations\))? in (?P<t>[0-9.eE+-]+) s\s*$")
