@@ -706,34 +706,124 @@ namespace coulomb_adapt
   double
   ContactSolver::complementarity_residual() const
   {
-    const double E = combined_modulus();
+    const double p = largest_pressure();
+    double residual = 0;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      residual = std::max(residual, node_residual(j, p));
+    return residual;
+  }
+
+
+
+  double
+  ContactSolver::largest_pressure() const
+  {
     double p = 0;
     for (const auto &s : states)
       p = std::max(p, std::abs(s.pressure));
-    if (p == 0)
-      p = 1;
-    double residual = 0;
+    return p == 0 ? 1. : p;
+  }
+
+
+
+  // Node j's share of complementarity_residual(): how far the node is from
+  // its contact conditions, independent of the complementarity scale.
+  double
+  ContactSolver::node_residual(const unsigned int j, const double p) const
+  {
+    if (!mortar.is_covered(j))
+      return 0; // no contact possible: lambda_j = 0 by construction
+    const auto & s      = states[j];
+    const double c      = combined_modulus() / s.weight;
+    const double normal = s.pressure - c * s.gap;
+    const double C_n    = s.pressure - std::max(0., normal);
+    const double trial  = s.tangential_traction + c * slip_increment(j);
+    // C_t is homogeneous of degree 2 in (lambda, c u): scale it by p
+    // and by the size of its trial traction.
+    const double C_t =
+      (mu == 0) ? s.tangential_traction * p :
+                  std::max(mu * normal, std::abs(trial)) *
+                      s.tangential_traction -
+                    mu * std::max(0., normal) * trial;
+    return std::max(std::abs(C_n) / p,
+                    std::abs(C_t) / (p * std::max(p, std::abs(trial))));
+  }
+
+
+
+  // Globalisation of the active set rule when it makes no progress: the
+  // rule moves every node that violates its conditions at once, and where
+  // the multipliers are only weakly determined (a stiff, nearly
+  // incompressible body 1 on a coarse soft body 2: stability cases 259-261)
+  // the nodes' changes undo each other's. Moving only the worst nodes
+  // (residual within @p fraction of the largest) lets the others follow
+  // the new sets' solution. The converged sets do not depend on it: they
+  // must pass the full rule unchanged.
+  unsigned int
+  ContactSolver::restrict_set_changes(
+    const std::vector<ContactNodeState> &before,
+    const double                         fraction)
+  {
+    const double p = largest_pressure();
+    const auto   changed = [&](const unsigned int j) {
+      return states[j].status != before[j].status ||
+             (states[j].status == ContactStatus::slip &&
+              states[j].slip_sign != before[j].slip_sign);
+    };
+    std::vector<double> r(states.size(), 0.);
+    double              largest = 0;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      if (changed(j))
+        largest = std::max(largest, r[j] = node_residual(j, p));
+    unsigned int n_kept = 0;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      if (changed(j))
+        {
+          if (r[j] >= fraction * largest)
+            ++n_kept;
+          else
+            {
+              states[j].status    = before[j].status;
+              states[j].slip_sign = before[j].slip_sign;
+            }
+        }
+    return n_kept;
+  }
+
+
+
+  // Sets without a stick node leave a floating body 1 free to slide (the
+  // system is singular, check_support). In a later Newton step that is
+  // more often an iterate gone astray than a load beyond the friction
+  // limit: the node that is nearest to sticking (smallest |trial| /
+  // (mu normal)) stays in stick, and the next step decides again.
+  unsigned int
+  ContactSolver::keep_one_node_stuck()
+  {
+    const unsigned int none = states.size();
+    if (mu == 0)
+      return none;
+    Tensor<1, 2> tangent;
+    unsigned int best  = none;
+    double       ratio = std::numeric_limits<double>::max();
     for (unsigned int j = 0; j < states.size(); ++j)
       {
-        const auto & s      = states[j];
-        const double c      = E / s.weight;
+        const auto &s = states[j];
+        if (s.status == ContactStatus::stick)
+          return none;
+        if (s.status == ContactStatus::open)
+          continue;
+        tangent += s.tangent;
+        const double c      = complementarity_constant[j];
         const double normal = s.pressure - c * s.gap;
-        if (!mortar.is_covered(j))
-          continue; // no contact possible: lambda_j = 0 by construction
-        const double C_n    = s.pressure - std::max(0., normal);
-        residual            = std::max(residual, std::abs(C_n) / p);
         const double trial  = s.tangential_traction + c * slip_increment(j);
-        // C_t is homogeneous of degree 2 in (lambda, c u): scale it by p
-        // and by the size of its trial traction.
-        const double C_t =
-          (mu == 0) ? s.tangential_traction * p :
-                      std::max(mu * normal, std::abs(trial)) *
-                          s.tangential_traction -
-                        mu * std::max(0., normal) * trial;
-        residual = std::max(residual,
-                            std::abs(C_t) / (p * std::max(p, std::abs(trial))));
+        if (normal > 0 && std::abs(trial) / (mu * normal) < ratio)
+          ratio = std::abs(trial) / (mu * normal), best = j;
       }
-    return residual;
+    if (best == none || slave.holds_translation(tangent / tangent.norm()))
+      return none;
+    states[best].status = ContactStatus::stick;
+    return best;
   }
 
 
@@ -818,6 +908,33 @@ namespace coulomb_adapt
     // stability sweep's case 252 (c x 1000) needs three.
     unsigned int       n_damping_steps   = 0;
     const unsigned int max_damping_steps = 4;
+    // Restricted set changes (restrict_set_changes) once neither the
+    // number of changed nodes nor the residual has reached a new low for
+    // two steps: only nodes whose residual is at least half the largest
+    // change set (stability cases 259-261 stall from step 7, and each
+    // step changed 18-33 nodes without end).
+    const unsigned int stagnation_window   = 2;
+    const double       restricted_fraction = 0.5;
+    bool               restricted        = false;
+    unsigned int       best_changed      = std::numeric_limits<unsigned int>::max();
+    double             best_residual     = std::numeric_limits<double>::max();
+    unsigned int       n_stalled         = 0;
+    // Sets without a stick node after step 1 (keep_one_node_stuck), at
+    // most this many times per load step.
+    unsigned int       n_kept_stuck      = 0;
+    const unsigned int max_kept_stuck    = 4;
+    const auto keep_body_held = [&]() {
+      if (n_kept_stuck >= max_kept_stuck)
+        return;
+      const unsigned int j = keep_one_node_stuck();
+      if (j < states.size())
+        {
+          ++n_kept_stuck;
+          pcout << "    no stick node left: the node at ("
+                << states[j].position[0] << ", " << states[j].position[1]
+                << "), nearest to sticking, stays in stick" << std::endl;
+        }
+    };
 
     for (unsigned int k = 1; k <= contact_parameters.max_newton_iterations;
          ++k)
@@ -860,8 +977,15 @@ namespace coulomb_adapt
         solve_timer.stop();
         evaluate_contact_state();
         const std::string before    = set_signature();
+        const std::vector<ContactNodeState> states_before = states;
         const unsigned int n_changed = update_sets();
         const double residual  = complementarity_residual();
+        const unsigned int n_moved =
+          restricted && n_changed > 0 ?
+            restrict_set_changes(states_before, restricted_fraction) :
+            n_changed;
+        if (n_changed > 0)
+          keep_body_held();
         report.residual_history.push_back(residual);
         report.newton_iterations = k;
 
@@ -885,7 +1009,10 @@ namespace coulomb_adapt
         if (mu > 0)
           pcout << " (" << report.n_stick << " stick, " << report.n_slip
                 << " slip)";
-        pcout << ", " << n_changed << " changed, residual " << std::scientific
+        pcout << ", " << n_changed << " changed";
+        if (n_moved != n_changed)
+          pcout << " (" << n_moved << " moved)";
+        pcout << ", residual " << std::scientific
               << std::setprecision(2) << residual << std::defaultfloat
               << " (assembly " << std::setprecision(2)
               << assembly_timer.wall_time() << " s, solve "
@@ -939,6 +1066,9 @@ namespace coulomb_adapt
             for (double &c : complementarity_constant)
               c *= 0.1;
             update_sets();
+            if (restricted)
+              restrict_set_changes(states_before, restricted_fraction);
+            keep_body_held();
             pcout << "    the sets repeat those of step "
                   << (seen - history.begin()) << ": c_n, c_t reduced to "
                   << std::pow(0.1, n_damping_steps)
@@ -978,6 +1108,21 @@ namespace coulomb_adapt
                         std::string()) +
                      "."));
         history.push_back(after);
+
+        if (n_changed < best_changed || residual < best_residual)
+          {
+            best_changed  = std::min(best_changed, n_changed);
+            best_residual = std::min(best_residual, residual);
+            n_stalled     = 0;
+          }
+        else if (++n_stalled >= stagnation_window && !restricted)
+          {
+            restricted = true;
+            pcout << "    no progress in " << stagnation_window
+                  << " steps (changed nodes, residual): from now on only "
+                     "the nodes with the largest violations change set"
+                  << std::endl;
+          }
       }
 
     if (!report.converged)
