@@ -920,7 +920,7 @@ namespace coulomb_adapt
     // monotonically over a few steps at a saturated residual (hertz from
     // the initial gap: 64, 8, 12, 8, 4, ... changed, residual 1, none of
     // them a reversal), which converge as fast without it.
-    const unsigned int stagnation_window   = 2;
+    const unsigned int stagnation_window   = 4;
     const double       restricted_fraction = 0.5;
     // For each node, the statuses (bits of status_bit) of the sets that
     // Newton steps 2, 3, ... of this load step solved with; the initial or
@@ -934,17 +934,22 @@ namespace coulomb_adapt
     unsigned int       best_changed      = std::numeric_limits<unsigned int>::max();
     double             best_residual     = std::numeric_limits<double>::max();
     unsigned int       n_stalled         = 0;
+    bool               was_reversing     = false;
     // Sets without a stick node after step 1 (keep_one_node_stuck), at
-    // most this many times per load step.
+    // most this many times per load step before the set changes are
+    // restricted; after that, whenever it happens (an oscillating
+    // iteration that moves one node at a time loses the last stick node
+    // as easily as it regains it; the step limit still ends it).
     unsigned int       n_kept_stuck      = 0;
     const unsigned int max_kept_stuck    = 4;
     const auto keep_body_held = [&]() {
-      if (n_kept_stuck >= max_kept_stuck)
+      if (n_kept_stuck >= max_kept_stuck && !restricted)
         return;
       const unsigned int j = keep_one_node_stuck();
       if (j < states.size())
         {
-          ++n_kept_stuck;
+          if (!restricted)
+            ++n_kept_stuck;
           pcout << "    no stick node left: the node at ("
                 << states[j].position[0] << ", " << states[j].position[1]
                 << "), nearest to sticking, stays in stick" << std::endl;
@@ -1140,6 +1145,7 @@ namespace coulomb_adapt
                      "."));
         history.push_back(after);
 
+        const bool reversing = 2 * n_reversed > n_changed;
         if (n_changed < best_changed || residual < best_residual)
           {
             best_changed  = std::min(best_changed, n_changed);
@@ -1147,7 +1153,7 @@ namespace coulomb_adapt
             n_stalled     = 0;
           }
         else if (++n_stalled >= stagnation_window && !restricted &&
-                 2 * n_reversed > n_changed)
+                 reversing && was_reversing)
           {
             restricted = true;
             pcout << "    no progress in " << n_stalled
@@ -1157,6 +1163,7 @@ namespace coulomb_adapt
                      "the nodes with the largest violations change set"
                   << std::endl;
           }
+        was_reversing = reversing;
       }
 
     if (!report.converged)
