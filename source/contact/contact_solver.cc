@@ -1110,6 +1110,11 @@ namespace coulomb_adapt
                   << std::pow(0.1, n_damping_steps)
                   << " times their value (damped set changes)" << std::endl;
             history.assign(1, set_signature());
+            // The damping deals with this cycle: the stall test starts
+            // again (case 252: three damping steps converge; restricting
+            // the changes between them cost a step).
+            n_stalled     = 0;
+            was_reversing = false;
             continue;
           }
         AssertThrow(
