@@ -168,6 +168,26 @@ namespace coulomb_adapt
     update_sets();
     double
     complementarity_residual() const;
+    /** The largest contact pressure (1 if there is none). */
+    double
+    largest_pressure() const;
+    /** Node j's term of the complementarity residual, normalised by the
+     * largest pressure @p p. */
+    double
+    node_residual(const unsigned int j, const double p) const;
+    /** Restricted set update: of the nodes whose sets changed from
+     * @p before, only those whose residual is at least @p fraction of
+     * the largest keep the change; the others return to @p before.
+     * Returns the number of nodes that keep their change. */
+    unsigned int
+    restrict_set_changes(const std::vector<ContactNodeState> &before,
+                         const double                         fraction);
+    /** If the sets hold no stick node and nothing else holds body 1
+     * tangentially (mu > 0), put the active node whose trial traction lies
+     * deepest inside the Coulomb cone into stick. Returns that node, or
+     * states.size() if nothing was done. */
+    unsigned int
+    keep_one_node_stuck();
     std::string
     set_signature() const;
     /** The complementarity residual that round-off alone can leave:
