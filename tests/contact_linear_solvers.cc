@@ -135,7 +135,7 @@ namespace
                                                 mu,
                                                 p->parameters.linear_solver);
         AssertThrow(!c.skipped, ExcMessage("correction skipped"));
-        corrected[k]  = c.displacement;
+        corrected[k]  = c.corrected_displacement;
         n_projected   = c.n_projected_nodes;
       }
     const double difference =

@@ -132,7 +132,7 @@ main(int argc, char **argv)
       const auto unchanged = correct_contact_solution(
         slave, master, mortar, p->solver->node_states(), mu,
         p->parameters.linear_solver);
-      TrilinosWrappers::MPI::Vector difference(unchanged.displacement[0]);
+      TrilinosWrappers::MPI::Vector difference(unchanged.displacement(0));
       difference -= slave.solution();
       out << "  FE reactions in the cone: correction skipped: "
           << (unchanged.skipped ? "yes" : "no") << ", U_c = U_h: "
@@ -186,7 +186,7 @@ main(int argc, char **argv)
                   ExcMessage("not the projection onto the cone"));
 
       const auto r2 = residual(master,
-                               corrected.displacement[1],
+                               corrected.displacement(1),
                                mortar,
                                corrected.fields,
                                false);
@@ -197,7 +197,7 @@ main(int argc, char **argv)
 
       const auto modes = rigid_modes(slave);
       const auto r1    = residual(slave,
-                               corrected.displacement[0],
+                               corrected.displacement(0),
                                mortar,
                                corrected.fields,
                                true);
@@ -206,7 +206,7 @@ main(int argc, char **argv)
       TrilinosWrappers::MPI::Vector change(slave.locally_owned_dof_set(),
                                            MPI_COMM_WORLD),
         u_h(change);
-      change = corrected.displacement[0];
+      change = corrected.displacement(0);
       u_h    = slave.solution();
       change -= u_h;
       double rigid_part = 0;

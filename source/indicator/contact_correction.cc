@@ -280,7 +280,7 @@ namespace coulomb_adapt
 
     CorrectedContactSolution corrected;
     corrected.fields.resize(states.size());
-    corrected.displacement = {{slave.solution(), master.solution()}};
+    corrected.fe_displacement = {{&slave.solution(), &master.solution()}};
 
     // R_c: the nodal reactions projected onto the Coulomb cone. Changes at
     // the level of the condensation's round-off are not corrections.
@@ -351,15 +351,15 @@ namespace coulomb_adapt
                                                loads[b],
                                                bodies[b]->solution(),
                                                solver_parameters);
-            corrected.displacement[b] = solution;
+            corrected.corrected_displacement[b] = solution;
           }
 
         // W_c from the corrected displacements, in the mortar's weighted
         // form as the solver evaluates it.
         const auto u1 = MortarInterface::gather_nodal_displacements(
-          nodes, corrected.displacement[0]);
+          nodes, corrected.displacement(0));
         const auto u2 = MortarInterface::gather_nodal_displacements(
-          master_nodes, corrected.displacement[1]);
+          master_nodes, corrected.displacement(1));
         const auto  jump = mortar.weighted_jump(u1, u2);
         const auto &gaps = mortar.weighted_initial_gaps();
         for (unsigned int j = 0; j < nodes.size(); ++j)

@@ -109,19 +109,19 @@ namespace coulomb_adapt
                                   mu);
       }
     else
-      estimate.correction.displacement = {{bodies[0]->solution(),
-                                          bodies[1]->solution()}};
+      estimate.correction.fe_displacement = {{&bodies[0]->solution(),
+                                             &bodies[1]->solution()}};
 
     std::array<double, 2> volume_squared;
     double                normalisation_squared = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
         estimate.recovered[b] = std::make_unique<RecoveredStress>(*bodies[b]);
-        estimate.recovered[b]->recover(estimate.correction.displacement[b],
+        estimate.recovered[b]->recover(estimate.correction.displacement(b),
                                        recovery);
         normalisation_squared +=
           volume_terms(*bodies[b],
-                       estimate.correction.displacement[b],
+                       estimate.correction.displacement(b),
                        *estimate.recovered[b],
                        estimate.contribution_squared[b]);
         volume_squared[b] = Utilities::MPI::sum(

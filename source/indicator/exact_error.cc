@@ -227,7 +227,7 @@ namespace coulomb_adapt
                 hp_fe_values.get_present_fe_values();
               strains.resize(fe_values.n_quadrature_points);
               fe_values[u].get_function_symmetric_gradients(
-                estimate.correction.displacement[b], strains);
+                estimate.correction.displacement(b), strains);
               for (const unsigned int q : fe_values.quadrature_point_indices())
                 {
                   points.push_back(fe_values.quadrature_point(q));

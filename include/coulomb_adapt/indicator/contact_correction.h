@@ -25,8 +25,19 @@ namespace coulomb_adapt
     /** Largest nodal penetration of W_c (mm), clipped by the contact term;
      * 0 if none. */
     double max_penetration = 0;
-    /** U_c of body 1 and body 2, with ghost entries. */
-    std::array<TrilinosWrappers::MPI::Vector, 2> displacement;
+    /** U_c of body b (0: body 1, 1: body 2), with ghost entries: the
+     * corrected displacement if a corrected solve was done, else the
+     * body's FE solution (not copied). */
+    const TrilinosWrappers::MPI::Vector &
+    displacement(const unsigned int b) const
+    {
+      return skipped ? *fe_displacement[b] : corrected_displacement[b];
+    }
+    /** The bodies' FE solutions U_h (owned by the bodies). */
+    std::array<const TrilinosWrappers::MPI::Vector *, 2> fe_displacement{};
+    /** U_c of both bodies when the corrected problem was solved; empty
+     * otherwise. */
+    std::array<TrilinosWrappers::MPI::Vector, 2> corrected_displacement;
     /** R_c (as lambda_c = -R_c) and W_c at the slave nodes. */
     std::vector<ContactNodeFields> fields;
   };
