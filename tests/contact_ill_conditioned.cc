@@ -43,6 +43,9 @@ main(int argc, char *argv[])
   AssertThrow(residual > 1e-10,
               ExcMessage("the residual reached the tolerance: this test no "
                          "longer exercises the round-off floor"));
+  AssertThrow(residual <= p->report.residual_round_off_floor,
+              ExcMessage("converged above the reported round-off floor " +
+                         std::to_string(p->report.residual_round_off_floor)));
 
   const Tensor<1, 2> applied({0., -10. * 100.});
   const double       imbalance =

@@ -201,6 +201,8 @@ namespace coulomb_adapt
     cycle_record["max_contact_pressure"] = report.max_contact_pressure;
     cycle_record["frictionless"]         = report.frictionless;
     cycle_record["residual_history"]     = report.residual_history;
+    cycle_record["residual_round_off_floor"] =
+      report.residual_round_off_floor;
   }
 
 

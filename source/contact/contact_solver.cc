@@ -1102,6 +1102,7 @@ namespace coulomb_adapt
         // incompressible body 1 (E1/E2 = 1e3, nu = 0.499; stability cases
         // 118, 254, 262) that floor lies above the default tolerance.
         const double floor = residual_round_off_floor();
+        report.residual_round_off_floor = floor;
         if (n_changed == 0 && residual <= std::max(contact_parameters.tolerance,
                                                    floor))
           {

@@ -68,6 +68,10 @@ namespace coulomb_adapt
     Tensor<1, 2>        contact_force;
     double              max_contact_pressure = 0;
     std::vector<double> residual_history;
+    /** Round-off floor of the multipliers at the last Newton step
+     * (residual_round_off_floor()); convergence accepts a residual up to
+     * max(Contact/Tolerance, this). */
+    double              residual_round_off_floor = 0;
     bool                frictionless = false;
   };
 
