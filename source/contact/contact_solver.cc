@@ -927,7 +927,9 @@ namespace coulomb_adapt
     // stability sweep's case 252 (c x 1000) needs three.
     unsigned int       n_damping_steps   = 0;
     const unsigned int max_damping_steps = 4;
-    // Tighter Krylov solves of converged sets (see below), at most two.
+    // A tighter Krylov solve of converged sets (see below), at most one:
+    // 1e-14 |b| is near what GMRES can reach in double precision, a second
+    // one would run to the iteration limit.
     unsigned int n_tighter_solves = 0;
     linear_tolerance_factor       = 1;
     // Restricted set changes (restrict_set_changes) once the iteration
@@ -1121,7 +1123,7 @@ namespace coulomb_adapt
         // system is solved again from this solution, with a 100 times
         // tighter tolerance: few iterations, and the AMG hierarchy is
         // reused since no node changed.
-        if (n_changed == 0 && iterative && n_tighter_solves < 2)
+        if (n_changed == 0 && iterative && n_tighter_solves < 1)
           {
             ++n_tighter_solves;
             linear_tolerance_factor *= 1e-2;

@@ -234,7 +234,7 @@ namespace coulomb_adapt
     EliminatedContactSystem          eliminated_system;
     TrilinosWrappers::SparseMatrix   matrix;
     LinearSolverReport               last_linear_solve;
-    /** Factor on the Krylov tolerance: 1, and 1e-2, 1e-4 when unchanged
+    /** Factor on the Krylov tolerance: 1, and 1e-2 when unchanged
      * sets miss the complementarity tolerance (ContactSolver::solve). */
     double linear_tolerance_factor = 1;
     TrilinosWrappers::MPI::Vector    rhs;
