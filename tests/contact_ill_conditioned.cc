@@ -53,33 +53,11 @@ main(int argc, char *argv[])
   AssertThrow(imbalance < 1e-8,
               ExcMessage("contact force off by " + std::to_string(imbalance)));
 
-  double p_max = 0;
-  for (const auto &s : p->solver->node_states())
-    p_max = std::max(p_max, s.pressure);
-  double worst_cone = 0, worst_edge = 0, worst_open = 0;
-  for (const auto &s : p->solver->node_states())
-    {
-      if (s.status == ContactStatus::open)
-        worst_open = std::max(worst_open, std::abs(s.pressure));
-      else
-        {
-          worst_cone = std::max(worst_cone,
-                                std::abs(s.tangential_traction) -
-                                  mu * s.pressure);
-          if (s.status == ContactStatus::slip)
-            worst_edge =
-              std::max(worst_edge,
-                       std::abs(std::abs(s.tangential_traction) -
-                                mu * s.pressure));
-        }
-    }
   // 1e-8 of the largest pressure: the floor here is ~1e-9.
-  AssertThrow(worst_cone <= 1e-8 * p_max && worst_edge <= 1e-8 * p_max &&
-                worst_open <= 1e-8 * p_max,
-              ExcMessage("contact conditions violated: cone " +
-                         std::to_string(worst_cone / p_max) + ", edge " +
-                         std::to_string(worst_edge / p_max) + ", open " +
-                         std::to_string(worst_open / p_max)));
+  testing::assert_contact_conditions("case 118",
+                                     p->solver->node_states(),
+                                     mu,
+                                     1e-8);
 
   out << "blocks, E1/E2 = 1e3, nu = 0.499, mu = 1.5: converged in "
       << p->report.newton_iterations << " Newton steps ("

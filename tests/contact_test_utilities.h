@@ -140,6 +140,46 @@ namespace coulomb_adapt
                   ExcMessage(name + ": displacements differ by " +
                              std::to_string(u_difference)));
     }
+
+    /** The converged nodal states satisfy the contact conditions to
+     * @p tolerance times the largest pressure: no negative pressure and
+     * every traction in the Coulomb cone at active nodes, slip nodes on the
+     * cone's edge in their slip direction, open nodes free. Throws with
+     * @p name and the worst violation of each otherwise. */
+    inline void
+    assert_contact_conditions(const std::string &                  name,
+                              const std::vector<ContactNodeState> &states,
+                              const double                         mu,
+                              const double                         tolerance)
+    {
+      double p_max = 0;
+      for (const auto &s : states)
+        p_max = std::max(p_max, s.pressure);
+      double cone = 0, edge = 0, open = 0, negative = 0;
+      for (const auto &s : states)
+        if (s.status == ContactStatus::open)
+          open = std::max({open,
+                           std::abs(s.pressure),
+                           std::abs(s.tangential_traction)});
+        else
+          {
+            negative = std::max(negative, -s.pressure);
+            cone     = std::max(cone,
+                            std::abs(s.tangential_traction) - mu * s.pressure);
+            if (s.status == ContactStatus::slip)
+              edge = std::max(edge,
+                              std::abs(s.tangential_traction -
+                                       mu * s.slip_sign * s.pressure));
+          }
+      AssertThrow(std::max({cone, edge, open, negative}) <= tolerance * p_max,
+                  ExcMessage(name + ": contact conditions violated (of the "
+                             "largest pressure): cone " +
+                             std::to_string(cone / p_max) + ", edge " +
+                             std::to_string(edge / p_max) + ", open " +
+                             std::to_string(open / p_max) +
+                             ", negative pressure " +
+                             std::to_string(negative / p_max)));
+    }
   } // namespace testing
 } // namespace coulomb_adapt
 

@@ -830,14 +830,11 @@ namespace coulomb_adapt
 
 
   // The complementarity residual's counterpart of multiplier_round_off:
-  // it is normalised by the largest pressure.
+  // normalised by the largest pressure, as the residual is.
   double
   ContactSolver::residual_round_off_floor() const
   {
-    double p = 0;
-    for (const auto &s : states)
-      p = std::max(p, std::abs(s.pressure));
-    return p > 0 ? multiplier_round_off / p : 0.;
+    return multiplier_round_off / largest_pressure();
   }
 
 
