@@ -1,9 +1,12 @@
 // The built-in scenes' meshes, on quadrilaterals and on triangles: area of
 // each body, length of each boundary part, and whether a body is held by
-// its Dirichlet data alone, checked against the geometry of theory.md.
+// its Dirichlet data alone, checked against the geometry of theory.md;
+// symmetry lines (hertz 'Hold axis', blocks and punch 'Hold centre line')
+// hold the upper body sideways on every mesh, remeshed ones included.
 
 #include <deal.II/fe/fe_values.h>
 
+#include <coulomb_adapt/adaptation/gmsh_remesher.h>
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/scenes/hertz.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
@@ -113,6 +116,56 @@ check_hertz_resolution(const std::string &cell_type)
     }
 }
 
+// A symmetry line must select nodes, on the scene's mesh and on a mesh
+// that gmsh made from its boundary: the gmsh meshes of the hertz disc had
+// no nodes on the axis, and 'Hold axis' held nothing.
+void
+check_symmetry_line(const std::string &scene_name,
+                    const std::string &cell_type,
+                    const std::string &hold_parameter)
+{
+  ParameterHandler prm;
+  const Parameters parameters = testing::make_parameters(
+    prm,
+    {{"Scene/Name", scene_name},
+     {"Mesh/Cell type", cell_type},
+     {hold_parameter, "true"}});
+  const auto scene = scenes::create_scene(parameters, prm);
+  auto       out   = testing::root_output();
+  ElasticBody body(MPI_COMM_WORLD, *scene, 0, parameters.mesh.cell_type, 0,
+                   parameters.finite_elements);
+  body.setup_system();
+  const Tensor<1, 2> sideways({1., 0.});
+  out << scene_name << " (" << cell_type << "), body 1 held sideways: "
+      << (body.holds_translation(sideways) ? "yes" : "no");
+  AssertThrow(body.holds_translation(sideways),
+              ExcMessage(hold_parameter + " holds nothing"));
+  if (cell_type == "triangle")
+    {
+      // Remeshed with cells about half the size.
+      Vector<double> ratio(body.triangulation().n_active_cells());
+      ratio = 0.5;
+      const auto field = nodal_size_field(body, ratio);
+      Triangulation<2> geometry;
+      body.create_scene_coarse_mesh(geometry);
+      std::vector<std::array<Point<2>, 2>> lines;
+      for (const auto &pc : body.description().point_constraints)
+        if (pc.interior_line)
+          lines.push_back(*pc.interior_line);
+      AssertThrow(lines.size() == 1, ExcMessage("no interior line"));
+      body.replace_mesh(remesh_with_gmsh(geometry, field, body.name(),
+                                         MPI_COMM_WORLD, "frontal-delaunay",
+                                         lines));
+      body.setup_system();
+      out << ", after remeshing: "
+          << (body.holds_translation(sideways) ? "yes" : "no");
+      AssertThrow(body.holds_translation(sideways),
+                  ExcMessage(hold_parameter + " holds nothing after "
+                                              "remeshing"));
+    }
+  out << std::endl;
+}
+
 int
 main(int argc, char *argv[])
 {
@@ -144,5 +197,9 @@ main(int argc, char *argv[])
             {{{pi * 1e4 / 2, {{contact, pi * 100}, {traction, 200.}}, true, 2e-2},
               {2e4, {{contact, 200.}, {dirichlet, 200.}}, false, 1e-12}}});
       check_hertz_resolution(cell_type);
+      check_symmetry_line("hertz", cell_type, "Scene/Hertz/Hold axis");
+      check_symmetry_line("blocks", cell_type,
+                          "Scene/Blocks/Hold centre line");
+      check_symmetry_line("punch", cell_type, "Scene/Punch/Hold centre line");
     }
 }

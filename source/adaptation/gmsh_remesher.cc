@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
 #include <coulomb_adapt/adaptation/gmsh_remesher.h>
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <set>
 
 namespace coulomb_adapt
 {
@@ -164,8 +166,12 @@ namespace coulomb_adapt
       types::manifold_id        manifold_id;
     };
 
+    // @p corners: vertices where a curve must end even inside a straight
+    // run or an arc (end points of interior lines).
     std::vector<Curve>
-    boundary_curves(const Triangulation<2> &tria, const std::string &body_name)
+    boundary_curves(const Triangulation<2> &      tria,
+                    const std::string &           body_name,
+                    const std::set<unsigned int> &corners)
     {
       const std::vector<BoundaryFace> loop     = boundary_loop(tria, body_name);
       const auto &                    vertices = tria.get_vertices();
@@ -176,7 +182,8 @@ namespace coulomb_adapt
       // A curve ends where the boundary data change, or where a straight
       // run turns.
       auto breaks_between = [&](const BoundaryFace &f, const BoundaryFace &g) {
-        if (f.boundary_id != g.boundary_id || f.manifold_id != g.manifold_id)
+        if (f.boundary_id != g.boundary_id ||
+            f.manifold_id != g.manifold_id || corners.count(g.a) > 0)
           return true;
         if (f.manifold_id != numbers::flat_manifold_id)
           return false;
@@ -217,10 +224,38 @@ namespace coulomb_adapt
     mesh_in_gmsh(const Triangulation<2> &              geometry,
                  const std::vector<SizeFieldTriangle> &size_field,
                  const std::string &                   body_name,
-                 const int                             algorithm)
+                 const int                             algorithm,
+                 const std::vector<std::array<Point<2>, 2>> &interior_lines)
     {
-      const std::vector<Curve> curves   = boundary_curves(geometry, body_name);
-      const auto &             vertices = geometry.get_vertices();
+      const auto &vertices = geometry.get_vertices();
+      // The boundary vertices at the interior lines' ends.
+      const double tolerance =
+        1e-10 * GridTools::diameter(geometry);
+      std::vector<std::array<unsigned int, 2>> line_ends;
+      std::set<unsigned int>                   corners;
+      for (const auto &line : interior_lines)
+        {
+          std::array<unsigned int, 2> ends;
+          for (unsigned int e = 0; e < 2; ++e)
+            {
+              ends[e] = numbers::invalid_unsigned_int;
+              for (const auto &cell : geometry.active_cell_iterators())
+                for (const auto &face : cell->face_iterators())
+                  if (face->at_boundary())
+                    for (unsigned int v = 0; v < 2; ++v)
+                      if (face->vertex(v).distance(line[e]) < tolerance)
+                        ends[e] = face->vertex_index(v);
+              AssertThrow(ends[e] != numbers::invalid_unsigned_int,
+                          ExcMessage("remeshing " + body_name +
+                                     ": the end of an interior line (a "
+                                     "symmetry line) is not a vertex of the "
+                                     "boundary"));
+              corners.insert(ends[e]);
+            }
+          line_ends.push_back(ends);
+        }
+      const std::vector<Curve> curves =
+        boundary_curves(geometry, body_name, corners);
 
       gmsh::model::add(body_name);
       std::map<unsigned int, int> point_tag;
@@ -284,7 +319,13 @@ namespace coulomb_adapt
         }
       const int loop    = gmsh::model::geo::addCurveLoop(loop_tags);
       const int surface = gmsh::model::geo::addPlaneSurface({loop});
+      std::vector<int> interior_tags;
+      for (const auto &ends : line_ends)
+        interior_tags.push_back(
+          gmsh::model::geo::addLine(point(ends[0]), point(ends[1])));
       gmsh::model::geo::synchronize();
+      if (!interior_tags.empty())
+        gmsh::model::mesh::embed(1, interior_tags, 2, surface);
 
       // The size field: a list-based view of triangles with nodal sizes.
       const int           view = gmsh::view::add("size field");
@@ -422,7 +463,8 @@ namespace coulomb_adapt
                    const std::vector<SizeFieldTriangle> &size_field,
                    const std::string &                   body_name,
                    const MPI_Comm                        comm,
-                   const std::string &                   algorithm)
+                   const std::string &                   algorithm,
+                   const std::vector<std::array<Point<2>, 2>> &interior_lines)
   {
     // gmsh's Mesh.Algorithm numbers.
     const int algorithm_number = algorithm == "delaunay" ? 5 : 6;
@@ -437,7 +479,11 @@ namespace coulomb_adapt
         try
           {
             data = pack(
-              mesh_in_gmsh(geometry, size_field, body_name, algorithm_number));
+              mesh_in_gmsh(geometry,
+                           size_field,
+                           body_name,
+                           algorithm_number,
+                           interior_lines));
           }
         catch (const std::exception &e)
           {

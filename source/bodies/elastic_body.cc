@@ -264,22 +264,39 @@ namespace coulomb_adapt
                               update_quadrature_points);
         std::vector<types::global_dof_index> local_dof_indices(
           fe->n_dofs_per_cell());
+        const auto &point_constraints = body_description.point_constraints;
+        std::vector<unsigned int> n_selected(point_constraints.size(), 0);
         for (const auto &cell : dofs.active_cell_iterators())
           if (!cell->is_artificial())
             {
               fe_values.reinit(cell);
               cell->get_dof_indices(local_dof_indices);
               for (unsigned int i = 0; i < local_dof_indices.size(); ++i)
-                for (const auto &pc : body_description.point_constraints)
-                  if (pc.components[fe->system_to_component_index(i).first] &&
-                      pc.selects(fe_values.quadrature_point(i)))
+                for (unsigned int p = 0; p < point_constraints.size(); ++p)
+                  if (point_constraints[p].components
+                        [fe->system_to_component_index(i).first] &&
+                      point_constraints[p].selects(
+                        fe_values.quadrature_point(i)))
                     {
+                      ++n_selected[p];
                       const auto dof = local_dof_indices[i];
                       supported_dofs.insert(dof);
                       if (!constraints_.is_constrained(dof))
                         constraints_.add_line(dof);
                     }
             }
+        // A support that selects no node would leave the body silently
+        // free (the hertz disc's axis on a mesh without nodes there let
+        // the stability sweep's case 286 float).
+        Utilities::MPI::sum(n_selected, mpi_communicator, n_selected);
+        for (unsigned int p = 0; p < point_constraints.size(); ++p)
+          AssertThrow(n_selected[p] > 0,
+                      ExcMessage(
+                        "body '" + body_description.name +
+                        "': its point support or symmetry line (the "
+                        "scene's hold option) selects no node of this mesh: "
+                        "the mesh has no nodes there. Mesh files must put "
+                        "nodes on it, or turn the hold option off."));
       }
     constraints_.close();
   }

@@ -118,7 +118,8 @@ namespace coulomb_adapt
               {[](const Point<2> &x) {
                  return std::abs(x[0] - 100.) < 1e-8 && x[1] > 200. + 1e-8;
                },
-               ComponentMask(std::vector<bool>{true, false})});
+               ComponentMask(std::vector<bool>{true, false}),
+               std::array<Point<2>, 2>{{Point<2>(100, 200), Point<2>(100, 300)}}});
         }
       else
         {

@@ -252,8 +252,11 @@ namespace coulomb_adapt
               << "Point(1) = {0, R, 0};  Point(2) = {-R, R, 0};\n"
               << "Point(3) = {0, 0, 0};  Point(4) = {R, R, 0};\n"
               << "Circle(1) = {2, 1, 3}; Circle(2) = {3, 1, 4};\n"
-              << "Line(3) = {4, 2};\n"
-              << "Curve Loop(1) = {1, 2, 3}; Plane Surface(1) = {1};\n"
+              << "Line(3) = {4, 1}; Line(9) = {1, 2};\n"
+              << "Curve Loop(1) = {1, 2, 3, 9}; Plane Surface(1) = {1};\n"
+              // The axis, embedded so that it is a line of nodes: 'Hold
+              // axis' constrains the nodes on it.
+              << "Line(10) = {1, 3}; Line{10} In Surface{1};\n"
               << "Point(5) = {-L, -H, 0}; Point(6) = {L, -H, 0};\n"
               << "Point(7) = {L, 0, 0};   Point(8) = {-L, 0, 0};\n"
               << "Point(9) = {0, 0, 0};\n"
@@ -263,7 +266,7 @@ namespace coulomb_adapt
               << "Physical Surface(\"body 1\") = {1};\n"
               << "Physical Surface(\"body 2\") = {2};\n"
               << "Physical Curve(\"dirichlet\") = {4};\n"
-              << "Physical Curve(\"traction\") = {3};\n"
+              << "Physical Curve(\"traction\") = {3, 9};\n"
               << "Physical Curve(\"contact\") = {1, 2, 6, 7};\n"
               << "Field[1] = Distance; Field[1].PointsList = {3, 9};\n"
               << "Field[2] = Threshold; Field[2].InField = 1;\n"
@@ -348,7 +351,8 @@ namespace coulomb_adapt
               {[r = radius](const Point<2> &x) {
                  return std::abs(x[0]) < 1e-10 * r && x[1] > 1e-10 * r;
                },
-               ComponentMask(std::vector<bool>{true, false})});
+               ComponentMask(std::vector<bool>{true, false}),
+               std::array<Point<2>, 2>{{Point<2>(0, 0), Point<2>(0, radius)}}});
         }
       else
         {

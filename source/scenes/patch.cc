@@ -123,7 +123,8 @@ namespace coulomb_adapt
               {[y0 = heights[1]](const Point<2> &x) {
                  return std::abs(x[0]) < 1e-10 && x[1] > y0 * (1 + 1e-10);
                },
-               ComponentMask(std::vector<bool>{true, false})});
+               ComponentMask(std::vector<bool>{true, false}),
+               std::nullopt}); // a boundary edge: remeshing keeps it
         }
       else
         {
@@ -136,7 +137,8 @@ namespace coulomb_adapt
           // ...and the lower left corner held horizontally.
           d.point_constraints.push_back(
             {[](const Point<2> &x) { return x.norm() < 1e-10; },
-             ComponentMask(std::vector<bool>{true, false})});
+             ComponentMask(std::vector<bool>{true, false}),
+             std::nullopt}); // a boundary corner: remeshing keeps it
         }
       return d;
     }

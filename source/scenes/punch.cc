@@ -121,7 +121,9 @@ namespace coulomb_adapt
               {[](const Point<2> &x) {
                  return std::abs(x[0]) < 1e-10 && x[1] > 1e-10;
                },
-               ComponentMask(std::vector<bool>{true, false})});
+               ComponentMask(std::vector<bool>{true, false}),
+               std::array<Point<2>, 2>{
+                 {Point<2>(0, 0), Point<2>(0, punch_height)}}});
         }
       else
         {

@@ -48,13 +48,17 @@ namespace coulomb_adapt
    * and manifold ids are carried over. Rank 0 of @p comm meshes, every
    * rank receives the mesh. @p body_name is for messages; @p algorithm is
    * gmsh's 2D algorithm, "frontal-delaunay" or "delaunay".
+   * @p interior_lines are straight segments through the body whose end
+   * points are vertices of @p geometry's boundary (symmetry lines that
+   * point constraints hold): the new mesh has a line of nodes on each.
    */
   CoarseMeshData
   remesh_with_gmsh(const Triangulation<2> &              geometry,
                    const std::vector<SizeFieldTriangle> &size_field,
                    const std::string &                   body_name,
                    const MPI_Comm                        comm,
-                   const std::string &                   algorithm);
+                   const std::string &                   algorithm,
+                   const std::vector<std::array<Point<2>, 2>> &interior_lines);
 } // namespace coulomb_adapt
 
 #endif

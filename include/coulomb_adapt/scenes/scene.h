@@ -16,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,11 @@ namespace coulomb_adapt
   {
     std::function<bool(const Point<2> &)> selects;
     ComponentMask                         components;
+    /** When the selected points are a straight segment through the body
+     * (a symmetry line), its two end points, which lie on the boundary:
+     * remeshing keeps a line of nodes there, without which the
+     * constraint would select nothing. */
+    std::optional<std::array<Point<2>, 2>> interior_line;
   };
 
   struct TractionCondition
