@@ -144,7 +144,8 @@ namespace coulomb_adapt
     /** The converged nodal states satisfy the contact conditions to
      * @p tolerance times the largest pressure: no negative pressure and
      * every traction in the Coulomb cone at active nodes, slip nodes on the
-     * cone's edge in their slip direction, open nodes free. Throws with
+     * cone's edge in their slip direction, sliding that way, stick nodes
+     * not sliding, open nodes free. Throws with
      * @p name and the worst violation of each otherwise. */
     inline void
     assert_contact_conditions(const std::string &                  name,
@@ -179,6 +180,29 @@ namespace coulomb_adapt
                              std::to_string(open / p_max) +
                              ", negative pressure " +
                              std::to_string(negative / p_max)));
+      // Slip nodes slide along their traction, stick nodes do not move,
+      // to @p tolerance of the largest slip increment (static problems:
+      // the slip itself).
+      double max_slip = 0, backward = 0, stuck = 0;
+      unsigned int n_slip = 0;
+      for (const auto &s : states)
+        if (s.status != ContactStatus::open)
+          max_slip = std::max(max_slip, std::abs(s.slip_increment));
+      for (const auto &s : states)
+        if (s.status == ContactStatus::slip)
+          {
+            ++n_slip;
+            backward = std::max(backward, -s.slip_sign * s.slip_increment);
+          }
+        else if (s.status == ContactStatus::stick)
+          stuck = std::max(stuck, std::abs(s.slip_increment));
+      if (mu > 0 && n_slip > 0)
+        AssertThrow(std::max(backward, stuck) <= tolerance * max_slip,
+                    ExcMessage(name + ": slip against the traction " +
+                               std::to_string(backward / max_slip) +
+                               ", slip of stick nodes " +
+                               std::to_string(stuck / max_slip) +
+                               " (of the largest slip increment)"));
     }
   } // namespace testing
 } // namespace coulomb_adapt

@@ -677,8 +677,18 @@ namespace coulomb_adapt
           {
             const double trial =
               s.tangential_traction + c * slip_increment(j);
-            const bool at_edge =
-              std::abs(std::abs(trial) - mu * normal) <= tie &&
+            // The tie is measured with the natural constant, as the
+            // residual is: with a small scale (c x 1e-3, stability case
+            // 261) a slip node sliding backwards by a non-negligible
+            // amount passed as a tie and the sets settled at a residual
+            // of 2.3e-6.
+            const double c_natural = combined_modulus() / s.weight;
+            const double trial_natural =
+              s.tangential_traction + c_natural * slip_increment(j);
+            const double normal_natural = s.pressure - c_natural * s.gap;
+            const bool   at_edge =
+              std::abs(std::abs(trial_natural) - mu * normal_natural) <=
+                tie &&
               s.status != ContactStatus::open;
             if (at_edge ? s.status == ContactStatus::stick :
                           std::abs(trial) < mu * normal)
