@@ -664,30 +664,25 @@ namespace coulomb_adapt
     const double tie = contact_parameters.tolerance * p_max;
     for (unsigned int j = 0; j < states.size(); ++j)
       {
-        ContactNodeState &s      = states[j];
-        const double      c      = complementarity_constant[j];
-        const double      normal = s.pressure - c * s.gap;
-        ContactStatus     status;
-        int               sign = s.slip_sign;
+        ContactNodeState &s = states[j];
+        const auto [normal, trial] =
+          trial_tractions(j, complementarity_constant[j]);
+        ContactStatus status;
+        int           sign = s.slip_sign;
         if (normal <= 0 || !mortar.is_covered(j))
           status = ContactStatus::open;
         else if (mu == 0)
           status = ContactStatus::slip;
         else
           {
-            const double trial =
-              s.tangential_traction + c * slip_increment(j);
             // The tie is measured with the natural constant, as the
             // residual is: with a small scale (c x 1e-3, stability case
             // 261) a slip node sliding backwards by a non-negligible
             // amount passed as a tie and the sets settled at a residual
             // of 2.3e-6.
-            const double c_natural = combined_modulus() / s.weight;
-            const double trial_natural =
-              s.tangential_traction + c_natural * slip_increment(j);
-            const double normal_natural = s.pressure - c_natural * s.gap;
-            const bool   at_edge =
-              std::abs(std::abs(trial_natural) - mu * normal_natural) <=
+            const auto natural = trial_tractions(j, natural_constant(j));
+            const bool at_edge =
+              std::abs(std::abs(natural.tangential) - mu * natural.normal) <=
                 tie &&
               s.status != ContactStatus::open;
             if (at_edge ? s.status == ContactStatus::stick :
@@ -744,11 +739,9 @@ namespace coulomb_adapt
   {
     if (!mortar.is_covered(j))
       return 0; // no contact possible: lambda_j = 0 by construction
-    const auto & s      = states[j];
-    const double c      = combined_modulus() / s.weight;
-    const double normal = s.pressure - c * s.gap;
-    const double C_n    = s.pressure - std::max(0., normal);
-    const double trial  = s.tangential_traction + c * slip_increment(j);
+    const auto &   s           = states[j];
+    const auto [normal, trial] = trial_tractions(j, natural_constant(j));
+    const double C_n           = s.pressure - std::max(0., normal);
     // C_t is homogeneous of degree 2 in (lambda, c u): scale it by p
     // and by the size of its trial traction.
     const double C_t =
@@ -825,9 +818,8 @@ namespace coulomb_adapt
         if (s.status == ContactStatus::open)
           continue;
         tangent += s.tangent;
-        const double c      = complementarity_constant[j];
-        const double normal = s.pressure - c * s.gap;
-        const double trial  = s.tangential_traction + c * slip_increment(j);
+        const auto [normal, trial] =
+          trial_tractions(j, complementarity_constant[j]);
         if (normal > 0 && std::abs(trial) / (mu * normal) < ratio)
           ratio = std::abs(trial) / (mu * normal), best = j;
       }
@@ -853,6 +845,24 @@ namespace coulomb_adapt
   ContactSolver::slip_increment(const unsigned int j) const
   {
     return states[j].slip - previous_weighted_slip[j] / states[j].weight;
+  }
+
+
+
+  ContactSolver::TrialTractions
+  ContactSolver::trial_tractions(const unsigned int j, const double c) const
+  {
+    const auto &s = states[j];
+    return {s.pressure - c * s.gap,
+            s.tangential_traction + c * slip_increment(j)};
+  }
+
+
+
+  double
+  ContactSolver::natural_constant(const unsigned int j) const
+  {
+    return combined_modulus() / states[j].weight;
   }
 
 

@@ -201,6 +201,20 @@ namespace coulomb_adapt
     /** Tangential slip of node j in the current load step (mm). */
     double
     slip_increment(const unsigned int j) const;
+    /** The arguments of the complementarity functions of theory.md
+     * section 2 at node j for the constant c: lambda_n - c g_j and the
+     * trial traction lambda_t + c dW_t,j. */
+    struct TrialTractions
+    {
+      double normal;
+      double tangential;
+    };
+    TrialTractions
+    trial_tractions(const unsigned int j, const double c) const;
+    /** The natural constant E_c / D_jj of node j, independent of
+     * 'Contact/Complementarity scale'. */
+    double
+    natural_constant(const unsigned int j) const;
 
     ElasticBody &                    slave;
     ElasticBody &                    master;
