@@ -9,6 +9,7 @@
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/output/file_writer.h>
 
 #include <fstream>
 #include <iostream>
@@ -64,12 +65,11 @@ main(int argc, char *argv[])
           throw ParameterError("in " + source + ": " + e.what());
         }
 
-      if (is_root)
-        {
-          std::ofstream resolved(parameters.output.directory +
-                                 "/parameters.prm");
-          prm.print_parameters(resolved, ParameterHandler::ShortPRM);
-        }
+      write_file(comm,
+                 parameters.output.directory + "/parameters.prm",
+                 [&](std::ostream &resolved) {
+                   prm.print_parameters(resolved, ParameterHandler::ShortPRM);
+                 });
       problem->run();
     }
   catch (const ParameterError &e)

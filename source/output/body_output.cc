@@ -3,9 +3,9 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <coulomb_adapt/output/body_output.h>
+#include <coulomb_adapt/output/file_writer.h>
 #include <coulomb_adapt/output/stress_postprocessor.h>
 
-#include <fstream>
 
 namespace coulomb_adapt
 {
@@ -65,10 +65,10 @@ namespace coulomb_adapt
       directory + "/", base_name, cycle, comm, 3, 0);
 
     pvd_records.emplace_back(cycle, pvtu);
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      {
-        std::ofstream pvd(directory + "/" + base_name + ".pvd");
-        DataOutBase::write_pvd_record(pvd, pvd_records);
-      }
+    write_file(comm,
+               directory + "/" + base_name + ".pvd",
+               [&](std::ostream &pvd) {
+                 DataOutBase::write_pvd_record(pvd, pvd_records);
+               });
   }
 } // namespace coulomb_adapt

@@ -3,8 +3,8 @@
 #include <deal.II/base/utilities.h>
 
 #include <coulomb_adapt/output/contact_output.h>
+#include <coulomb_adapt/output/file_writer.h>
 
-#include <fstream>
 #include <iomanip>
 
 namespace coulomb_adapt
@@ -23,14 +23,12 @@ namespace coulomb_adapt
                        const unsigned int                   cycle,
                        const bool                           write_vtu)
   {
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
-      return;
+    // Every rank holds all slave nodes; rank 0 writes (write_file).
     const bool with_density = !contact_error_density.empty();
     const std::string base =
       directory + "/contact_" + Utilities::int_to_string(cycle, 3);
 
-    {
-      std::ofstream csv(base + ".csv");
+    write_file(mpi_communicator, base + ".csv", [&](std::ostream &csv) {
       csv << "x,y,normal_x,normal_y,weight,contact_pressure,"
              "tangential_traction,gap,slip,status,facing_master"
           << (with_density ? ",contact_error_density\n" : "\n");
@@ -47,7 +45,7 @@ namespace coulomb_adapt
             csv << ',' << contact_error_density[j];
           csv << '\n';
         }
-    }
+    });
 
     if (!write_vtu)
       return;
@@ -81,8 +79,7 @@ namespace coulomb_adapt
         patch.patch_index = j;
         patches.push_back(patch);
       }
-    {
-      std::ofstream vtu(base + ".vtu");
+    write_file(mpi_communicator, base + ".vtu", [&](std::ostream &vtu) {
       DataOutBase::write_vtu(
         patches,
         names,
@@ -93,11 +90,14 @@ namespace coulomb_adapt
                      DataComponentInterpretation::DataComponentInterpretation>>(),
         DataOutBase::VtkFlags(),
         vtu);
-    }
+    });
     pvd_records.emplace_back(cycle,
                              "contact_" + Utilities::int_to_string(cycle, 3) +
                                ".vtu");
-    std::ofstream pvd(directory + "/contact.pvd");
-    DataOutBase::write_pvd_record(pvd, pvd_records);
+    write_file(mpi_communicator,
+               directory + "/contact.pvd",
+               [&](std::ostream &pvd) {
+                 DataOutBase::write_pvd_record(pvd, pvd_records);
+               });
   }
 } // namespace coulomb_adapt

@@ -1,8 +1,6 @@
 #include <coulomb_adapt/core/version.h>
+#include <coulomb_adapt/output/file_writer.h>
 #include <coulomb_adapt/output/run_summary.h>
-
-#include <cstdio>
-#include <fstream>
 
 namespace coulomb_adapt
 {
@@ -54,13 +52,8 @@ namespace coulomb_adapt
   void
   RunSummary::write() const
   {
-    if (dealii::Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
-      return;
-    const std::string temporary = file_name + ".tmp";
-    {
-      std::ofstream out(temporary);
+    write_file(mpi_communicator, file_name, [this](std::ostream &out) {
       out << summary.dump(2) << '\n';
-    }
-    std::rename(temporary.c_str(), file_name.c_str());
+    });
   }
 } // namespace coulomb_adapt

@@ -1,5 +1,10 @@
 # Run EXE with ARGS (a ;-list); succeed only if it fails (exit code != 0)
 # and its standard error matches the regular expression EXPECTED.
+# MAKE_DIRECTORY (optional): a directory created first, to stand in the
+# way of an output file.
+if(DEFINED MAKE_DIRECTORY)
+  file(MAKE_DIRECTORY ${MAKE_DIRECTORY})
+endif()
 execute_process(COMMAND ${EXE} ${ARGS}
   RESULT_VARIABLE result
   OUTPUT_VARIABLE out

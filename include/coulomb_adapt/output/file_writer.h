@@ -1,0 +1,30 @@
+#ifndef coulomb_adapt_output_file_writer_h
+#define coulomb_adapt_output_file_writer_h
+
+#include <deal.II/base/mpi.h>
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace coulomb_adapt
+{
+  /**
+   * Write the file @p path on rank 0 of @p comm: @p write fills the
+   * stream, into "path.tmp", which is renamed to @p path once complete. A
+   * reader (ParaView following a .pvd, a script polling summary.json)
+   * never sees a half-written file, and a failed write leaves what an
+   * earlier cycle wrote at @p path intact.
+   *
+   * Collective: every rank calls it, @p write runs on rank 0 only, and a
+   * failure (the file cannot be opened, written or renamed: a full disk,
+   * a directory in the way) throws on every rank with a message naming
+   * the file, so that no rank waits for another that has given up.
+   */
+  void
+  write_file(const MPI_Comm                            comm,
+             const std::string &                       path,
+             const std::function<void(std::ostream &)> &write);
+} // namespace coulomb_adapt
+
+#endif
