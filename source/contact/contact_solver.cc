@@ -585,7 +585,6 @@ namespace coulomb_adapt
   ContactSolver::evaluate_contact_state()
   {
     const auto &nodes        = mortar.slave_nodes();
-    const auto &master_nodes = mortar.master_nodes();
     const auto &D            = mortar.slave_weights();
     const auto &u1           = slave.solution();
     const auto &u2           = master.solution();
@@ -623,25 +622,14 @@ namespace coulomb_adapt
       for (std::size_t i = 0; i < v.size(); i += 3)
         lambda[static_cast<unsigned int>(v[i])] =
           Tensor<1, 2>({v[i + 1], v[i + 2]});
-    const auto slave_u =
-      MortarInterface::gather_nodal_displacements(nodes, u1);
-    const auto master_u =
-      MortarInterface::gather_nodal_displacements(master_nodes, u2);
-
-    const auto jump = mortar.weighted_jump(slave_u, master_u);
-    const auto &gaps = mortar.weighted_initial_gaps();
+    const auto gaps = mortar.nodal_gaps(u1, u2);
     for (unsigned int j = 0; j < nodes.size(); ++j)
       {
         states[j].pressure            = lambda[j] * nodes[j].normal;
         states[j].tangential_traction = lambda[j] * nodes[j].tangent;
-        states[j].facing_master = mortar.is_covered(j);
-        states[j].gap =
-          states[j].facing_master ?
-            (gaps[j] - jump[j] * nodes[j].normal) / D[j] :
-            0.;
-        states[j].slip = states[j].facing_master ?
-                           jump[j] * nodes[j].tangent / D[j] :
-                           0.;
+        states[j].facing_master       = mortar.is_covered(j);
+        states[j].gap                 = gaps[j].gap;
+        states[j].slip                = gaps[j].slip;
       }
   }
 

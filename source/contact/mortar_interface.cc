@@ -318,6 +318,24 @@ namespace coulomb_adapt
 
 
 
+  std::vector<MortarInterface::NodalGap>
+  MortarInterface::nodal_gaps(
+    const TrilinosWrappers::MPI::Vector &slave_solution,
+    const TrilinosWrappers::MPI::Vector &master_solution) const
+  {
+    const auto jump =
+      weighted_jump(gather_nodal_displacements(slave, slave_solution),
+                    gather_nodal_displacements(master, master_solution));
+    std::vector<NodalGap> result(slave.size(), NodalGap{0., 0.});
+    for (unsigned int j = 0; j < slave.size(); ++j)
+      if (is_covered(j))
+        result[j] = {(gaps[j] - jump[j] * slave[j].normal) / D[j],
+                     jump[j] * slave[j].tangent / D[j]};
+    return result;
+  }
+
+
+
   // Each rank packs the nodes whose DoFs it owns as [node, u_x, u_y].
   std::vector<Tensor<1, 2>>
   MortarInterface::gather_nodal_displacements(

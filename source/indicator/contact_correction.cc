@@ -354,20 +354,15 @@ namespace coulomb_adapt
             corrected.corrected_displacement[b] = solution;
           }
 
-        // W_c from the corrected displacements, in the mortar's weighted
-        // form as the solver evaluates it.
-        const auto u1 = MortarInterface::gather_nodal_displacements(
-          nodes, corrected.displacement(0));
-        const auto u2 = MortarInterface::gather_nodal_displacements(
-          master_nodes, corrected.displacement(1));
-        const auto  jump = mortar.weighted_jump(u1, u2);
-        const auto &gaps = mortar.weighted_initial_gaps();
+        // W_c from the corrected displacements, measured as the solver
+        // measures its iterates.
+        const auto gaps = mortar.nodal_gaps(corrected.displacement(0),
+                                            corrected.displacement(1));
         for (unsigned int j = 0; j < nodes.size(); ++j)
           if (mortar.is_covered(j))
             {
-              corrected.fields[j].gap =
-                (gaps[j] - jump[j] * nodes[j].normal) / D[j];
-              corrected.fields[j].slip = jump[j] * nodes[j].tangent / D[j] -
+              corrected.fields[j].gap  = gaps[j].gap;
+              corrected.fields[j].slip = gaps[j].slip -
                                          (states[j].slip -
                                           states[j].slip_increment);
             }

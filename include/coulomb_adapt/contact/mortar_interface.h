@@ -132,6 +132,22 @@ namespace coulomb_adapt
     weighted_jump(const std::vector<Tensor<1, 2>> &slave_displacements,
                   const std::vector<Tensor<1, 2>> &master_displacements) const;
 
+    /** A slave node's normal gap and tangential jump (mm). */
+    struct NodalGap
+    {
+      double gap;
+      double slip;
+    };
+    /** At every slave node, from the bodies' displacements (distributed
+     * vectors; every rank gets all nodes): the normal gap
+     * (g~_j - n_j . (D u^1 - M u^2)_j) / D_jj and the tangential jump
+     * t_j . (D u^1 - M u^2)_j / D_jj, both zero at nodes not covered by
+     * the master side. The contact solver's iterates and the corrected
+     * solution of the error indicator are measured with it. */
+    std::vector<NodalGap>
+    nodal_gaps(const TrilinosWrappers::MPI::Vector &slave_solution,
+               const TrilinosWrappers::MPI::Vector &master_solution) const;
+
     /** The displacements at @p nodes (of either side) from a distributed
      * displacement vector, gathered on every rank. */
     static std::vector<Tensor<1, 2>>
