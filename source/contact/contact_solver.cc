@@ -1131,6 +1131,7 @@ namespace coulomb_adapt
         if (n_changed == 0 && iterative && n_tighter_solves < 1)
           {
             ++n_tighter_solves;
+            report.n_tighter_linear_solves = n_tighter_solves;
             linear_tolerance_factor *= 1e-2;
             pcout << "    sets unchanged, residual above the tolerance: "
                   << "the linear solve is repeated with its tolerance "

@@ -72,6 +72,9 @@ namespace coulomb_adapt
      * (residual_round_off_floor()); convergence accepts a residual up to
      * max(Contact/Tolerance, this). */
     double              residual_round_off_floor = 0;
+    /** Krylov solves repeated with a tighter tolerance because unchanged
+     * sets missed Contact/Tolerance (0 or 1). */
+    unsigned int        n_tighter_linear_solves = 0;
     bool                frictionless = false;
   };
 
