@@ -879,16 +879,18 @@ namespace coulomb_adapt
 
 
 
-  // Near null space of the combined system for AMG. With friction: the
-  // three joint rigid modes of the two bodies (both rotate about the
-  // origin); six modes (each body's, zero on the other) give each aggregate
-  // six coarse unknowns, and at 6.6e5 DoFs (blocks, mu = 0.3) the setup
-  // took 1.6-1.9 s instead of 0.99 s and a GMRES iteration 82-85 instead
-  // of 61-65 ms, for 25 instead of 31 iterations. Frictionless: each
-  // body's modes, since the bodies slide freely against each other, a
-  // motion the joint modes miss where aggregates cross the interface: CG
-  // needed 38-99 iterations with the joint modes against 23-45 with these
-  // (blocks, 4.2e4-2.6e6 DoFs; doc/contact.md section 2).
+  // Near null space of the combined system for AMG: the three joint rigid
+  // modes of the two bodies (both rotate about the origin), and without
+  // friction also body 1 sliding along the interface (its translation
+  // along the mean tangent), which the frictionless contact does not
+  // resist. Six modes (each body's, zero on the other) give each aggregate
+  // six coarse unknowns: at 6.6e5 DoFs (blocks, mu = 0.3) the setup took
+  // 1.6-1.9 s instead of 0.99 s and a GMRES iteration 82-85 instead of
+  // 61-65 ms, for 25 instead of 31 iterations. Without friction the four
+  // modes took 20 CG iterations and 2.8 s where the six per-body ones took
+  // 22 and 3.8 s (blocks, 6.6e5 DoFs; the eliminated system zeroes the
+  // modes' entries at the eliminated components, without which it was 38
+  // and 36; doc/contact.md section 2).
   std::vector<std::vector<double>>
   ContactSolver::rigid_body_modes() const
   {
@@ -901,19 +903,22 @@ namespace coulomb_adapt
         modes.back().insert(modes.back().end(),
                             modes_2[m].begin(),
                             modes_2[m].end());
-        if (mu == 0)
-          std::fill(modes.back().begin() + modes_1[m].size(),
-                    modes.back().end(),
-                    0.);
       }
     if (mu == 0)
-      for (unsigned int m = 0; m < 3; ++m)
-        {
-          modes.emplace_back(modes_1[m].size(), 0.);
-          modes.back().insert(modes.back().end(),
-                              modes_2[m].begin(),
-                              modes_2[m].end());
-        }
+      {
+        Tensor<1, 2> tangent;
+        for (unsigned int j = 0; j < states.size(); ++j)
+          if (mortar.is_covered(j))
+            tangent += states[j].tangent;
+        if (tangent.norm() > 0)
+          {
+            tangent /= tangent.norm();
+            std::vector<double> slide(modes.front().size(), 0.);
+            for (std::size_t k = 0; k < modes_1[0].size(); ++k)
+              slide[k] = tangent[0] * modes_1[0][k] + tangent[1] * modes_1[1][k];
+            modes.push_back(std::move(slide));
+          }
+      }
     return modes;
   }
 
