@@ -847,6 +847,18 @@ namespace coulomb_adapt
 
 
 
+  Tensor<1, 2>
+  ContactSolver::interface_tangent() const
+  {
+    Tensor<1, 2> tangent;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      if (mortar.is_covered(j))
+        tangent += states[j].tangent;
+    return tangent.norm() > 0 ? tangent / tangent.norm() : tangent;
+  }
+
+
+
   double
   ContactSolver::natural_constant(const unsigned int j) const
   {
@@ -888,9 +900,9 @@ namespace coulomb_adapt
   // 1.6-1.9 s instead of 0.99 s and a GMRES iteration 82-85 instead of
   // 61-65 ms, for 25 instead of 31 iterations. Without friction the four
   // modes took 20 CG iterations and 2.8 s where the six per-body ones took
-  // 22 and 3.8 s (blocks, 6.6e5 DoFs; the eliminated system zeroes the
-  // modes' entries at the eliminated components, without which it was 38
-  // and 36; doc/contact.md section 2).
+  // 22 and 3.8 s (blocks, 6.6e5 DoFs, both zeroed at the eliminated
+  // components by EliminatedContactSystem::solve; the per-body modes
+  // without that took 36; doc/contact.md section 2).
   std::vector<std::vector<double>>
   ContactSolver::rigid_body_modes() const
   {
@@ -904,20 +916,13 @@ namespace coulomb_adapt
                             modes_2[m].begin(),
                             modes_2[m].end());
       }
-    if (mu == 0)
+    const Tensor<1, 2> tangent = interface_tangent();
+    if (mu == 0 && tangent.norm() > 0)
       {
-        Tensor<1, 2> tangent;
-        for (unsigned int j = 0; j < states.size(); ++j)
-          if (mortar.is_covered(j))
-            tangent += states[j].tangent;
-        if (tangent.norm() > 0)
-          {
-            tangent /= tangent.norm();
-            std::vector<double> slide(modes.front().size(), 0.);
-            for (std::size_t k = 0; k < modes_1[0].size(); ++k)
-              slide[k] = tangent[0] * modes_1[0][k] + tangent[1] * modes_1[1][k];
-            modes.push_back(std::move(slide));
-          }
+        std::vector<double> slide(modes.front().size(), 0.);
+        for (std::size_t k = 0; k < modes_1[0].size(); ++k)
+          slide[k] = tangent[0] * modes_1[0][k] + tangent[1] * modes_1[1][k];
+        modes.push_back(std::move(slide));
       }
     return modes;
   }
@@ -963,12 +968,8 @@ namespace coulomb_adapt
     const bool restriction_allowed = [&]() {
       if (mu == 0)
         return false;
-      Tensor<1, 2> tangent;
-      for (unsigned int j = 0; j < states.size(); ++j)
-        if (mortar.is_covered(j))
-          tangent += states[j].tangent;
-      return tangent.norm() > 0 &&
-             !slave.holds_translation(tangent / tangent.norm());
+      const Tensor<1, 2> tangent = interface_tangent();
+      return tangent.norm() > 0 && !slave.holds_translation(tangent);
     }();
     const unsigned int stagnation_window   = 4;
     const double       restricted_fraction = 0.5;

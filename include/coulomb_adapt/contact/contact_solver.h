@@ -214,6 +214,10 @@ namespace coulomb_adapt
     };
     TrialTractions
     trial_tractions(const unsigned int j, const double c) const;
+    /** The unit mean tangent of the slave nodes that face the master
+     * side (zero if none does): the direction in which body 1 slides. */
+    Tensor<1, 2>
+    interface_tangent() const;
     /** The natural constant E_c / D_jj of node j, independent of
      * 'Contact/Complementarity scale'. */
     double
