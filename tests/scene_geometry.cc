@@ -148,10 +148,7 @@ check_symmetry_line(const std::string &scene_name,
       const auto field = nodal_size_field(body, ratio);
       Triangulation<2> geometry;
       body.create_scene_coarse_mesh(geometry);
-      std::vector<std::array<Point<2>, 2>> lines;
-      for (const auto &pc : body.description().point_constraints)
-        if (pc.interior_line)
-          lines.push_back(*pc.interior_line);
+      const auto lines = body.description().interior_lines();
       AssertThrow(lines.size() == 1, ExcMessage("no interior line"));
       body.replace_mesh(remesh_with_gmsh(geometry, field, body.name(),
                                          MPI_COMM_WORLD, "frontal-delaunay",

@@ -229,8 +229,9 @@ namespace coulomb_adapt
     {
       const auto &vertices = geometry.get_vertices();
       // The boundary vertices at the interior lines' ends.
-      const double tolerance =
-        1e-10 * GridTools::diameter(geometry);
+      const double tolerance = 1e-10 * GridTools::diameter(geometry);
+      const auto   boundary_vertices =
+        GridTools::get_all_vertices_at_boundary(geometry);
       std::vector<std::array<unsigned int, 2>> line_ends;
       std::set<unsigned int>                   corners;
       for (const auto &line : interior_lines)
@@ -238,14 +239,9 @@ namespace coulomb_adapt
           std::array<unsigned int, 2> ends;
           for (unsigned int e = 0; e < 2; ++e)
             {
-              ends[e] = numbers::invalid_unsigned_int;
-              for (const auto &cell : geometry.active_cell_iterators())
-                for (const auto &face : cell->face_iterators())
-                  if (face->at_boundary())
-                    for (unsigned int v = 0; v < 2; ++v)
-                      if (face->vertex(v).distance(line[e]) < tolerance)
-                        ends[e] = face->vertex_index(v);
-              AssertThrow(ends[e] != numbers::invalid_unsigned_int,
+              ends[e] =
+                GridTools::find_closest_vertex(boundary_vertices, line[e]);
+              AssertThrow(vertices[ends[e]].distance(line[e]) < tolerance,
                           ExcMessage("remeshing " + body_name +
                                      ": the end of an interior line (a "
                                      "symmetry line) is not a vertex of the "

@@ -57,17 +57,13 @@ namespace coulomb_adapt
             const auto field = nodal_size_field(*bodies[b], ratios.ratio[b]);
             Triangulation<2> geometry;
             bodies[b]->create_scene_coarse_mesh(geometry);
-            std::vector<std::array<Point<2>, 2>> interior_lines;
-            for (const auto &pc : bodies[b]->description().point_constraints)
-              if (pc.interior_line)
-                interior_lines.push_back(*pc.interior_line);
             bodies[b]->replace_mesh(
               remesh_with_gmsh(geometry,
                                field,
                                bodies[b]->name(),
                                bodies[b]->dof_handler().get_communicator(),
                                parameters.remeshing_algorithm,
-                               interior_lines));
+                               bodies[b]->description().interior_lines()));
           }
         return report;
       }

@@ -510,12 +510,12 @@ namespace coulomb_adapt
       std::min(settings.relative_tolerance, 1e-12) * linear_tolerance_factor;
     if (iterative)
       last_linear_solve =
-        eliminated_system.solve(rigid_body_modes(), settings, solution);
+        eliminated_system.solve(near_null_space, settings, solution);
     else
       last_linear_solve = solve_linear_system(matrix,
                                               solution,
                                               rhs,
-                                              rigid_body_modes(),
+                                              {},
                                               settings,
                                               /*symmetric=*/false);
 
@@ -933,6 +933,11 @@ namespace coulomb_adapt
   ContactSolver::solve()
   {
     setup();
+    // The near null space depends on the meshes only: once per load step,
+    // and only for the AMG path (each Newton step evaluated both bodies'
+    // modes, cell by cell, also for the direct solver, which ignores them).
+    near_null_space = iterative ? rigid_body_modes() :
+                                  std::vector<std::vector<double>>();
 
     ContactSolverReport report;
     report.frictionless = (mu == 0);
@@ -945,8 +950,7 @@ namespace coulomb_adapt
     // A tighter Krylov solve of converged sets (see below), at most one:
     // 1e-14 |b| is near what GMRES can reach in double precision, a second
     // one would run to the iteration limit.
-    unsigned int n_tighter_solves = 0;
-    linear_tolerance_factor       = 1;
+    linear_tolerance_factor = 1;
     // Restricted set changes (restrict_set_changes) once the iteration
     // stalls: neither the number of changed nodes nor the residual has
     // reached a new low for four steps, and in each of the last two most
@@ -1134,11 +1138,10 @@ namespace coulomb_adapt
         // system is solved again from this solution, with a 100 times
         // tighter tolerance: few iterations, and the AMG hierarchy is
         // reused since no node changed.
-        if (n_changed == 0 && iterative && n_tighter_solves < 1)
+        if (n_changed == 0 && iterative && report.n_tighter_linear_solves == 0)
           {
-            ++n_tighter_solves;
-            report.n_tighter_linear_solves = n_tighter_solves;
-            linear_tolerance_factor *= 1e-2;
+            report.n_tighter_linear_solves = 1;
+            linear_tolerance_factor        = 1e-2;
             pcout << "    sets unchanged, residual above the tolerance: "
                   << "the linear solve is repeated with its tolerance "
                   << "reduced to " << linear_tolerance_factor << " times"

@@ -266,18 +266,18 @@ namespace coulomb_adapt
         reduced_solution.compress(VectorOperation::insert);
       }
     const TrilinosWrappers::MPI::Vector initial_guess = reduced_solution;
-    // The modes are zero at the eliminated components: their rows are
-    // decoupled (K's diagonal, zero right hand side), so a mode with an
-    // entry there is no near null vector of the reduced operator. With
-    // the entries kept, CG needed 36 instead of 22 iterations (blocks,
-    // mu = 0, 6.6e5 DoFs), GMRES 31 instead of 27 (mu = 0.3).
-    std::vector<std::vector<double>> modes = near_null_space;
-    for (auto &mode : modes)
-      for (const auto i : eliminated_dofs)
-        if (owned.is_element(i))
-          mode[owned.index_within_set(i)] = 0.;
 
     const auto solve_fresh = [&]() {
+      // The modes are zero at the eliminated components: their rows are
+      // decoupled (K's diagonal, zero right hand side), so a mode with an
+      // entry there is no near null vector of the reduced operator. With
+      // the entries kept, CG needed 36 instead of 22 iterations (blocks,
+      // mu = 0, 6.6e5 DoFs), GMRES 31 instead of 27 (mu = 0.3).
+      std::vector<std::vector<double>> modes = near_null_space;
+      for (auto &mode : modes)
+        for (const auto i : eliminated_dofs)
+          if (owned.is_element(i))
+            mode[owned.index_within_set(i)] = 0.;
       amg.reset();
       amg = std::make_unique<ElasticityAMG>();
       amg->initialize(*reduced, modes);

@@ -6,7 +6,6 @@
 #include <coulomb_adapt/output/file_writer.h>
 #include <coulomb_adapt/output/stress_postprocessor.h>
 
-
 namespace coulomb_adapt
 {
   BodyOutput::BodyOutput(const std::string &directory,

@@ -50,36 +50,36 @@ namespace coulomb_adapt
     if (!write_vtu)
       return;
 
-    // One 1D patch per pair of consecutive slave nodes (the nodes are
-    // sorted along the interface).
-    std::vector<std::string> names = {
-      "contact_pressure", "tangential_traction", "gap", "slip", "status"};
-    if (with_density)
-      names.emplace_back("contact_error_density");
-    std::vector<DataOutBase::Patch<1, 2>> patches;
-    for (unsigned int j = 0; j + 1 < states.size(); ++j)
-      {
-        DataOutBase::Patch<1, 2> patch;
-        patch.n_subdivisions = 1;
-        patch.reference_cell = ReferenceCells::Line;
-        patch.data.reinit(names.size(), 2);
-        for (unsigned int v = 0; v < 2; ++v)
-          {
-            const ContactNodeState &s = states[j + v];
-            patch.vertices[v]         = s.position;
-            patch.data(0, v)          = s.pressure;
-            patch.data(1, v)          = s.tangential_traction;
-            patch.data(2, v)          = s.gap;
-            patch.data(3, v)          = s.slip;
-            // 0 open, 1 stick, 2 slip.
-            patch.data(4, v) = static_cast<double>(s.status);
-            if (with_density)
-              patch.data(5, v) = contact_error_density[j + v];
-          }
-        patch.patch_index = j;
-        patches.push_back(patch);
-      }
     write_file(mpi_communicator, base + ".vtu", [&](std::ostream &vtu) {
+      // One 1D patch per pair of consecutive slave nodes (the nodes are
+      // sorted along the interface); built where it is written, rank 0.
+      std::vector<std::string> names = {
+        "contact_pressure", "tangential_traction", "gap", "slip", "status"};
+      if (with_density)
+        names.emplace_back("contact_error_density");
+      std::vector<DataOutBase::Patch<1, 2>> patches;
+      for (unsigned int j = 0; j + 1 < states.size(); ++j)
+        {
+          DataOutBase::Patch<1, 2> patch;
+          patch.n_subdivisions = 1;
+          patch.reference_cell = ReferenceCells::Line;
+          patch.data.reinit(names.size(), 2);
+          for (unsigned int v = 0; v < 2; ++v)
+            {
+              const ContactNodeState &s = states[j + v];
+              patch.vertices[v]         = s.position;
+              patch.data(0, v)          = s.pressure;
+              patch.data(1, v)          = s.tangential_traction;
+              patch.data(2, v)          = s.gap;
+              patch.data(3, v)          = s.slip;
+              // 0 open, 1 stick, 2 slip.
+              patch.data(4, v) = static_cast<double>(s.status);
+              if (with_density)
+                patch.data(5, v) = contact_error_density[j + v];
+            }
+          patch.patch_index = j;
+          patches.push_back(patch);
+        }
       DataOutBase::write_vtu(
         patches,
         names,

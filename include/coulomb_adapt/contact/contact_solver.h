@@ -255,6 +255,9 @@ namespace coulomb_adapt
     EliminatedContactSystem          eliminated_system;
     TrilinosWrappers::SparseMatrix   matrix;
     LinearSolverReport               last_linear_solve;
+    /** rigid_body_modes() of this load step, for the AMG path; empty for
+     * direct solves. */
+    std::vector<std::vector<double>> near_null_space;
     /** Factor on the Krylov tolerance: 1, and 1e-2 when unchanged
      * sets miss the complementarity tolerance (ContactSolver::solve). */
     double linear_tolerance_factor = 1;

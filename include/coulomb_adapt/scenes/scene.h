@@ -109,6 +109,18 @@ namespace coulomb_adapt
     types::boundary_id contact_boundary_id = numbers::invalid_boundary_id;
     /** Exact displacement, when the scene knows it (for verification). */
     std::shared_ptr<const Function<2>> exact_displacement;
+
+    /** The interior lines of the point constraints (symmetry lines that
+     * a remeshed mesh must keep as lines of nodes). */
+    std::vector<std::array<Point<2>, 2>>
+    interior_lines() const
+    {
+      std::vector<std::array<Point<2>, 2>> lines;
+      for (const auto &pc : point_constraints)
+        if (pc.interior_line)
+          lines.push_back(*pc.interior_line);
+      return lines;
+    }
   };
 
   /**
