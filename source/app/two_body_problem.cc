@@ -117,29 +117,74 @@ namespace coulomb_adapt
                                  std::string("frictionless (mu = 0): no "
                                              "stick/slip sets"))
           << std::endl;
-    // A solver from the initial gap (again, if a predicted start fails).
-    const auto new_contact_solver = [&]() {
-      contact_solver = std::make_unique<ContactSolver>(*bodies[0],
-                                                       *bodies[1],
-                                                       parameters.contact,
-                                                       parameters.linear_solver,
-                                                       pcout);
-    };
-    new_contact_solver();
+    // A solver with contact parameters @p c, from the initial gap or
+    // from predicted sets.
+    const auto new_contact_solver =
+      [&](const parameters::Contact &               c,
+          const std::vector<ContactNodeState> *predicted_sets) {
+        contact_solver = std::make_unique<ContactSolver>(
+          *bodies[0], *bodies[1], c, parameters.linear_solver, pcout);
+        if (predicted_sets != nullptr)
+          contact_solver->warm_start_from(*predicted_sets);
+      };
     const bool static_problem = scene->n_load_steps() == 1;
     const bool warm_start = parameters.adaptation.warm_start &&
                             !previous_contact_states.empty() &&
                             static_problem;
+    std::vector<ContactNodeState> predicted_sets;
     if (warm_start)
-      contact_solver->warm_start_from(previous_contact_states);
-    const bool nested = !warm_start && static_problem &&
-                        !last_adaptation && start_from_coarser_meshes();
+      predicted_sets = previous_contact_states;
+    const bool nested = !warm_start && static_problem && !last_adaptation &&
+                        start_from_coarser_meshes(predicted_sets);
+    const bool predicted_start = warm_start || nested;
+    new_contact_solver(parameters.contact,
+                       predicted_start ? &predicted_sets : nullptr);
     pcout << "  contact: Newton starts from "
           << (warm_start ? "the previous cycle's contact sets (warm start)" :
               nested     ? "the sets of the coarser meshes (nested iteration)" :
                            "the initial gap")
           << std::endl;
     cycle_record["warm_start"] = warm_start;
+
+    // Where a static solve goes on when it stops with a diagnosis. Sets
+    // predicted on another mesh (warm start, nested iteration) can start
+    // the iteration on the wrong side of a diagnosis (an all-slip first
+    // step), which is not the problem's failure: first the initial gap.
+    // Then, if the user scaled c_n = c_t, the natural constants: the
+    // solution does not depend on c, only the path of the active set
+    // iteration does, and an extreme scale can keep the sets from settling
+    // (stability sweep case 241, c x 1e3: 40 steps without convergence,
+    // 31 with c x 1). A quasi-static path is not restarted: its stick/slip
+    // history lives in the solver.
+    struct Restart
+    {
+      parameters::Contact contact;
+      bool                from_predicted_sets;
+      std::string         description;
+      std::string         summary_key;
+    };
+    std::vector<Restart> restarts;
+    if (static_problem && predicted_start)
+      restarts.push_back({parameters.contact,
+                          false,
+                          "from the initial gap",
+                          "retried_from_initial_gap"});
+    if (static_problem && parameters.contact.complementarity_scale != 1.)
+      {
+        parameters::Contact natural = parameters.contact;
+        natural.complementarity_scale = 1.;
+        restarts.push_back(
+          {natural,
+           predicted_start,
+           std::string("with the natural constants c = E_c/h "
+                       "('Contact/Complementarity scale' = 1 instead of ") +
+             Patterns::Tools::Convert<double>::to_string(
+               parameters.contact.complementarity_scale) +
+             "), from " +
+             (predicted_start ? "the predicted sets" : "the initial gap"),
+           "retried_with_natural_complementarity_scale"});
+      }
+
     // The scene's load path: one step for the static problem, several for
     // a quasi-static one (the solver keeps the stick/slip history).
     const unsigned int  n_steps = scene->n_load_steps();
@@ -158,26 +203,25 @@ namespace coulomb_adapt
                 body->assemble_system();
               }
           }
-        try
-          {
-            report = contact_solver->solve();
-          }
-        catch (const std::exception &e)
-          {
-            // Sets predicted on another mesh (warm start, nested iteration)
-            // can start the iteration on the wrong side of a diagnosis (an
-            // all-slip first step): such a failure is not the problem's,
-            // so the solve is repeated once from the initial gap, which
-            // then decides.
-            if (!(warm_start || nested))
-              throw;
-            pcout << "  contact: the solve from the predicted sets stopped ("
-                  << user_message(e).substr(0, 160)
-                  << " ...); solving again from the initial gap" << std::endl;
-            cycle_record["retried_from_initial_gap"] = true;
-            new_contact_solver();
-            report = contact_solver->solve();
-          }
+        for (unsigned int attempt = 0;; ++attempt)
+          try
+            {
+              report = contact_solver->solve();
+              break;
+            }
+          catch (const std::exception &e)
+            {
+              if (attempt == restarts.size())
+                throw;
+              const Restart &restart = restarts[attempt];
+              pcout << "  contact: the solve stopped ("
+                    << user_message(e).substr(0, 160) << " ...); solving again "
+                    << restart.description << std::endl;
+              cycle_record[restart.summary_key] = true;
+              new_contact_solver(restart.contact,
+                                 restart.from_predicted_sets ? &predicted_sets :
+                                                               nullptr);
+            }
         total_newton_iterations += report.newton_iterations;
       }
     report.newton_iterations = total_newton_iterations;
@@ -212,7 +256,8 @@ namespace coulomb_adapt
   // coarser ones are the same meshes with fewer. Whether it runs, and why
   // not, goes to the log and summary.json.
   bool
-  TwoBodyProblem::start_from_coarser_meshes()
+  TwoBodyProblem::start_from_coarser_meshes(
+    std::vector<ContactNodeState> &predicted_sets)
   {
     const auto &c = parameters.contact;
     const types::global_dof_index n_dofs =
@@ -241,8 +286,7 @@ namespace coulomb_adapt
     std::vector<NestedIterationLevel> levels;
     try
       {
-        const std::vector<ContactNodeState> states =
-          predict_contact_sets_on_coarser_meshes(
+        predicted_sets = predict_contact_sets_on_coarser_meshes(
             mpi_communicator,
             *scene,
             parameters.mesh.cell_type,
@@ -252,7 +296,6 @@ namespace coulomb_adapt
             parameters.contact,
             parameters.linear_solver,
             levels);
-        contact_solver->warm_start_from(states);
       }
     catch (const std::exception &e)
       {

@@ -67,9 +67,10 @@ namespace coulomb_adapt
     has_contact() const;
     void
     solve_contact();
-    /** Nested iteration for the first Newton step; false if skipped. */
+    /** Nested iteration for the first Newton step: the sets predicted on
+     * the coarser meshes, or false if skipped. */
     bool
-    start_from_coarser_meshes();
+    start_from_coarser_meshes(std::vector<ContactNodeState> &predicted_sets);
     void
     solve_separately();
     void
