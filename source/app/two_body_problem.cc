@@ -244,6 +244,8 @@ namespace coulomb_adapt
                                      report.contact_force[1]};
     cycle_record["max_contact_pressure"] = report.max_contact_pressure;
     cycle_record["frictionless"]         = report.frictionless;
+    if (report.slave_rotation_free)
+      cycle_record["body_1_rotation_free"] = true;
     cycle_record["residual_history"]     = report.residual_history;
     cycle_record["residual_round_off_floor"] =
       report.residual_round_off_floor;

@@ -22,6 +22,7 @@
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 
+#include <array>
 #include <map>
 
 namespace coulomb_adapt
@@ -477,22 +478,42 @@ namespace coulomb_adapt
   bool
   ElasticBody::is_floating() const
   {
-    const auto    modes = rigid_body_modes();
+    return !holds_all_rigid_motions(support_gram(Point<2>()));
+  }
+
+
+
+  FullMatrix<double>
+  ElasticBody::support_gram(const Point<2> &centre) const
+  {
+    const auto         modes = rigid_body_modes();
     FullMatrix<double> gram(3, 3);
     for (const auto dof : supported_dofs)
       if (locally_owned_dofs.is_element(dof))
         {
           const unsigned int k = locally_owned_dofs.index_within_set(dof);
+          // The rotation about the origin minus that about the centre is
+          // the translation (-centre_y, centre_x).
+          const std::array<double, 3> mode = {
+            {modes[0][k],
+             modes[1][k],
+             modes[2][k] + centre[1] * modes[0][k] - centre[0] * modes[1][k]}};
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int b = 0; b < 3; ++b)
-              gram(a, b) += modes[a][k] * modes[b][k];
+              gram(a, b) += mode[a] * mode[b];
         }
     Utilities::MPI::sum(gram, mpi_communicator, gram);
-    // Hadamard: det(G) <= G_00 G_11 G_22, with equality for orthogonal
-    // modes; a (near) zero ratio means a rigid motion is left free.
+    return gram;
+  }
+
+
+
+  bool
+  holds_all_rigid_motions(const FullMatrix<double> &gram)
+  {
     const double diagonal_product = gram(0, 0) * gram(1, 1) * gram(2, 2);
-    return !(diagonal_product > 0 &&
-             gram.determinant() > 1e-10 * diagonal_product);
+    return diagonal_product > 0 &&
+           gram.determinant() > 1e-10 * diagonal_product;
   }
 
 

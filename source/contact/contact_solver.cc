@@ -14,6 +14,7 @@
 #include <iomanip>
 #include <limits>
 #include <set>
+#include <array>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -355,6 +356,38 @@ namespace coulomb_adapt
                                           "times the normal load?") :
                               std::string()))));
       }
+  }
+
+
+
+  // Translations held, but perhaps not the rotation: a body resting on one
+  // active node (a disc on a mesh coarser than its contact zone, or the
+  // first step from the initial gap) or on nodes whose normals meet in one
+  // point can turn about it. Each active node fixes n . u at its position,
+  // a stick node t . u too: rows added to the Gram matrix of body 1's
+  // supported rigid motions.
+  bool
+  ContactSolver::slave_rotation_free() const
+  {
+    FullMatrix<double> gram = slave_support_gram;
+    const auto add_row = [&](const Tensor<1, 2> &direction, const Point<2> &x) {
+      const Tensor<1, 2>          arm = x - support_centre;
+      const std::array<double, 3> row = {
+        {direction[0],
+         direction[1],
+         -direction[0] * arm[1] + direction[1] * arm[0]}};
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = 0; b < 3; ++b)
+          gram(a, b) += row[a] * row[b];
+    };
+    for (const auto &s : states)
+      if (s.status != ContactStatus::open)
+        {
+          add_row(s.normal, s.position);
+          if (s.status == ContactStatus::stick)
+            add_row(s.tangent, s.position);
+        }
+    return !holds_all_rigid_motions(gram);
   }
 
 
@@ -938,11 +971,16 @@ namespace coulomb_adapt
     // modes, cell by cell, also for the direct solver, which ignores them).
     near_null_space = iterative ? rigid_body_modes() :
                                   std::vector<std::vector<double>>();
+    support_centre = Point<2>();
+    for (const auto &s : states)
+      support_centre += s.position / static_cast<double>(states.size());
+    slave_support_gram = slave.support_gram(support_centre);
 
     ContactSolverReport report;
     report.frictionless = (mu == 0);
     std::vector<std::string> history = {set_signature()};
     std::vector<std::vector<unsigned int>> changed_nodes;
+    unsigned int                           n_turning_steps = 0;
     // Ten-fold reductions of c when the sets cycle, at most 1e4-fold: the
     // stability sweep's case 252 (c x 1000) needs three.
     unsigned int       n_damping_steps   = 0;
@@ -1021,6 +1059,18 @@ namespace coulomb_adapt
               statuses_held[j] |= status_bit(sets[j]);
           }
         check_support(k);
+        // A free rotation makes the system singular. With a balanced load
+        // it still has solutions (a disc on its first contact node, hertz
+        // without 'Hold axis'), and the next step's sets decide; otherwise
+        // the solve goes astray, which the diagnosis then names.
+        const bool turning = slave_rotation_free();
+        if (turning)
+          {
+            ++n_turning_steps;
+            pcout << "    body 1 can turn about its active node(s) in these "
+                     "sets: the system is singular"
+                  << std::endl;
+          }
         Timer assembly_timer;
         assemble_newton_system();
         assembly_timer.stop();
@@ -1124,6 +1174,14 @@ namespace coulomb_adapt
                                                    floor))
           {
             report.converged = true;
+            report.slave_rotation_free = turning;
+            if (turning)
+              pcout << "    warning: the converged sets leave body 1's "
+                       "rotation free, so its displacement is determined "
+                       "only up to a small rigid rotation (stresses and "
+                       "tractions do not depend on it); refine the mesh "
+                       "where the bodies touch, or hold the body"
+                    << std::endl;
             if (residual > contact_parameters.tolerance)
               pcout << "    residual " << residual << " is above the "
                     << "tolerance " << contact_parameters.tolerance
@@ -1260,6 +1318,13 @@ namespace coulomb_adapt
              ++i)
           s << " (" << states[changed_nodes.back()[i]].position[0] << ", "
             << states[changed_nodes.back()[i]].position[1] << ")";
+        if (n_turning_steps > 0)
+          s << ". In " << n_turning_steps
+            << " of the steps the sets left body 1's rotation free (one "
+               "active node and no Dirichlet data holding it): a singular "
+               "system, which the linear solver may answer with a wild "
+               "iterate. Hold the body or refine the mesh where the bodies "
+               "touch";
         AssertThrow(false, ExcMessage(s.str()));
       }
 

@@ -12,6 +12,7 @@
 #include <deal.II/fe/mapping.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -136,6 +137,14 @@ namespace coulomb_adapt
     bool
     is_floating() const;
 
+    /** The 3 x 3 Gram matrix of the rigid motions (x- and y-translation,
+     * rotation about @p centre) restricted to the DoFs that Dirichlet data
+     * or point constraints fix, summed over the ranks. Constraints of other
+     * kinds (contact) add their own rows; holds_all_rigid_motions() says
+     * whether the sum leaves a rigid motion free. */
+    FullMatrix<double>
+    support_gram(const Point<2> &centre) const;
+
     /** True if the Dirichlet data or point constraints fix some
      * displacement component along @p direction (a unit vector), so that
      * a rigid translation along it is held. */
@@ -181,6 +190,13 @@ namespace coulomb_adapt
     TrilinosWrappers::MPI::Vector                rhs;
     TrilinosWrappers::MPI::Vector                displacement;
   };
+  /** Whether a Gram matrix of rigid-motion constraints (support_gram plus
+   * any further constraint rows) is regular, i.e. holds every rigid motion.
+   * Hadamard: det(G) <= G_00 G_11 G_22, with equality for orthogonal rows,
+   * so a ratio near zero means a free rigid motion (invariant to the units
+   * of the rotation). */
+  bool
+  holds_all_rigid_motions(const FullMatrix<double> &gram);
 } // namespace coulomb_adapt
 
 #endif

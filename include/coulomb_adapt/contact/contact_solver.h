@@ -76,6 +76,9 @@ namespace coulomb_adapt
      * sets missed Contact/Tolerance (0 or 1). */
     unsigned int        n_tighter_linear_solves = 0;
     bool                frictionless = false;
+    /** The converged sets and body 1's Dirichlet data leave its rigid
+     * rotation free: its displacement is fixed only up to it. */
+    bool                slave_rotation_free = false;
   };
 
   /**
@@ -160,6 +163,10 @@ namespace coulomb_adapt
     transfer_warm_start_sets();
     void
     check_support(const unsigned int step) const;
+    /** Whether the current sets and body 1's Dirichlet data leave a rigid
+     * rotation of body 1 free (the Newton system is then singular). */
+    bool
+    slave_rotation_free() const;
     std::vector<std::vector<double>>
     rigid_body_modes() const;
     /** E1 E2 / (E1 + E2): the modulus that scales c and the residual. */
@@ -258,6 +265,10 @@ namespace coulomb_adapt
     /** rigid_body_modes() of this load step, for the AMG path; empty for
      * direct solves. */
     std::vector<std::vector<double>> near_null_space;
+    /** Body 1's supported rigid motions (ElasticBody::support_gram) about
+     * support_centre, the mean slave node position; once per load step. */
+    FullMatrix<double>               slave_support_gram;
+    Point<2>                         support_centre;
     /** Factor on the Krylov tolerance: 1, and 1e-2 when unchanged
      * sets miss the complementarity tolerance (ContactSolver::solve). */
     double linear_tolerance_factor = 1;
