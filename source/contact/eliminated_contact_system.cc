@@ -156,13 +156,22 @@ namespace coulomb_adapt
       }
     symmetric = Utilities::MPI::min(symmetric ? 1 : 0, communicator) == 1;
 
+    // An eliminated component has no unknown of its own, but Z keeps a
+    // negligible entry on its diagonal: it puts the component's row and
+    // column into the product's pattern, where the row is then replaced by
+    // K's diagonal entry in place. Without it the product has no such row,
+    // and a filled Epetra matrix takes no new entries: the product had to
+    // be copied into a new pattern, half of the assembly at 1e6 DoFs. (An
+    // explicit zero does not survive Trilinos' transposed product.) Its
+    // traces elsewhere are placeholder times K, 1e-100 of K's entries,
+    // and the right hand side's entry is set to zero.
+    constexpr double       placeholder = 1e-100;
     DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
     for (const auto i : owned)
       {
+        dsp.add(i, i);
         const auto row = eliminated.find(i);
-        if (row == eliminated.end())
-          dsp.add(i, i);
-        else
+        if (row != eliminated.end())
           for (const auto &[column, value] : row->second.entries)
             dsp.add(i, column);
       }
@@ -184,6 +193,9 @@ namespace coulomb_adapt
               Z_test_storage.set(i, i, 1.);
             continue;
           }
+        Z.set(i, i, placeholder);
+        if (!symmetric)
+          Z_test_storage.set(i, i, placeholder);
         for (const auto &[column, value] : row->second.entries)
           {
             Z.set(i, column, value[0]);
@@ -197,46 +209,18 @@ namespace coulomb_adapt
       Z_test_storage.compress(VectorOperation::insert);
     shift.compress(VectorOperation::insert);
 
-    TrilinosWrappers::SparseMatrix KZ, product;
+    TrilinosWrappers::SparseMatrix KZ;
     stiffness.mmult(KZ, Z);
-    Z_test.Tmmult(product, KZ);
-    // The product has no entries in the rows and columns of eliminated
-    // components: they get a decoupled row with K's diagonal entry, so that
-    // the operator keeps the scale AMG's smoother expects there. A copy,
-    // as a filled Epetra matrix takes no new entries (an explicit zero on
-    // Z's diagonal does not carry through Trilinos' transposed product:
-    // the rows came out empty; 0.7 of 1.5 s of the assembly at 1e6 DoFs
-    // is this copy).
-    DynamicSparsityPattern reduced_pattern(owned.size(), owned.size(), owned);
-    for (const auto i : owned)
-      {
-        reduced_pattern.add(i, i);
-        for_each_entry(product, i, [&](const auto column, const double) {
-          reduced_pattern.add(i, column);
-        });
-      }
     reduced = std::make_shared<TrilinosWrappers::SparseMatrix>();
-    reduced->reinit(owned, owned, reduced_pattern, communicator);
-    {
-      std::vector<types::global_dof_index> columns;
-      std::vector<double>                  values;
-      for (const auto i : owned)
-        {
-          columns.clear();
-          values.clear();
-          for_each_entry(product, i, [&](const auto column, const double v) {
-            columns.push_back(column);
-            values.push_back(v);
-          });
-          reduced->set(i, columns.size(), columns.data(), values.data());
-        }
-    }
+    Z_test.Tmmult(*reduced, KZ);
+    // The rows of eliminated components: decoupled, with K's diagonal
+    // entry, so that the operator keeps the scale AMG's smoother expects.
     eliminated_dofs.clear();
     for (const auto &[i, row] : eliminated)
-      {
-        reduced->set(i, i, stiffness.diag_element(i));
-        eliminated_dofs.push_back(i);
-      }
+      eliminated_dofs.push_back(i);
+    reduced->clear_rows(eliminated_dofs);
+    for (const auto i : eliminated_dofs)
+      reduced->set(i, i, stiffness.diag_element(i));
     reduced->compress(VectorOperation::insert);
 
     TrilinosWrappers::MPI::Vector residual(owned, communicator);
@@ -244,6 +228,9 @@ namespace coulomb_adapt
     residual.sadd(-1., 1., load);
     reduced_rhs.reinit(owned, communicator);
     Z_test.Tvmult(reduced_rhs, residual);
+    for (const auto i : eliminated_dofs)
+      reduced_rhs(i) = 0.;
+    reduced_rhs.compress(VectorOperation::insert);
   }
 
 
