@@ -23,19 +23,11 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string b = "Scene/Blocks/";
-  const auto        p = testing::solve_contact(
-    {{"Scene/Name", "blocks"},
-     {b + "Pressure", "10"},
-     {b + "Upper body subdivisions", "4, 4"},
-     {b + "Lower body subdivisions", "8, 8"},
-     {b + "Hold centre line", "false"},
-     {b + "Body 1/Young's modulus", "130000000"},
-     {b + "Body 2/Young's modulus", "130000"},
-     {b + "Body 1/Poisson's ratio", "0.499"},
-     {b + "Body 2/Poisson's ratio", "0.499"},
-     {"Mesh/Global refinements", "1"},
-     {"Contact/Friction coefficient", "1.5"}});
+  auto settings = testing::stiff_slave_blocks("10", "4, 4", "8, 8");
+  settings.insert(settings.end(),
+                  {{"Mesh/Global refinements", "1"},
+                   {"Contact/Friction coefficient", "1.5"}});
+  const auto p = testing::solve_contact(settings);
   const double mu = 1.5;
 
   AssertThrow(p->report.converged, ExcMessage("not converged"));

@@ -88,20 +88,12 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string b = "Scene/Blocks/";
-  const Settings    case_241 = {{"Scene/Name", "blocks"},
-                                {b + "Pressure", "10000000"},
-                                {b + "Upper body subdivisions", "32, 32"},
-                                {b + "Lower body subdivisions", "8, 8"},
-                                {b + "Hold centre line", "false"},
-                                {b + "Body 1/Young's modulus", "130000000"},
-                                {b + "Body 2/Young's modulus", "130000"},
-                                {b + "Body 1/Poisson's ratio", "0.499"},
-                                {b + "Body 2/Poisson's ratio", "0.499"},
-                                {"Mesh/Cell type", "triangle"},
-                                {"Mesh/Global refinements", "0"},
-                                {"Contact/Friction coefficient", "1.5"},
-                                {"Contact/Complementarity scale", "1000"}};
+  const Settings case_241 =
+    with(testing::stiff_slave_blocks("10000000", "32, 32", "8, 8"),
+         {{"Mesh/Cell type", "triangle"},
+          {"Mesh/Global refinements", "0"},
+          {"Contact/Friction coefficient", "1.5"},
+          {"Contact/Complementarity scale", "1000"}});
 
   // The truth: the user's c x 1e3, given the steps it needs.
   const auto scaled = testing::solve_contact(
@@ -159,7 +151,7 @@ main(int argc, char *argv[])
   try
     {
       run_program({{"Scene/Name", "blocks"},
-                   {b + "Hold centre line", "false"},
+                   {"Scene/Blocks/Hold centre line", "false"},
                    {"Contact/Friction coefficient", "0"},
                    {"Contact/Complementarity scale", "10"}},
                   log);

@@ -96,6 +96,27 @@ namespace coulomb_adapt
       return worst;
     }
 
+    /** blocks with a stiff, nearly incompressible body 1 on a soft one
+     * (E1/E2 = 1e3, nu = 0.499 on both), body 1 not held sideways: the
+     * family of the stability sweep's hardest cases (doc/contact.md §3).
+     * Further settings are appended by the caller. */
+    inline std::vector<std::pair<std::string, std::string>>
+    stiff_slave_blocks(const std::string &pressure,
+                       const std::string &upper_subdivisions,
+                       const std::string &lower_subdivisions)
+    {
+      const std::string b = "Scene/Blocks/";
+      return {{"Scene/Name", "blocks"},
+              {b + "Pressure", pressure},
+              {b + "Upper body subdivisions", upper_subdivisions},
+              {b + "Lower body subdivisions", lower_subdivisions},
+              {b + "Hold centre line", "false"},
+              {b + "Body 1/Young's modulus", "130000000"},
+              {b + "Body 2/Young's modulus", "130000"},
+              {b + "Body 1/Poisson's ratio", "0.499"},
+              {b + "Body 2/Poisson's ratio", "0.499"}};
+    }
+
     /** The solved problem's displacements, body 1 and body 2. */
     inline std::array<TrilinosWrappers::MPI::Vector, 2>
     displacements(const SolvedContactProblem &p)
