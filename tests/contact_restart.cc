@@ -14,8 +14,14 @@
 //    force to 1e-8;
 //  - a problem without equilibrium (mu = 0, body 1 not held sideways,
 //    c x 10) must still stop with its diagnosis after the restart, and the
-//    restart must not hide it.
-// 1 and 2 ranks.
+//    restart must not hide it;
+//  - on 1 rank, case 241 itself (one refinement, nested iteration, 40
+//    steps allowed): the nested start and the initial gap reach the limit,
+//    the natural constants from the nested sets converge (summary.json
+//    records both restarts and the steps of the stopped starts), to the
+//    sets of the coarsened case's solution family: 47 active, 11 stick,
+//    36 slip, as the same case at load x 1 and c x 1 (sweep case 262).
+// 1 and 2 ranks (241 itself on 1 rank only: about 25 s).
 
 #include <coulomb_adapt/app/two_body_problem.h>
 
@@ -168,4 +174,31 @@ main(int argc, char *argv[])
   out << "mu = 0, body 1 not held, c x 10: restarted with the natural "
          "constants, still stops with 'can slide freely'"
       << std::endl;
+
+  if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    return 0;
+  const nlohmann::json full = run_program(
+    with(case_241,
+         {{"Mesh/Global refinements", "1"}, {"Contact/Nested iteration minimum DoFs", "0"}}),
+    log);
+  assert_in_log(log, "contact: Newton starts from the sets of the coarser "
+                     "meshes (nested iteration)");
+  assert_in_log(log, "solving again from the initial gap");
+  assert_in_log(log, "solving again with the natural constants c = E_c/h "
+                     "('Contact/Complementarity scale' = 1 instead of 1000), "
+                     "from the predicted sets");
+  AssertThrow(full["converged"].get<bool>() &&
+                full.value("retried_from_initial_gap", false) &&
+                full.value("retried_with_natural_complementarity_scale",
+                           false) &&
+                full["newton_iterations_of_stopped_starts"].get<unsigned int>() == 80,
+              ExcMessage("case 241: " + full.dump()));
+  AssertThrow(full["active_nodes"].get<unsigned int>() == 47 &&
+                full["stick_nodes"].get<unsigned int>() == 11 &&
+                full["slip_nodes"].get<unsigned int>() == 36,
+              ExcMessage("case 241: other sets: " + full.dump()));
+  out << "case 241: the nested start and the initial gap stop at 40 steps, "
+         "the natural constants from the nested sets converge in "
+      << full["newton_iterations"].get<unsigned int>()
+      << " steps: 47 active, 11 stick, 36 slip" << std::endl;
 }

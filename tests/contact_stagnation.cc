@@ -42,12 +42,14 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  auto settings = testing::stiff_slave_blocks("10", "16, 16", "2, 2");
-  settings.insert(settings.end(),
-                  {{"Mesh/Cell type", "triangle"},
-                   {"Mesh/Global refinements", "1"},
-                   {"Contact/Friction coefficient", "0.3"}});
-  const double mu = 0.3;
+  // P1, one refinement, mu = 0.3, for both meshes below.
+  const std::vector<std::pair<std::string, std::string>> discretisation = {
+    {"Mesh/Cell type", "triangle"},
+    {"Mesh/Global refinements", "1"},
+    {"Contact/Friction coefficient", "0.3"}};
+  const double mu       = 0.3;
+  auto         settings = testing::stiff_slave_blocks("10", "16, 16", "2, 2");
+  settings.insert(settings.end(), discretisation.begin(), discretisation.end());
 
   const auto p = testing::solve_contact(settings);
   AssertThrow(p->report.converged, ExcMessage("not converged"));
@@ -113,11 +115,9 @@ main(int argc, char *argv[])
   // with the scaled c, slip nodes sliding backwards passed as ties, and
   // the sets settled at step 37 with the residual at 2.3e-6.
   auto case_261 = testing::stiff_slave_blocks("10", "32, 32", "8, 8");
+  case_261.insert(case_261.end(), discretisation.begin(), discretisation.end());
   case_261.insert(case_261.end(),
-                  {{"Mesh/Cell type", "triangle"},
-                   {"Mesh/Global refinements", "1"},
-                   {"Contact/Friction coefficient", "0.3"},
-                   {"Contact/Complementarity scale", "0.001"},
+                  {{"Contact/Complementarity scale", "0.001"},
                    {"Contact/Tolerance", "1e-7"}});
   const auto r = testing::solve_contact(case_261);
   AssertThrow(r->report.converged, ExcMessage("case 261: not converged"));

@@ -2,6 +2,7 @@
 
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/bodies/elasticity_errors.h>
+#include <coulomb_adapt/contact/contact_diagnosis.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/contact/nested_iteration.h>
 #include <coulomb_adapt/core/parameter_error.h>
@@ -146,16 +147,18 @@ namespace coulomb_adapt
           << std::endl;
     cycle_record["warm_start"] = warm_start;
 
-    // Where a static solve goes on when it stops with a diagnosis. Sets
-    // predicted on another mesh (warm start, nested iteration) can start
-    // the iteration on the wrong side of a diagnosis (an all-slip first
-    // step), which is not the problem's failure: first the initial gap.
-    // Then, if the user scaled c_n = c_t, the natural constants: the
-    // solution does not depend on c, only the path of the active set
-    // iteration does, and an extreme scale can keep the sets from settling
-    // (stability sweep case 241, c x 1e3: 40 steps without convergence,
-    // 31 with c x 1). A quasi-static path is not restarted: its stick/slip
-    // history lives in the solver.
+    // Where a static solve goes on when it stops with a diagnosis (a
+    // ContactDiagnosis; other errors end the run). Sets predicted on
+    // another mesh (warm start, nested iteration) can start the iteration
+    // on the wrong side of a diagnosis (an all-slip first step), which is
+    // not the problem's failure: first the initial gap. Then, if the user
+    // scaled c_n = c_t, the natural constants, from the predicted sets and
+    // from the initial gap: the solution does not depend on c, only the
+    // path of the active set iteration does, and an extreme scale can keep
+    // the sets from settling (stability sweep case 241, c x 1e3: 40 steps
+    // without convergence from both starts, 31 with c x 1 from the nested
+    // sets). A quasi-static path is not restarted: its stick/slip history
+    // lives in the solver.
     struct Restart
     {
       parameters::Contact contact;
@@ -173,23 +176,29 @@ namespace coulomb_adapt
       {
         parameters::Contact natural = parameters.contact;
         natural.complementarity_scale = 1.;
-        restarts.push_back(
-          {natural,
-           predicted_start,
-           std::string("with the natural constants c = E_c/h "
-                       "('Contact/Complementarity scale' = 1 instead of ") +
-             Patterns::Tools::Convert<double>::to_string(
-               parameters.contact.complementarity_scale) +
-             "), from " +
-             (predicted_start ? "the predicted sets" : "the initial gap"),
-           "retried_with_natural_complementarity_scale"});
+        const std::string constants =
+          "with the natural constants c = E_c/h ('Contact/Complementarity "
+          "scale' = 1 instead of " +
+          Patterns::Tools::Convert<double>::to_string(
+            parameters.contact.complementarity_scale) +
+          "), from ";
+        if (predicted_start)
+          restarts.push_back({natural,
+                              true,
+                              constants + "the predicted sets",
+                              "retried_with_natural_complementarity_scale"});
+        restarts.push_back({natural,
+                            false,
+                            constants + "the initial gap",
+                            "retried_with_natural_complementarity_scale"});
       }
 
     // The scene's load path: one step for the static problem, several for
     // a quasi-static one (the solver keeps the stick/slip history).
     const unsigned int  n_steps = scene->n_load_steps();
     ContactSolverReport report;
-    unsigned int        total_newton_iterations = 0;
+    unsigned int        total_newton_iterations     = 0;
+    unsigned int        restarted_newton_iterations = 0;
     for (unsigned int step = 1; step <= n_steps; ++step)
       {
         if (n_steps > 1)
@@ -209,14 +218,24 @@ namespace coulomb_adapt
               report = contact_solver->solve();
               break;
             }
-          catch (const std::exception &e)
+          catch (const ContactDiagnosis &e)
             {
+              restarted_newton_iterations += e.newton_steps;
               if (attempt == restarts.size())
-                throw;
+                {
+                  if (attempt == 0)
+                    throw;
+                  throw ContactDiagnosis(
+                    std::string(e.what()) + " (This was the last of " +
+                      std::to_string(attempt + 1) +
+                      " starts; the log shows how the others stopped.)",
+                    e.newton_steps);
+                }
               const Restart &restart = restarts[attempt];
-              pcout << "  contact: the solve stopped ("
-                    << user_message(e).substr(0, 160) << " ...); solving again "
-                    << restart.description << std::endl;
+              pcout << "  contact: the solve stopped after " << e.newton_steps
+                    << " Newton steps (" << std::string(e.what()).substr(0, 160)
+                    << " ...); solving again " << restart.description
+                    << std::endl;
               cycle_record[restart.summary_key] = true;
               new_contact_solver(restart.contact,
                                  restart.from_predicted_sets ? &predicted_sets :
@@ -236,6 +255,9 @@ namespace coulomb_adapt
           << report.contact_force[1] << ") N/mm, max pressure "
           << report.max_contact_pressure << " MPa" << std::endl;
     cycle_record["newton_iterations"] = report.newton_iterations;
+    if (restarted_newton_iterations > 0)
+      cycle_record["newton_iterations_of_stopped_starts"] =
+        restarted_newton_iterations;
     cycle_record["converged"]         = report.converged;
     cycle_record["active_nodes"]      = report.n_active;
     cycle_record["stick_nodes"]       = report.n_stick;

@@ -21,6 +21,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/bodies/rigid_motion_gram.h>
 
 #include <array>
 #include <map>
@@ -486,34 +487,20 @@ namespace coulomb_adapt
   FullMatrix<double>
   ElasticBody::support_gram(const Point<2> &centre) const
   {
+    // The rows are the rigid modes (rotation about the origin) at the
+    // supported DoFs.
     const auto         modes = rigid_body_modes();
     FullMatrix<double> gram(3, 3);
     for (const auto dof : supported_dofs)
       if (locally_owned_dofs.is_element(dof))
         {
           const unsigned int k = locally_owned_dofs.index_within_set(dof);
-          // The rotation about the origin minus that about the centre is
-          // the translation (-centre_y, centre_x).
-          const std::array<double, 3> mode = {
-            {modes[0][k],
-             modes[1][k],
-             modes[2][k] + centre[1] * modes[0][k] - centre[0] * modes[1][k]}};
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int b = 0; b < 3; ++b)
-              gram(a, b) += mode[a] * mode[b];
+              gram(a, b) += modes[a][k] * modes[b][k];
         }
     Utilities::MPI::sum(gram, mpi_communicator, gram);
-    return gram;
-  }
-
-
-
-  bool
-  holds_all_rigid_motions(const FullMatrix<double> &gram)
-  {
-    const double diagonal_product = gram(0, 0) * gram(1, 1) * gram(2, 2);
-    return diagonal_product > 0 &&
-           gram.determinant() > 1e-10 * diagonal_product;
+    return move_rotation_centre(gram, centre - Point<2>());
   }
 
 

@@ -4,6 +4,8 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_control.h>
 
+#include <coulomb_adapt/bodies/rigid_motion_gram.h>
+#include <coulomb_adapt/contact/contact_diagnosis.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
@@ -322,10 +324,11 @@ namespace coulomb_adapt
     const std::string where =
       "Newton step " + std::to_string(step) + ": body 1 (" + slave.name() +
       ") ";
-    AssertThrow(n_active > 0 || !slave.is_floating(),
-                ExcMessage(where + "has no active contact node and no "
-                                   "Dirichlet support: nothing holds it "
-                                   "(is it loaded towards body 2?)."));
+    if (n_active == 0 && slave.is_floating())
+      throw ContactDiagnosis(where + "has no active contact node and no "
+                                     "Dirichlet support: nothing holds it "
+                                     "(is it loaded towards body 2?).",
+                             step - 1);
     if (n_stick == 0 && n_active > 0)
       {
         Tensor<1, 2> tangent;
@@ -333,9 +336,8 @@ namespace coulomb_adapt
           if (s.status != ContactStatus::open)
             tangent += s.tangent;
         tangent /= tangent.norm();
-        AssertThrow(
-          slave.holds_translation(tangent),
-          ExcMessage(
+        if (!slave.holds_translation(tangent))
+          throw ContactDiagnosis(
             where +
             (mu == 0 ?
                "can slide freely along the frictionless interface: nothing "
@@ -354,7 +356,8 @@ namespace coulomb_adapt
                                 "'Contact/Complementarity scale').")) +
                  (step == 1 ? std::string("The tangential load exceeds mu "
                                           "times the normal load?") :
-                              std::string()))));
+                              std::string())),
+            step - 1);
       }
   }
 
@@ -369,23 +372,27 @@ namespace coulomb_adapt
   bool
   ContactSolver::slave_rotation_free() const
   {
-    FullMatrix<double> gram = slave_support_gram;
-    const auto add_row = [&](const Tensor<1, 2> &direction, const Point<2> &x) {
-      const Tensor<1, 2>          arm = x - support_centre;
-      const std::array<double, 3> row = {
-        {direction[0],
-         direction[1],
-         -direction[0] * arm[1] + direction[1] * arm[0]}};
-      for (unsigned int a = 0; a < 3; ++a)
-        for (unsigned int b = 0; b < 3; ++b)
-          gram(a, b) += row[a] * row[b];
-    };
+    // About the centroid of the active nodes: the rows of a small contact
+    // zone far from the centre would otherwise look like a single point
+    // (hertz at a load of 1e-7 with 23 stick nodes was reported free).
+    Point<2>     centre;
+    unsigned int n_active = 0;
     for (const auto &s : states)
       if (s.status != ContactStatus::open)
         {
-          add_row(s.normal, s.position);
+          centre += s.position;
+          ++n_active;
+        }
+    centre = (n_active > 0) ? centre / static_cast<double>(n_active) :
+                              support_centre;
+    FullMatrix<double> gram =
+      move_rotation_centre(slave_support_gram, centre - support_centre);
+    for (const auto &s : states)
+      if (s.status != ContactStatus::open)
+        {
+          add_rigid_motion_constraint(gram, s.normal, s.position, centre);
           if (s.status == ContactStatus::stick)
-            add_row(s.tangent, s.position);
+            add_rigid_motion_constraint(gram, s.tangent, s.position, centre);
         }
     return !holds_all_rigid_motions(gram);
   }
@@ -1081,29 +1088,35 @@ namespace coulomb_adapt
           }
         catch (const SolverControl::NoConvergence &e)
           {
-            AssertThrow(false,
-                        ExcMessage(
+            throw ContactDiagnosis(
                           "Newton step " + std::to_string(k) +
                           ": the iterative linear solver did not converge (" +
                           std::to_string(e.last_step) +
                           " iterations, residual " +
                           Utilities::to_string(e.last_residual) +
                           "). Use 'Linear solver/Type = direct' for the "
-                          "contact system."));
+                          "contact system.",
+                          k);
           }
         catch (const std::exception &e)
           {
-            AssertThrow(false,
-                        ExcMessage(
-                          "Newton step " + std::to_string(k) +
-                          ": the linear solve failed with these contact sets "
-                          "(" + std::to_string(report.n_active) +
-                          " active nodes). The most likely cause is that "
-                          "body 1 is not held: all its contact nodes are "
-                          "open or slipping in the same direction, and no "
-                          "Dirichlet data holds it (a load beyond the "
-                          "friction limit, or mu = 0 without a lateral "
-                          "support). Solver message: " + user_message(e)));
+            throw ContactDiagnosis(
+              "Newton step " + std::to_string(k) +
+                ": the linear solve failed with these contact sets (" +
+                std::to_string(report.n_active) + " active nodes). " +
+                (turning ?
+                   std::string("These sets and the Dirichlet data leave body "
+                               "1's rotation free (a singular system): hold "
+                               "the body or refine the mesh where the bodies "
+                               "touch.") :
+                   std::string(
+                     "The most likely cause is that body 1 is not held: all "
+                     "its contact nodes are open or slipping in the same "
+                     "direction, and no Dirichlet data holds it (a load "
+                     "beyond the friction limit, or mu = 0 without a "
+                     "lateral support).")) +
+                " Solver message: " + user_message(e),
+              k);
           }
         solve_timer.stop();
         evaluate_contact_state();
@@ -1207,8 +1220,8 @@ namespace coulomb_adapt
             continue;
           }
         // Same sets again: the next step would solve the same system.
-        AssertThrow(n_changed > 0,
-                    ExcMessage("The contact sets have converged after " +
+        if (n_changed == 0)
+          throw ContactDiagnosis("The contact sets have converged after " +
                                std::to_string(k) +
                                " Newton steps, but the complementarity "
                                "residual " + Utilities::to_string(residual) +
@@ -1218,7 +1231,8 @@ namespace coulomb_adapt
                                Utilities::to_string(floor) +
                                "): the linear solver is not accurate enough "
                                "for it (ill-conditioned system?). Relax "
-                               "'Contact/Tolerance' or check the data."));
+                               "'Contact/Tolerance' or check the data.",
+                               k);
         // A set configuration seen before, other than the last one: the
         // iteration cycles and will not converge.
         const auto seen = std::find(history.begin(), history.end(), after);
@@ -1250,9 +1264,8 @@ namespace coulomb_adapt
             was_reversing = false;
             continue;
           }
-        AssertThrow(
-          n_changed == 0 || seen == history.end(),
-          ExcMessage("The semismooth Newton iteration cycles: after step " +
+        if (n_changed > 0 && seen != history.end())
+          throw ContactDiagnosis("The semismooth Newton iteration cycles: after step " +
                      std::to_string(k) + " the contact sets repeat those of "
                      "step " + std::to_string(seen - history.begin()) +
                      ". Last residuals: " +
@@ -1280,7 +1293,8 @@ namespace coulomb_adapt
                         ", or 'Linear solver/Type = direct' (an inexact "
                         "iterative solve can make the sets cycle)" :
                         std::string()) +
-                     "."));
+                     ".",
+                   k);
         history.push_back(after);
 
         const bool reversing = 2 * n_reversed > n_changed;
@@ -1320,12 +1334,12 @@ namespace coulomb_adapt
             << states[changed_nodes.back()[i]].position[1] << ")";
         if (n_turning_steps > 0)
           s << ". In " << n_turning_steps
-            << " of the steps the sets left body 1's rotation free (one "
-               "active node and no Dirichlet data holding it): a singular "
-               "system, which the linear solver may answer with a wild "
-               "iterate. Hold the body or refine the mesh where the bodies "
-               "touch";
-        AssertThrow(false, ExcMessage(s.str()));
+            << " of the steps the sets and the Dirichlet data left body 1's "
+               "rotation free (a single active node, or normals meeting in "
+               "one point): a singular system, which the linear solver may "
+               "answer with a wild iterate. Hold the body or refine the mesh "
+               "where the bodies touch";
+        throw ContactDiagnosis(s.str(), contact_parameters.max_newton_iterations);
       }
 
     for (unsigned int j = 0; j < states.size(); ++j)

@@ -220,8 +220,12 @@ namespace coulomb_adapt
                           "40",
                           Patterns::Integer(1),
                           "Semismooth Newton (primal-dual active set) "
-                          "iteration limit; reaching it stops the run with "
-                          "a diagnosis.");
+                          "iteration limit per start. Reaching it stops the "
+                          "solve with a diagnosis; a static solve then starts "
+                          "again from the initial gap (after a warm or nested "
+                          "start) and with the natural constants (if "
+                          "'Complementarity scale' is not 1), and the run "
+                          "stops when the last start does.");
         prm.declare_entry("Tolerance",
                           "1e-10",
                           Patterns::Double(0),

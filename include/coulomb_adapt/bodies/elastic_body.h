@@ -190,13 +190,6 @@ namespace coulomb_adapt
     TrilinosWrappers::MPI::Vector                rhs;
     TrilinosWrappers::MPI::Vector                displacement;
   };
-  /** Whether a Gram matrix of rigid-motion constraints (support_gram plus
-   * any further constraint rows) is regular, i.e. holds every rigid motion.
-   * Hadamard: det(G) <= G_00 G_11 G_22, with equality for orthogonal rows,
-   * so a ratio near zero means a free rigid motion (invariant to the units
-   * of the rotation). */
-  bool
-  holds_all_rigid_motions(const FullMatrix<double> &gram);
 } // namespace coulomb_adapt
 
 #endif
