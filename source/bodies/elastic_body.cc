@@ -23,7 +23,6 @@
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 
-#include <array>
 #include <map>
 
 namespace coulomb_adapt
@@ -501,24 +500,6 @@ namespace coulomb_adapt
         }
     Utilities::MPI::sum(gram, mpi_communicator, gram);
     return move_rotation_centre(gram, centre - Point<2>());
-  }
-
-
-
-  bool
-  ElasticBody::holds_translation(const Tensor<1, 2> &direction) const
-  {
-    const auto modes = rigid_body_modes();
-    double     held  = 0;
-    for (const auto dof : supported_dofs)
-      if (locally_owned_dofs.is_element(dof))
-        {
-          const unsigned int k = locally_owned_dofs.index_within_set(dof);
-          held = std::max(held,
-                          std::abs(direction[0] * modes[0][k] +
-                                   direction[1] * modes[1][k]));
-        }
-    return Utilities::MPI::max(held, mpi_communicator) > 1e-3;
   }
 
 

@@ -51,4 +51,17 @@ namespace coulomb_adapt
       gram(2, 2) - (d * g0 * g0 - 2 * b * g0 * g1 + a * g1 * g1) / det;
     return gram(2, 2) > 0 && rotation_left > 1e-10 * gram(2, 2);
   }
+
+
+
+  bool
+  holds_translation_along(const FullMatrix<double> &gram,
+                          const Tensor<1, 2> &      direction)
+  {
+    double along = 0;
+    for (unsigned int a = 0; a < 2; ++a)
+      for (unsigned int b = 0; b < 2; ++b)
+        along += direction[a] * gram(a, b) * direction[b];
+    return along > 1e-6 * (gram(0, 0) + gram(1, 1));
+  }
 } // namespace coulomb_adapt

@@ -16,7 +16,6 @@
 #include <iomanip>
 #include <limits>
 #include <set>
-#include <array>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -181,6 +180,13 @@ namespace coulomb_adapt
         states[j].tangent  = nodes[j].tangent;
         states[j].weight   = D[j];
       }
+    // Which rigid motions of body 1 its Dirichlet data hold: once per
+    // load step (a pass over its cells), for every support test of the
+    // Newton steps.
+    support_centre = Point<2>();
+    for (const auto &s : states)
+      support_centre += s.position / static_cast<double>(states.size());
+    slave_support_gram = slave.support_gram(support_centre);
     if (first_step)
       {
         initialize_sets();
@@ -268,7 +274,7 @@ namespace coulomb_adapt
           transferred[j].status = ContactStatus::slip;
         n_active += (transferred[j].status != ContactStatus::open);
       }
-    if (n_active > 0 || !slave.is_floating())
+    if (n_active > 0 || holds_all_rigid_motions(slave_support_gram))
       states = transferred;
     warm_start_states.clear();
   }
@@ -324,7 +330,7 @@ namespace coulomb_adapt
     const std::string where =
       "Newton step " + std::to_string(step) + ": body 1 (" + slave.name() +
       ") ";
-    if (n_active == 0 && slave.is_floating())
+    if (n_active == 0 && !holds_all_rigid_motions(slave_support_gram))
       throw ContactDiagnosis(where + "has no active contact node and no "
                                      "Dirichlet support: nothing holds it "
                                      "(is it loaded towards body 2?).",
@@ -336,7 +342,7 @@ namespace coulomb_adapt
           if (s.status != ContactStatus::open)
             tangent += s.tangent;
         tangent /= tangent.norm();
-        if (!slave.holds_translation(tangent))
+        if (!holds_translation_along(slave_support_gram, tangent))
           throw ContactDiagnosis(
             where +
             (mu == 0 ?
@@ -851,7 +857,8 @@ namespace coulomb_adapt
         if (normal > 0 && std::abs(trial) / (mu * normal) < ratio)
           ratio = std::abs(trial) / (mu * normal), best = j;
       }
-    if (best == none || slave.holds_translation(tangent / tangent.norm()))
+    if (best == none ||
+        holds_translation_along(slave_support_gram, tangent / tangent.norm()))
       return none;
     states[best].status = ContactStatus::stick;
     return best;
@@ -978,10 +985,6 @@ namespace coulomb_adapt
     // modes, cell by cell, also for the direct solver, which ignores them).
     near_null_space = iterative ? rigid_body_modes() :
                                   std::vector<std::vector<double>>();
-    support_centre = Point<2>();
-    for (const auto &s : states)
-      support_centre += s.position / static_cast<double>(states.size());
-    slave_support_gram = slave.support_gram(support_centre);
 
     ContactSolverReport report;
     report.frictionless = (mu == 0);
@@ -1018,7 +1021,8 @@ namespace coulomb_adapt
       if (mu == 0)
         return false;
       const Tensor<1, 2> tangent = interface_tangent();
-      return tangent.norm() > 0 && !slave.holds_translation(tangent);
+      return tangent.norm() > 0 &&
+             !holds_translation_along(slave_support_gram, tangent);
     }();
     const unsigned int stagnation_window   = 4;
     const double       restricted_fraction = 0.5;

@@ -140,16 +140,10 @@ namespace coulomb_adapt
     /** The 3 x 3 Gram matrix of the rigid motions (x- and y-translation,
      * rotation about @p centre) restricted to the DoFs that Dirichlet data
      * or point constraints fix, summed over the ranks. Constraints of other
-     * kinds (contact) add their own rows; holds_all_rigid_motions() says
-     * whether the sum leaves a rigid motion free. */
+     * kinds (contact) add their own rows; rigid_motion_gram.h says which
+     * rigid motions the sum holds. */
     FullMatrix<double>
     support_gram(const Point<2> &centre) const;
-
-    /** True if the Dirichlet data or point constraints fix some
-     * displacement component along @p direction (a unit vector), so that
-     * a rigid translation along it is held. */
-    bool
-    holds_translation(const Tensor<1, 2> &direction) const;
 
     /** Rigid body modes (x-translation, y-translation, rotation about the
      * origin) at the locally owned DoFs: the near null space for AMG. */

@@ -46,6 +46,15 @@ namespace coulomb_adapt
    */
   bool
   holds_all_rigid_motions(const FullMatrix<double> &gram);
+
+  /** Whether the constraints in @p gram hold the translation along the
+   * unit vector @p direction: t . G_tt t, the sum of the squared
+   * components along t of the constrained directions, above 1e-6 of the
+   * number of constraints (for Dirichlet components: some constrained
+   * component has |t_c| > 1e-3). */
+  bool
+  holds_translation_along(const FullMatrix<double> &gram,
+                          const Tensor<1, 2> &      direction);
 } // namespace coulomb_adapt
 
 #endif

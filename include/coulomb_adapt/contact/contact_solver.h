@@ -266,7 +266,8 @@ namespace coulomb_adapt
      * direct solves. */
     std::vector<std::vector<double>> near_null_space;
     /** Body 1's supported rigid motions (ElasticBody::support_gram) about
-     * support_centre, the mean slave node position; once per load step. */
+     * support_centre, the mean slave node position; once per load step
+     * (setup()), for all support tests of the Newton steps. */
     FullMatrix<double>               slave_support_gram;
     Point<2>                         support_centre;
     /** Factor on the Krylov tolerance: 1, and 1e-2 when unchanged
