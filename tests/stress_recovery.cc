@@ -25,12 +25,14 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/indicator/quadrature_stress.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
 #include "test_utilities.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -238,8 +240,10 @@ compute_stress_errors(const ElasticBody &      body,
                                recovery.dof_handler().get_fe(),
                                quadrature,
                                update_values);
-  std::vector<SymmetricTensor<2, 2>> strains(quadrature.size());
-  std::vector<Vector<double>> recovered(quadrature.size(), Vector<double>(3));
+  std::vector<SymmetricTensor<2, 2>>   strains(quadrature.size());
+  std::array<std::vector<double>, 3>   recovered;
+  for (auto &r : recovered)
+    r.resize(quadrature.size());
   const auto energy = [&](const SymmetricTensor<2, 2> &sigma) {
     return sigma * body.material().strain(sigma);
   };
@@ -254,7 +258,9 @@ compute_stress_errors(const ElasticBody &      body,
           &recovery.dof_handler()));
         displacement_values[FEValuesExtractors::Vector(0)]
           .get_function_symmetric_gradients(body.solution(), strains);
-        recovered_values.get_function_values(recovery.values(), recovered);
+        for (unsigned int c = 0; c < 3; ++c)
+          recovered_values.get_function_values(recovery.component(c),
+                                               recovered[c]);
         for (const unsigned int q :
              displacement_values.quadrature_point_indices())
           {
@@ -267,7 +273,7 @@ compute_stress_errors(const ElasticBody &      body,
             const SymmetricTensor<2, 2> sigma_h =
               body.material().stress(strains[q]);
             const SymmetricTensor<2, 2> sigma_r = stress_tensor(Tensor<1, 3>(
-              {recovered[q][0], recovered[q][1], recovered[q][2]}));
+              {recovered[0][q], recovered[1][q], recovered[2][q]}));
             const double JxW = displacement_values.JxW(q);
             raw += energy(sigma_h - sigma) * JxW;
             recovered_error += energy(sigma_r - sigma) * JxW;
@@ -320,13 +326,14 @@ check_exactness(const std::string &                     label,
                    {degree, PlaneModel::plane_strain});
   body.setup_system();
   interpolate_displacement(body, u);
-  RecoveredStress recovery(body);
+  RecoveredStress        recovery(body);
+  const QuadratureStress raw_stress(body, body.solution());
 
   out << label << ", " << element_name(body) << ", cells "
       << body.triangulation().n_global_active_cells() << ":";
   for (const auto method : methods)
     {
-      recovery.recover(body.solution(), method);
+      recovery.recover(raw_stress, method);
       const StressErrors e  = compute_stress_errors(body, recovery, u);
       const double relative = e.recovered / e.exact_norm;
       const bool   exact    = std::find(must_be_exact.begin(),
@@ -381,11 +388,12 @@ check_convergence(const std::string &  label,
         body.refine_uniformly();
       body.setup_system();
       interpolate_displacement(body, u);
-      RecoveredStress recovery(body);
+      RecoveredStress        recovery(body);
+      const QuadratureStress raw_stress(body, body.solution());
       table.add_value("cells", body.triangulation().n_global_active_cells());
       for (const auto method : methods)
         {
-          recovery.recover(body.solution(), method);
+          recovery.recover(raw_stress, method);
           const StressErrors e = compute_stress_errors(body, recovery, u);
           if (method == methods.front())
             {

@@ -1,5 +1,3 @@
-#include <deal.II/fe/fe_values.h>
-
 #include <coulomb_adapt/indicator/error_estimate.h>
 
 #include <cmath>
@@ -25,60 +23,36 @@ namespace coulomb_adapt
     // returned. The quadrature of the body integrates these exactly on
     // affine cells (sigma~ has the degree p of the displacement).
     double
-    volume_terms(const ElasticBody &                  body,
-                 const TrilinosWrappers::MPI::Vector &displacement,
-                 const RecoveredStress &              recovered,
-                 Vector<double> &                     difference)
+    volume_terms(const QuadratureStress &raw_stress,
+                 const RecoveredStress & recovered,
+                 Vector<double> &        difference)
     {
-      const Quadrature<2> &quadrature = body.cell_quadrature();
-      FEValues<2> stress_values(body.mapping(),
-                                recovered.dof_handler().get_fe(),
-                                quadrature,
-                                update_values | update_JxW_values);
-      FEValues<2> displacement_values(body.mapping(),
-                                      body.dof_handler().get_fe(),
-                                      quadrature,
-                                      update_gradients);
-      const FEValuesExtractors::Vector   u(0);
-      std::vector<SymmetricTensor<2, 2>> strains(quadrature.size());
-      std::vector<Vector<double>>        smoothed(quadrature.size(),
-                                           Vector<double>(3));
-      const ElasticMaterial &            material = body.material();
+      const ElasticBody &       body     = raw_stress.body();
+      const ElasticMaterial &   material = body.material();
+      std::vector<Tensor<1, 3>> smoothed(raw_stress.n_points());
 
       difference.reinit(body.triangulation().n_active_cells());
-      double sum_norm = 0;
+      double       sum_norm   = 0;
+      unsigned int owned_cell = 0;
       for (const auto &cell : recovered.dof_handler().active_cell_iterators())
-        {
-          if (cell->is_locally_owned())
-            {
-              // The same cell in the displacement's DoFHandler.
-              const DoFHandler<2>::active_cell_iterator displacement_cell(
-                &body.triangulation(),
-                cell->level(),
-                cell->index(),
-                &body.dof_handler());
-              stress_values.reinit(cell);
-              displacement_values.reinit(displacement_cell);
-              displacement_values[u].get_function_symmetric_gradients(
-                displacement, strains);
-              stress_values.get_function_values(recovered.values(), smoothed);
-              double cell_difference = 0;
-              for (const unsigned int q :
-                   stress_values.quadrature_point_indices())
-                {
-                  const SymmetricTensor<2, 2> sigma_c =
-                    material.stress(strains[q]);
-                  const SymmetricTensor<2, 2> sigma_s = stress_tensor(
-                    Tensor<1, 3>({smoothed[q][0], smoothed[q][1], smoothed[q][2]}));
-                  const SymmetricTensor<2, 2> minus = sigma_s - sigma_c;
-                  const SymmetricTensor<2, 2> plus  = sigma_s + sigma_c;
-                  const double                JxW   = stress_values.JxW(q);
-                  cell_difference += minus * material.strain(minus) * JxW;
-                  sum_norm += plus * material.strain(plus) * JxW;
-                }
-              difference(cell->active_cell_index()) = cell_difference;
-            }
-        }
+        if (cell->is_locally_owned())
+          {
+            recovered.get_quadrature_values(cell, smoothed);
+            double cell_difference = 0;
+            for (unsigned int q = 0; q < raw_stress.n_points(); ++q)
+              {
+                const SymmetricTensor<2, 2> sigma_c =
+                  stress_tensor(raw_stress.stress(owned_cell, q));
+                const SymmetricTensor<2, 2> sigma_s = stress_tensor(smoothed[q]);
+                const SymmetricTensor<2, 2> minus   = sigma_s - sigma_c;
+                const SymmetricTensor<2, 2> plus    = sigma_s + sigma_c;
+                const double JxW = raw_stress.JxW(owned_cell, q);
+                cell_difference += minus * material.strain(minus) * JxW;
+                sum_norm += plus * material.strain(plus) * JxW;
+              }
+            difference(cell->active_cell_index()) = cell_difference;
+            ++owned_cell;
+          }
       return Utilities::MPI::sum(sum_norm,
                                  body.triangulation().get_communicator());
     }
@@ -116,12 +90,14 @@ namespace coulomb_adapt
     double                normalisation_squared = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
+        // sigma_c at the quadrature points, shared by the ZZ projection
+        // and the volume terms.
+        const QuadratureStress raw_stress(*bodies[b],
+                                          estimate.correction.displacement(b));
         estimate.recovered[b] = std::make_unique<RecoveredStress>(*bodies[b]);
-        estimate.recovered[b]->recover(estimate.correction.displacement(b),
-                                       recovery);
+        estimate.recovered[b]->recover(raw_stress, recovery);
         normalisation_squared +=
-          volume_terms(*bodies[b],
-                       estimate.correction.displacement(b),
+          volume_terms(raw_stress,
                        *estimate.recovered[b],
                        estimate.contribution_squared[b]);
         volume_squared[b] = Utilities::MPI::sum(

@@ -468,7 +468,7 @@ namespace coulomb_adapt
   void
   RecoveredStress::recover_spr(const TrilinosWrappers::MPI::Vector &displacement)
   {
-    const unsigned int degree = fe->base_element(0).degree;
+    const unsigned int degree = fe->degree;
     AssertThrow(degree >= 1 && degree <= max_spr_degree,
                 ExcMessage("'Error indicator/Recovery = spr' supports "
                            "polynomial degrees 1 and 2, not " +
@@ -518,14 +518,16 @@ namespace coulomb_adapt
 
     // Nodal values of the owned, unconstrained nodes of the stress space,
     // at the nodes' physical positions.
-    const FiniteElement<2> &base = fe->base_element(0);
+    const FiniteElement<2> &base = *fe;
     FEValues<2>             node_positions(body.mapping(),
-                                *fe,
+                                base,
                                 Quadrature<2>(base.get_unit_support_points()),
                                 update_quadrature_points);
-    std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
+    std::vector<types::global_dof_index> dof_indices(base.n_dofs_per_cell());
     std::vector<bool> done(owned_dofs.n_elements(), false);
-    TrilinosWrappers::MPI::Vector owned_values(owned_dofs, comm);
+    std::array<TrilinosWrappers::MPI::Vector, 3> owned_values;
+    for (auto &v : owned_values)
+      v.reinit(owned_dofs, comm);
 
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -543,13 +545,12 @@ namespace coulomb_adapt
 
           for (unsigned int node = 0; node < base.n_dofs_per_cell(); ++node)
             {
-              const auto first_dof =
-                dof_indices[fe->component_to_system_index(0, node)];
-              if (!owned_dofs.is_element(first_dof) ||
-                  constraints.is_constrained(first_dof) ||
-                  done[owned_dofs.index_within_set(first_dof)])
+              const auto dof = dof_indices[node];
+              if (!owned_dofs.is_element(dof) ||
+                  constraints.is_constrained(dof) ||
+                  done[owned_dofs.index_within_set(dof)])
                 continue;
-              done[owned_dofs.index_within_set(first_dof)] = true;
+              done[owned_dofs.index_within_set(dof)] = true;
 
               std::vector<types::global_dof_index> own_vertices;
               std::set<types::global_dof_index>    surrounding;
@@ -590,12 +591,14 @@ namespace coulomb_adapt
                            surrounding,
                            fits);
               for (unsigned int c = 0; c < 3; ++c)
-                owned_values[dof_indices[fe->component_to_system_index(
-                  c, node)]] = sigma[c];
+                owned_values[c][dof] = sigma[c];
             }
         }
-    owned_values.compress(VectorOperation::insert);
-    constraints.distribute(owned_values);
-    recovered = owned_values;
+    for (unsigned int c = 0; c < 3; ++c)
+      {
+        owned_values[c].compress(VectorOperation::insert);
+        constraints.distribute(owned_values[c]);
+        components[c] = owned_values[c];
+      }
   }
 } // namespace coulomb_adapt

@@ -6,6 +6,9 @@
 #include <coulomb_adapt/output/file_writer.h>
 #include <coulomb_adapt/output/stress_postprocessor.h>
 
+#include <array>
+#include <string>
+
 namespace coulomb_adapt
 {
   BodyOutput::BodyOutput(const std::string &directory,
@@ -48,11 +51,15 @@ namespace coulomb_adapt
     if (error_fields.density)
       data_out.add_data_vector(*error_fields.density, "error_density");
     if (error_fields.recovered)
-      data_out.add_data_vector(error_fields.recovered->dof_handler(),
-                               error_fields.recovered->values(),
-                               std::vector<std::string>{"smoothed_stress_xx",
-                                                        "smoothed_stress_yy",
-                                                        "smoothed_stress_xy"});
+      {
+        const std::array<std::string, 3> names = {{"smoothed_stress_xx",
+                                                   "smoothed_stress_yy",
+                                                   "smoothed_stress_xy"}};
+        for (unsigned int c = 0; c < 3; ++c)
+          data_out.add_data_vector(error_fields.recovered->dof_handler(),
+                                   error_fields.recovered->component(c),
+                                   names[c]);
+      }
     data_out.add_data_vector(material_id, "material_id");
     data_out.add_data_vector(subdomain, "subdomain");
 

@@ -5,15 +5,19 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
-#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/indicator/quadrature_stress.h>
 
+#include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace coulomb_adapt
 {
@@ -37,10 +41,11 @@ namespace coulomb_adapt
 
   /**
    * The smoothed stress sigma~ of one body: a continuous field in the
-   * body's own finite element space (FE_Q(p) or FE_SimplexP(p), the degree
-   * of the displacement), three components (sigma_xx, sigma_yy, sigma_xy)
-   * of the 2D model, with the body's hanging-node constraints so that it is
-   * continuous on adapted quadrilateral meshes too.
+   * body's own scalar finite element space (FE_Q(p) or FE_SimplexP(p), the
+   * degree of the displacement), one vector per component (sigma_xx,
+   * sigma_yy, sigma_xy) of the 2D model, with the body's hanging-node
+   * constraints so that it is continuous on adapted quadrilateral meshes
+   * too.
    *
    * Only the in-plane components are recovered: in plane strain sigma_zz
    * is not an independent field but nu (sigma_xx + sigma_yy), and the
@@ -53,34 +58,44 @@ namespace coulomb_adapt
     /** Set up the stress space on @p body's current mesh. */
     explicit RecoveredStress(const ElasticBody &body);
 
-    /** Recover sigma~ from the stress K eps(@p displacement) (a ghosted
-     * vector of the body's displacement space). */
+    /** Recover sigma~ from the raw stress K eps(u) of @p raw_stress (same
+     * body and mesh). */
     void
-    recover(const TrilinosWrappers::MPI::Vector &displacement,
-            const StressRecoveryMethod           method);
+    recover(const QuadratureStress &raw_stress,
+            const StressRecoveryMethod method);
 
-    /** The stress space: components 0, 1, 2 = xx, yy, xy. */
+    /** The scalar space that each component lives in. */
     const DoFHandler<2> &
     dof_handler() const;
 
-    /** The recovered nodal values, with ghost entries. */
+    /** The nodal values of component @p c (0, 1, 2 = xx, yy, xy), with
+     * ghost entries. */
     const TrilinosWrappers::MPI::Vector &
-    values() const;
+    component(const unsigned int c) const;
+
+    /** sigma~ (xx, yy, xy) at the points of the body's cell quadrature on
+     * the locally owned or ghost @p cell of dof_handler(). */
+    void
+    get_quadrature_values(const DoFHandler<2>::active_cell_iterator &cell,
+                          std::vector<Tensor<1, 3>> &values) const;
 
   private:
     void
-    project_l2(const TrilinosWrappers::MPI::Vector &displacement);
+    project_l2(const QuadratureStress &raw_stress);
     /** Implemented in spr_recovery.cc. */
     void
     recover_spr(const TrilinosWrappers::MPI::Vector &displacement);
 
-    const ElasticBody &           body;
-    std::unique_ptr<FESystem<2>>  fe;
-    DoFHandler<2>                 dofs;
-    IndexSet                      owned_dofs;
-    IndexSet                      relevant_dofs;
-    AffineConstraints<double>     constraints;
-    TrilinosWrappers::MPI::Vector recovered;
+    const ElasticBody &                          body;
+    std::unique_ptr<FiniteElement<2>>            fe;
+    DoFHandler<2>                                dofs;
+    IndexSet                                     owned_dofs;
+    IndexSet                                     relevant_dofs;
+    AffineConstraints<double>                    constraints;
+    std::array<TrilinosWrappers::MPI::Vector, 3> components;
+    /** phi_k at the points of the body's cell quadrature (k, q): the
+     * values of Lagrange shape functions do not depend on the mapping. */
+    FullMatrix<double> shape_values;
   };
 
   /** sigma as the three components (xx, yy, xy) the stress space uses. */
