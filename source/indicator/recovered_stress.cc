@@ -6,6 +6,7 @@
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/vector.h>
 
 #include <coulomb_adapt/indicator/recovered_stress.h>
 
@@ -101,18 +102,24 @@ namespace coulomb_adapt
     const unsigned int                   n_dofs   = fe->n_dofs_per_cell();
     const unsigned int                   n_points = raw_stress.n_points();
     FullMatrix<double>                   cell_matrix(n_dofs, n_dofs);
-    std::array<Vector<double>, 3>        cell_rhs;
-    for (auto &r : cell_rhs)
-      r.reinit(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
+    // The right-hand sides are summed per locally relevant DoF first and
+    // handed to Trilinos (through the hanging-node constraints) once at
+    // the end: one Epetra insertion per DoF instead of one per cell and
+    // DoF, which was a third of the assembly on small meshes.
+    std::array<Vector<double>, 3> relevant_rhs;
+    for (auto &r : relevant_rhs)
+      r.reinit(relevant_dofs.n_elements());
+    std::array<unsigned int, max_dofs_per_cell> relevant_index;
 
     unsigned int owned_cell = 0;
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
         {
+          cell->get_dof_indices(dof_indices);
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            relevant_index[i] = relevant_dofs.index_within_set(dof_indices[i]);
           cell_matrix = 0;
-          for (auto &r : cell_rhs)
-            r = 0;
           for (unsigned int q = 0; q < n_points; ++q)
             {
               const Tensor<1, 3> &sigma = raw_stress.stress(owned_cell, q);
@@ -123,18 +130,20 @@ namespace coulomb_adapt
                   for (unsigned int j = 0; j < n_dofs; ++j)
                     cell_matrix(i, j) += phi_i * shape_values(j, q);
                   for (unsigned int c = 0; c < 3; ++c)
-                    cell_rhs[c](i) += phi_i * sigma[c];
+                    relevant_rhs[c](relevant_index[i]) += phi_i * sigma[c];
                 }
             }
           ++owned_cell;
-          cell->get_dof_indices(dof_indices);
-          constraints.distribute_local_to_global(
-            cell_matrix, cell_rhs[0], dof_indices, mass, rhs[0]);
-          for (unsigned int c = 1; c < 3; ++c)
-            constraints.distribute_local_to_global(cell_rhs[c],
-                                                   dof_indices,
-                                                   rhs[c]);
+          constraints.distribute_local_to_global(cell_matrix,
+                                                 dof_indices,
+                                                 mass);
         }
+    std::vector<types::global_dof_index> relevant_indices;
+    relevant_dofs.fill_index_vector(relevant_indices);
+    for (unsigned int c = 0; c < 3; ++c)
+      constraints.distribute_local_to_global(relevant_rhs[c],
+                                             relevant_indices,
+                                             rhs[c]);
     mass.compress(VectorOperation::add);
     for (auto &r : rhs)
       r.compress(VectorOperation::add);
