@@ -1,7 +1,11 @@
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/lac/vector.h>
+
 #include <coulomb_adapt/indicator/quadrature_stress.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
+
+#include <utility>
 
 namespace coulomb_adapt
 {
@@ -16,21 +20,33 @@ namespace coulomb_adapt
     stresses.reserve(body.triangulation().n_active_cells() * n_points_);
     weights.reserve(body.triangulation().n_active_cells() * n_points_);
 
-    FEValues<2> fe_values(body.mapping(),
-                          body.dof_handler().get_fe(),
+    // FEValues of the scalar base element: the displacement element is
+    // FESystem(base, 2), and its shape gradients are those of the base
+    // copied per component, work that the strain does not need.
+    const FiniteElement<2> &displacement_fe = body.dof_handler().get_fe();
+    const FiniteElement<2> &base            = displacement_fe.base_element(0);
+    FEValues<2>             fe_values(body.mapping(),
+                          base,
                           body.cell_quadrature(),
                           update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector   u(0);
-    std::vector<SymmetricTensor<2, 2>> strains(n_points_);
+    const unsigned int      n_dofs = displacement_fe.n_dofs_per_cell();
+    std::vector<std::pair<unsigned int, unsigned int>> component_node(n_dofs);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      component_node[i] = displacement_fe.system_to_component_index(i);
+    Vector<double> nodal(n_dofs);
     for (const auto &cell : body.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          fe_values.reinit(cell);
-          fe_values[u].get_function_symmetric_gradients(displacement, strains);
+          fe_values.reinit(static_cast<Triangulation<2>::cell_iterator>(cell));
+          cell->get_dof_values(displacement, nodal);
           for (unsigned int q = 0; q < n_points_; ++q)
             {
-              stresses.push_back(
-                stress_components(body.material().stress(strains[q])));
+              Tensor<2, 2> gradient;
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                gradient[component_node[i].first] +=
+                  nodal[i] * fe_values.shape_grad(component_node[i].second, q);
+              stresses.push_back(stress_components(
+                body.material().stress(symmetrize(gradient))));
               weights.push_back(fe_values.JxW(q));
             }
         }
