@@ -262,6 +262,10 @@ def command(exe, series, r, out_dir, recovery, exact, sub=None):
     sets = ["Scene/Name=" + series["scene"],
             "Mesh/Cell type=" + series["cell"],
             "Mesh/Global refinements=%d" % r,
+            # One cycle: no adaptation, so the strategy only has to be
+            # valid for the cell type (blocks.prm remeshes triangles).
+            "Adaptation/Strategy=uniform",
+            "Adaptation/Minimum number of cycles=1",
             "Adaptation/Number of cycles=1",
             "Output/Write VTU=false",
             "Output/Output directory=" + out_dir,
@@ -665,7 +669,7 @@ def merge(old, new):
     out = {row_key(r): r for r in old}
     out.update(new)
     return sorted(out.values(), key=lambda r: (
-        r["series"], r["recovery"], float(r["n_dofs"] or 0)))
+        r["series"], r["recovery"], float(r.get("n_dofs") or 0)))
 
 
 # -------------------------------------------------------------------- I/O
