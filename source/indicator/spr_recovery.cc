@@ -40,6 +40,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -424,11 +425,15 @@ namespace coulomb_adapt
     // vertices of all cells containing it, the way ZZ treat boundary
     // nodes. On meshes too coarse for that (no interior vertex nearby) the
     // best fits the own vertices' patches allow (lower degree) are used.
+    // @p collect_surrounding gives the vertices of the cells containing the
+    // node; it is called only if no own vertex is a centre (nodes on or
+    // next to the boundary): for the others the set would be wasted work.
     Tensor<1, 3>
-    node_value(const Point<2> &                                   x,
-               const std::vector<types::global_dof_index> &       own_vertices,
-               const std::set<types::global_dof_index> &          surrounding,
-               const std::map<types::global_dof_index, PatchFit> &fits)
+    node_value(
+      const Point<2> &                                     x,
+      const std::vector<types::global_dof_index> &         own_vertices,
+      const std::function<std::set<types::global_dof_index>()> &collect_surrounding,
+      const std::map<types::global_dof_index, PatchFit> &  fits)
     {
       const auto average = [&](const auto &vertices,
                                const bool  centres_only,
@@ -450,8 +455,10 @@ namespace coulomb_adapt
       };
 
       Tensor<1, 3> sigma;
-      if (average(own_vertices, true, sigma) ||
-          average(surrounding, true, sigma) ||
+      if (average(own_vertices, true, sigma))
+        return sigma;
+      const std::set<types::global_dof_index> surrounding = collect_surrounding();
+      if (average(surrounding, true, sigma) ||
           average(own_vertices, false, sigma) ||
           average(surrounding, false, sigma))
         return sigma;
@@ -553,18 +560,23 @@ namespace coulomb_adapt
               done[owned_dofs.index_within_set(dof)] = true;
 
               std::vector<types::global_dof_index> own_vertices;
-              std::set<types::global_dof_index>    surrounding;
-              const auto add_vertices_of = [&](const VertexCell &c) {
+              const auto vertices_of = [](const VertexCell &                   c,
+                                          std::set<types::global_dof_index> &set) {
                 for (const unsigned int v : c->vertex_indices())
-                  surrounding.insert(c->vertex_dof_index(v, 0));
+                  set.insert(c->vertex_dof_index(v, 0));
               };
+              std::function<std::set<types::global_dof_index>()> surrounding;
               if (node < first_line_node)
                 {
                   const auto vertex = vertex_cell->vertex_dof_index(
                     node / base.n_dofs_per_vertex(), 0);
                   own_vertices = {vertex};
-                  for (const auto &c : patches.at(vertex).cells)
-                    add_vertices_of(c);
+                  surrounding  = [&, vertex]() {
+                    std::set<types::global_dof_index> set;
+                    for (const auto &c : patches.at(vertex).cells)
+                      vertices_of(c, set);
+                    return set;
+                  };
                 }
               else if (node < first_interior_node)
                 {
@@ -573,16 +585,24 @@ namespace coulomb_adapt
                     (node - first_line_node) / base.n_dofs_per_line());
                   own_vertices = {line->vertex_dof_index(0, 0),
                                   line->vertex_dof_index(1, 0)};
-                  for (const auto &c : patches.at(own_vertices[0]).cells)
-                    for (const unsigned int v : c->vertex_indices())
-                      if (c->vertex_dof_index(v, 0) == own_vertices[1])
-                        add_vertices_of(c);
+                  surrounding  = [&]() {
+                    std::set<types::global_dof_index> set;
+                    for (const auto &c : patches.at(own_vertices[0]).cells)
+                      for (const unsigned int v : c->vertex_indices())
+                        if (c->vertex_dof_index(v, 0) == own_vertices[1])
+                          vertices_of(c, set);
+                    return set;
+                  };
                 }
               else
                 {
                   for (const unsigned int v : vertex_cell->vertex_indices())
                     own_vertices.push_back(vertex_cell->vertex_dof_index(v, 0));
-                  add_vertices_of(vertex_cell);
+                  surrounding = [&]() {
+                    std::set<types::global_dof_index> set;
+                    vertices_of(vertex_cell, set);
+                    return set;
+                  };
                 }
 
               const Tensor<1, 3> sigma =
