@@ -17,7 +17,9 @@
 //
 // The normal equations of a patch are sums of per-cell terms. Each rank
 // adds the terms of its own cells into a distributed vector with one slot
-// per vertex and entry, and a compress(add) leaves the complete sums with
+// per vertex and entry (vertex k, entry e at k * n_entries + e, the
+// vertices numbered by a scalar linear DoFHandler), and a compress(add)
+// leaves the complete sums with
 // the vertex's owner. The owner solves the small system; a ghost update
 // then gives every rank the polynomials of all vertices of its cells and
 // ghost cells, which is all a node of an owned cell needs. No cell beyond
@@ -248,15 +250,29 @@ namespace coulomb_adapt
     {
       Point<2>                location;
       std::vector<VertexCell> cells;
-      /** A cell of the patch and the vertex's number in it, to find the
-       * vertex's DoFs. */
-      VertexCell   some_cell;
-      unsigned int vertex_in_cell = 0;
-      bool         at_boundary    = false;
+      bool                    at_boundary = false;
     };
 
+
+
+    // The entries of the vertices in @p vertices: vertex k owns the
+    // indices k * n_entries ... (k + 1) * n_entries - 1.
+    IndexSet
+    vertex_entries(const IndexSet &vertices, const unsigned int n_entries)
+    {
+      std::vector<types::global_dof_index> indices;
+      indices.reserve(vertices.n_elements() * n_entries);
+      for (const auto k : vertices)
+        for (unsigned int e = 0; e < n_entries; ++e)
+          indices.push_back(k * n_entries + e);
+      IndexSet entries(vertices.size() * n_entries);
+      entries.add_indices(indices.begin(), indices.end());
+      entries.compress();
+      return entries;
+    }
+
     // The patches of all vertices of the locally owned and ghost cells,
-    // keyed by the vertex's first DoF in @p vertex_dofs.
+    // keyed by the vertex's number in @p vertex_dofs.
     std::map<types::global_dof_index, VertexPatch>
     collect_vertex_patches(const DoFHandler<2> &vertex_dofs)
     {
@@ -268,11 +284,7 @@ namespace coulomb_adapt
               {
                 VertexPatch &patch = patches[cell->vertex_dof_index(v, 0)];
                 if (patch.cells.empty())
-                  {
-                    patch.location       = cell->vertex(v);
-                    patch.some_cell      = cell;
-                    patch.vertex_in_cell = v;
-                  }
+                  patch.location = cell->vertex(v);
                 patch.cells.push_back(cell);
               }
             for (const auto &face : cell->face_iterators())
@@ -339,9 +351,10 @@ namespace coulomb_adapt
                             m[i] * stresses[q][c];
                       }
                   }
+                const auto first_entry =
+                  vertex_cell->vertex_dof_index(v, 0) * layout.n_entries();
                 for (unsigned int e = 0; e < layout.n_entries(); ++e)
-                  normal_equations(vertex_cell->vertex_dof_index(v, e)) +=
-                    cell_entries[e];
+                  normal_equations(first_entry + e) += cell_entries[e];
               }
           }
       normal_equations.compress(VectorOperation::add);
@@ -363,12 +376,12 @@ namespace coulomb_adapt
     {
       const IndexSet &    owned = fits.get_partitioner()->locally_owned_range();
       std::vector<double> entries(layout.n_entries());
-      for (const auto &[first_dof, patch] : patches)
-        if (owned.is_element(first_dof) &&
-            !hanging_vertices.is_constrained(first_dof))
+      for (const auto &[vertex, patch] : patches)
+        if (owned.is_element(vertex * layout.n_entries()) &&
+            !hanging_vertices.is_constrained(vertex))
           {
-            const auto dof = [&](const unsigned int e) {
-              return patch.some_cell->vertex_dof_index(patch.vertex_in_cell, e);
+            const auto dof = [&, vertex = vertex](const unsigned int e) {
+              return vertex * layout.n_entries() + e;
             };
             for (unsigned int e = 0; e < layout.n_entries(); ++e)
               entries[e] = normal_equations(dof(e));
@@ -396,10 +409,10 @@ namespace coulomb_adapt
               const PatchLayout &                                   layout)
     {
       std::map<types::global_dof_index, PatchFit> result;
-      for (const auto &[first_dof, patch] : patches)
+      for (const auto &[vertex, patch] : patches)
         {
-          const auto dof = [&](const unsigned int e) {
-            return patch.some_cell->vertex_dof_index(patch.vertex_in_cell, e);
+          const auto dof = [&, vertex = vertex](const unsigned int e) {
+            return vertex * layout.n_entries() + e;
           };
           PatchFit fit;
           fit.centre = patch.location;
@@ -412,7 +425,7 @@ namespace coulomb_adapt
             for (unsigned int c = 0; c < 3; ++c)
               fit.coefficients[k][c] =
                 fits(dof(layout.coefficient_entry(c, k)));
-          result.emplace(first_dof, fit);
+          result.emplace(vertex, fit);
         }
       return result;
     }
@@ -484,22 +497,26 @@ namespace coulomb_adapt
     const MPI_Comm    comm    = body.triangulation().get_communicator();
     const bool        simplex = body.is_simplex_mesh();
 
-    // One DoF per vertex and per patch entry: the index space of the
-    // distributed per-vertex data (its hanging-node constraints mark the
-    // hanging vertices).
-    DoFHandler<2>     vertex_dofs(body.triangulation());
-    const FESystem<2> vertex_fe(simplex ?
-                                  static_cast<const FiniteElement<2> &>(
-                                    FE_SimplexP<2>(1)) :
-                                  static_cast<const FiniteElement<2> &>(
-                                    FE_Q<2>(1)),
-                                layout.n_entries());
-    vertex_dofs.distribute_dofs(vertex_fe);
-    IndexSet relevant_vertex_dofs;
-    DoFTools::extract_locally_relevant_dofs(vertex_dofs, relevant_vertex_dofs);
-    AffineConstraints<double> hanging_vertices(relevant_vertex_dofs);
+    // One DoF per vertex: the numbering of the distributed per-vertex data
+    // (its hanging-node constraints mark the hanging vertices). A scalar
+    // linear element, not an FESystem with one component per entry: the
+    // entries of vertex k are k * n_entries + e (vertex_entries), so DoF
+    // distribution and the DoF lookups per cell do not grow with the
+    // number of entries.
+    DoFHandler<2> vertex_dofs(body.triangulation());
+    if (simplex)
+      vertex_dofs.distribute_dofs(FE_SimplexP<2>(1));
+    else
+      vertex_dofs.distribute_dofs(FE_Q<2>(1));
+    IndexSet relevant_vertices;
+    DoFTools::extract_locally_relevant_dofs(vertex_dofs, relevant_vertices);
+    AffineConstraints<double> hanging_vertices(relevant_vertices);
     DoFTools::make_hanging_node_constraints(vertex_dofs, hanging_vertices);
     hanging_vertices.close();
+    const IndexSet owned_entries =
+      vertex_entries(vertex_dofs.locally_owned_dofs(), layout.n_entries());
+    const IndexSet relevant_entries =
+      vertex_entries(relevant_vertices, layout.n_entries());
 
     // Gauss points of order p: the cell centroid for Q1 and P1, the 2 x 2
     // points of Q2, the 3-point rule of P2.
@@ -508,7 +525,7 @@ namespace coulomb_adapt
                 static_cast<Quadrature<2>>(QGauss<2>(degree));
 
     LinearAlgebra::distributed::Vector<double> normal_equations(
-      vertex_dofs.locally_owned_dofs(), relevant_vertex_dofs, comm);
+      owned_entries, relevant_entries, comm);
     add_cell_contributions(body,
                            displacement,
                            sampling_points,
@@ -517,8 +534,9 @@ namespace coulomb_adapt
                            normal_equations);
 
     const auto patches = collect_vertex_patches(vertex_dofs);
-    LinearAlgebra::distributed::Vector<double> fit_vector(
-      vertex_dofs.locally_owned_dofs(), relevant_vertex_dofs, comm);
+    LinearAlgebra::distributed::Vector<double> fit_vector(owned_entries,
+                                                          relevant_entries,
+                                                          comm);
     fit_owned_patches(
       patches, normal_equations, hanging_vertices, layout, degree, fit_vector);
     const auto fits = read_fits(patches, fit_vector, layout);
