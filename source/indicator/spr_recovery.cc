@@ -34,7 +34,6 @@
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_values.h>
 
-#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <coulomb_adapt/indicator/recovered_stress.h>
@@ -43,7 +42,6 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -184,7 +182,13 @@ namespace coulomb_adapt
           scale[k] = diagonal > 0 ? 1. / std::sqrt(diagonal) : 0.;
         }
 
-      FullMatrix<double> cholesky(n, n);
+      // On the stack: one fit per vertex.
+      std::array<std::array<double, max_n_monomials>, max_n_monomials>
+        cholesky_entries{};
+      const auto cholesky = [&](const unsigned int i,
+                                const unsigned int j) -> double & {
+        return cholesky_entries[i][j];
+      };
       unsigned int       n_determined = 0;
       for (unsigned int k = 0; k < n && scale[k] > 0; ++k)
         {
@@ -248,6 +252,8 @@ namespace coulomb_adapt
     // layer holds all cells sharing a vertex with an owned cell.
     struct VertexPatch
     {
+      /** The vertex's number in the vertex DoFHandler. */
+      types::global_dof_index vertex = numbers::invalid_dof_index;
       Point<2>                location;
       std::vector<VertexCell> cells;
       bool                    at_boundary = false;
@@ -260,37 +266,45 @@ namespace coulomb_adapt
     IndexSet
     vertex_entries(const IndexSet &vertices, const unsigned int n_entries)
     {
-      std::vector<types::global_dof_index> indices;
-      indices.reserve(vertices.n_elements() * n_entries);
-      for (const auto k : vertices)
-        for (unsigned int e = 0; e < n_entries; ++e)
-          indices.push_back(k * n_entries + e);
       IndexSet entries(vertices.size() * n_entries);
-      entries.add_indices(indices.begin(), indices.end());
+      for (auto interval = vertices.begin_intervals();
+           interval != vertices.end_intervals();
+           ++interval)
+        entries.add_range(*interval->begin() * n_entries,
+                          (interval->last() + 1) * n_entries);
       entries.compress();
       return entries;
     }
 
-    // The patches of all vertices of the locally owned and ghost cells,
-    // keyed by the vertex's number in @p vertex_dofs.
-    std::map<types::global_dof_index, VertexPatch>
-    collect_vertex_patches(const DoFHandler<2> &vertex_dofs)
+    // The patches of all vertices of the locally owned and ghost cells
+    // (the locally relevant vertices), at the vertex's position in
+    // @p relevant_vertices.
+    std::vector<VertexPatch>
+    collect_vertex_patches(const DoFHandler<2> &vertex_dofs,
+                           const IndexSet &     relevant_vertices)
     {
-      std::map<types::global_dof_index, VertexPatch> patches;
+      std::vector<VertexPatch> patches(relevant_vertices.n_elements());
+      const auto patch_of = [&](const types::global_dof_index vertex)
+        -> VertexPatch & {
+        return patches[relevant_vertices.index_within_set(vertex)];
+      };
       for (const auto &cell : vertex_dofs.active_cell_iterators())
         if (!cell->is_artificial())
           {
             for (const unsigned int v : cell->vertex_indices())
               {
-                VertexPatch &patch = patches[cell->vertex_dof_index(v, 0)];
+                VertexPatch &patch = patch_of(cell->vertex_dof_index(v, 0));
                 if (patch.cells.empty())
-                  patch.location = cell->vertex(v);
+                  {
+                    patch.vertex   = cell->vertex_dof_index(v, 0);
+                    patch.location = cell->vertex(v);
+                  }
                 patch.cells.push_back(cell);
               }
             for (const auto &face : cell->face_iterators())
               if (face->at_boundary())
                 for (const unsigned int v : face->vertex_indices())
-                  patches[face->vertex_dof_index(v, 0)].at_boundary = true;
+                  patch_of(face->vertex_dof_index(v, 0)).at_boundary = true;
           }
       return patches;
     }
@@ -367,7 +381,7 @@ namespace coulomb_adapt
     // only, and their values come from the constraints anyway.
     void
     fit_owned_patches(
-      const std::map<types::global_dof_index, VertexPatch> &patches,
+      const std::vector<VertexPatch> &                      patches,
       const LinearAlgebra::distributed::Vector<double> &    normal_equations,
       const AffineConstraints<double> &                     hanging_vertices,
       const PatchLayout &                                   layout,
@@ -376,12 +390,12 @@ namespace coulomb_adapt
     {
       const IndexSet &    owned = fits.get_partitioner()->locally_owned_range();
       std::vector<double> entries(layout.n_entries());
-      for (const auto &[vertex, patch] : patches)
-        if (owned.is_element(vertex * layout.n_entries()) &&
-            !hanging_vertices.is_constrained(vertex))
+      for (const VertexPatch &patch : patches)
+        if (owned.is_element(patch.vertex * layout.n_entries()) &&
+            !hanging_vertices.is_constrained(patch.vertex))
           {
-            const auto dof = [&, vertex = vertex](const unsigned int e) {
-              return vertex * layout.n_entries() + e;
+            const auto dof = [&](const unsigned int e) {
+              return patch.vertex * layout.n_entries() + e;
             };
             for (unsigned int e = 0; e < layout.n_entries(); ++e)
               entries[e] = normal_equations(dof(e));
@@ -402,17 +416,19 @@ namespace coulomb_adapt
 
 
 
-    // The fits of all vertices this rank sees, from the ghosted vector.
-    std::map<types::global_dof_index, PatchFit>
-    read_fits(const std::map<types::global_dof_index, VertexPatch> &patches,
+    // The fits of all vertices this rank sees, from the ghosted vector, in
+    // the order of @p patches.
+    std::vector<PatchFit>
+    read_fits(const std::vector<VertexPatch> &                      patches,
               const LinearAlgebra::distributed::Vector<double> &    fits,
               const PatchLayout &                                   layout)
     {
-      std::map<types::global_dof_index, PatchFit> result;
-      for (const auto &[vertex, patch] : patches)
+      std::vector<PatchFit> result;
+      result.reserve(patches.size());
+      for (const VertexPatch &patch : patches)
         {
-          const auto dof = [&, vertex = vertex](const unsigned int e) {
-            return vertex * layout.n_entries() + e;
+          const auto dof = [&](const unsigned int e) {
+            return patch.vertex * layout.n_entries() + e;
           };
           PatchFit fit;
           fit.centre = patch.location;
@@ -425,7 +441,7 @@ namespace coulomb_adapt
             for (unsigned int c = 0; c < 3; ++c)
               fit.coefficients[k][c] =
                 fits(dof(layout.coefficient_entry(c, k)));
-          result.emplace(vertex, fit);
+          result.push_back(fit);
         }
       return result;
     }
@@ -446,7 +462,8 @@ namespace coulomb_adapt
       const Point<2> &                                     x,
       const std::vector<types::global_dof_index> &         own_vertices,
       const std::function<std::set<types::global_dof_index>()> &collect_surrounding,
-      const std::map<types::global_dof_index, PatchFit> &  fits)
+      const std::vector<PatchFit> &                        fits,
+      const IndexSet &                                     relevant_vertices)
     {
       const auto average = [&](const auto &vertices,
                                const bool  centres_only,
@@ -455,7 +472,7 @@ namespace coulomb_adapt
         unsigned int n_found = 0;
         for (const auto v : vertices)
           {
-            const PatchFit &fit = fits.at(v);
+            const PatchFit &fit = fits[relevant_vertices.index_within_set(v)];
             if (centres_only ? fit.is_centre : fit.has_fit)
               {
                 sigma += fit.value(x);
@@ -533,7 +550,7 @@ namespace coulomb_adapt
                            layout,
                            normal_equations);
 
-    const auto patches = collect_vertex_patches(vertex_dofs);
+    const auto patches = collect_vertex_patches(vertex_dofs, relevant_vertices);
     LinearAlgebra::distributed::Vector<double> fit_vector(owned_entries,
                                                           relevant_entries,
                                                           comm);
@@ -591,7 +608,8 @@ namespace coulomb_adapt
                   own_vertices = {vertex};
                   surrounding  = [&, vertex]() {
                     std::set<types::global_dof_index> set;
-                    for (const auto &c : patches.at(vertex).cells)
+                    for (const auto &c :
+                         patches[relevant_vertices.index_within_set(vertex)].cells)
                       vertices_of(c, set);
                     return set;
                   };
@@ -605,7 +623,9 @@ namespace coulomb_adapt
                                   line->vertex_dof_index(1, 0)};
                   surrounding  = [&]() {
                     std::set<types::global_dof_index> set;
-                    for (const auto &c : patches.at(own_vertices[0]).cells)
+                    for (const auto &c :
+                         patches[relevant_vertices.index_within_set(own_vertices[0])]
+                           .cells)
                       for (const unsigned int v : c->vertex_indices())
                         if (c->vertex_dof_index(v, 0) == own_vertices[1])
                           vertices_of(c, set);
@@ -627,7 +647,8 @@ namespace coulomb_adapt
                 node_value(node_positions.quadrature_point(node),
                            own_vertices,
                            surrounding,
-                           fits);
+                           fits,
+                           relevant_vertices);
               for (unsigned int c = 0; c < 3; ++c)
                 owned_values[c][dof] = sigma[c];
             }
