@@ -12,6 +12,8 @@
 //     Gauss points are not superconvergent and SPR is not exact.
 //  2. convergence, for a smooth field under uniform refinement: the
 //     recovered stress must converge faster than the raw FE stress.
+// First, the raw stress both recoveries start from (QuadratureStress) is
+// checked against deal.II's FEValues of the displacement's FESystem.
 // The output is the same on any number of ranks.
 
 #include <deal.II/base/convergence_table.h>
@@ -295,6 +297,74 @@ interpolate_displacement(ElasticBody &body, const Function<2> &u)
   body.set_solution(owned);
 }
 
+// QuadratureStress (the raw stress the recoveries and the volume terms
+// read: strain from the scalar base element's gradients and the nodal
+// values) against deal.II's FEValues of the displacement's FESystem, at
+// the same points: stresses and weights must agree to round-off, cell by
+// cell, on hanging-node and triangle meshes, p = 1 and 2.
+void
+check_quadrature_stress(const std::string &  label,
+                        const RecoveryScene &scene,
+                        const unsigned int   degree,
+                        const Function<2> &  u)
+{
+  ElasticBody body(MPI_COMM_WORLD,
+                   scene,
+                   0,
+                   CellType::quadrilateral,
+                   0,
+                   {degree, PlaneModel::plane_strain});
+  body.setup_system();
+  interpolate_displacement(body, u);
+  const QuadratureStress raw_stress(body, body.solution());
+
+  FEValues<2> reference(body.mapping(),
+                        body.dof_handler().get_fe(),
+                        body.cell_quadrature(),
+                        update_gradients | update_JxW_values);
+  std::vector<SymmetricTensor<2, 2>> strains(body.cell_quadrature().size());
+  double       largest_stress = 0, stress_difference = 0;
+  double       weight_difference = 0, area = 0;
+  unsigned int owned_cell = 0;
+  for (const auto &cell : body.dof_handler().active_cell_iterators())
+    if (cell->is_locally_owned())
+      {
+        reference.reinit(cell);
+        reference[FEValuesExtractors::Vector(0)]
+          .get_function_symmetric_gradients(body.solution(), strains);
+        for (const unsigned int q : reference.quadrature_point_indices())
+          {
+            const Tensor<1, 3> sigma =
+              stress_components(body.material().stress(strains[q]));
+            largest_stress = std::max(largest_stress, sigma.norm());
+            stress_difference =
+              std::max(stress_difference,
+                       (raw_stress.stress(owned_cell, q) - sigma).norm());
+            weight_difference =
+              std::max(weight_difference,
+                       std::abs(raw_stress.JxW(owned_cell, q) -
+                                reference.JxW(q)));
+            area += reference.JxW(q);
+          }
+        ++owned_cell;
+      }
+  const MPI_Comm comm = body.triangulation().get_communicator();
+  largest_stress      = Utilities::MPI::max(largest_stress, comm);
+  stress_difference   = Utilities::MPI::max(stress_difference, comm);
+  weight_difference   = Utilities::MPI::max(weight_difference, comm);
+  area                = Utilities::MPI::sum(area, comm);
+  const bool same = stress_difference <= 1e-13 * largest_stress &&
+                    weight_difference <= 1e-14 * area;
+  testing::root_output() << "raw stress at the quadrature points, " << label
+                         << ", " << (body.is_simplex_mesh() ? "P" : "Q")
+                         << degree << ": same as FEValues of the FESystem: "
+                         << (same ? "yes" : "no") << std::endl;
+  AssertThrow(same,
+              ExcMessage(label + ": QuadratureStress differs from FEValues by " +
+                         std::to_string(stress_difference) + " (stress) and " +
+                         std::to_string(weight_difference) + " (JxW)"));
+}
+
 const std::vector<StressRecoveryMethod> methods = {
   StressRecoveryMethod::l2_projection,
   StressRecoveryMethod::spr};
@@ -448,6 +518,20 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const auto spr = StressRecoveryMethod::spr;
   const auto zz  = StressRecoveryMethod::l2_projection;
+
+  const SmoothDisplacement smooth;
+  for (const unsigned int p : {1u, 2u})
+    {
+      check_quadrature_stress("distorted quadrilaterals with hanging nodes",
+                              distorted_quadrilaterals_with_hanging_nodes,
+                              p,
+                              smooth);
+      check_quadrature_stress("distorted triangles",
+                              distorted_triangles,
+                              p,
+                              smooth);
+    }
+  testing::root_output() << std::endl;
 
   for (const unsigned int p : {1u, 2u})
     {
