@@ -53,6 +53,7 @@ namespace coulomb_adapt
             difference(cell->active_cell_index()) = cell_difference;
             ++owned_cell;
           }
+      AssertDimension(owned_cell, raw_stress.n_cells());
       return Utilities::MPI::sum(sum_norm,
                                  body.triangulation().get_communicator());
     }

@@ -3,7 +3,6 @@
 #include <deal.II/lac/vector.h>
 
 #include <coulomb_adapt/indicator/quadrature_stress.h>
-#include <coulomb_adapt/indicator/recovered_stress.h>
 
 #include <utility>
 
@@ -74,6 +73,14 @@ namespace coulomb_adapt
   QuadratureStress::n_points() const
   {
     return n_points_;
+  }
+
+
+
+  unsigned int
+  QuadratureStress::n_cells() const
+  {
+    return n_points_ > 0 ? weights.size() / n_points_ : 0;
   }
 
 

@@ -1,5 +1,7 @@
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/fe/fe_poly.h>
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
@@ -41,6 +43,14 @@ namespace coulomb_adapt
                            std::to_string(max_dofs_per_cell) +
                            " nodes per cell (Q3), not " +
                            std::to_string(fe->n_dofs_per_cell()) + "."));
+    // shape_values below holds reference values: right for the scalar
+    // polynomial elements (FE_Q, FE_SimplexP: FE_Poly), whose values need
+    // no mapping data.
+    AssertThrow(dynamic_cast<const FE_Poly<2> *>(fe.get()) != nullptr,
+                ExcMessage("The recovered stress needs a scalar polynomial "
+                           "element (FE_Q, FE_SimplexP), whose shape values "
+                           "do not depend on the cell, not " +
+                           fe->get_name() + "."));
     dofs.distribute_dofs(*fe);
     owned_dofs = dofs.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dofs, relevant_dofs);
@@ -112,6 +122,7 @@ namespace coulomb_adapt
       r.reinit(relevant_dofs.n_elements());
     std::array<unsigned int, max_dofs_per_cell> relevant_index;
 
+    AssertDimension(n_points, shape_values.n());
     unsigned int owned_cell = 0;
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -138,6 +149,7 @@ namespace coulomb_adapt
                                                  dof_indices,
                                                  mass);
         }
+    AssertDimension(owned_cell, raw_stress.n_cells());
     std::vector<types::global_dof_index> relevant_indices;
     relevant_dofs.fill_index_vector(relevant_indices);
     for (unsigned int c = 0; c < 3; ++c)

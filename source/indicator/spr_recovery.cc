@@ -19,8 +19,7 @@
 // adds the terms of its own cells into a distributed vector with one slot
 // per vertex and entry (vertex k, entry e at k * n_entries + e, the
 // vertices numbered by a scalar linear DoFHandler), and a compress(add)
-// leaves the complete sums with
-// the vertex's owner. The owner solves the small system; a ghost update
+// leaves the complete sums with the vertex's owner. The owner solves the small system; a ghost update
 // then gives every rank the polynomials of all vertices of its cells and
 // ghost cells, which is all a node of an owned cell needs. No cell beyond
 // the ghost layer is ever used, and the result does not depend on the
@@ -41,7 +40,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -70,8 +68,8 @@ namespace coulomb_adapt
 
 
 
-    // Where the entries of one vertex sit among the components of the
-    // per-vertex vectors. Normal equations: the upper triangle of A^T A
+    // Where the entries of one vertex sit among its n_entries() slots of
+    // the per-vertex vectors. Normal equations: the upper triangle of A^T A
     // (row by row), then A^T b for the components xx, yy, xy. Fit: the
     // coefficients of the three components, the fitted degree + 1 (0: no
     // fit) and a flag for patches that serve as SPR centres.
@@ -116,8 +114,8 @@ namespace coulomb_adapt
       {
         return 3 * n + 1;
       }
-      // Components per vertex: the normal equations, the larger of the
-      // two records.
+      // Slots per vertex: the normal equations, the larger of the two
+      // records.
       unsigned int
       n_entries() const
       {
@@ -261,6 +259,20 @@ namespace coulomb_adapt
 
 
 
+    // The position of vertex @p k among @p relevant_vertices, where the
+    // per-vertex patches and fits are stored.
+    std::size_t
+    relevant_position(const IndexSet &              relevant_vertices,
+                      const types::global_dof_index k)
+    {
+      const auto position = relevant_vertices.index_within_set(k);
+      Assert(position != numbers::invalid_dof_index,
+             ExcMessage("SPR: a vertex outside the ghost layer."));
+      return position;
+    }
+
+
+
     // The entries of the vertices in @p vertices: vertex k owns the
     // indices k * n_entries ... (k + 1) * n_entries - 1.
     IndexSet
@@ -286,7 +298,7 @@ namespace coulomb_adapt
       std::vector<VertexPatch> patches(relevant_vertices.n_elements());
       const auto patch_of = [&](const types::global_dof_index vertex)
         -> VertexPatch & {
-        return patches[relevant_vertices.index_within_set(vertex)];
+        return patches[relevant_position(relevant_vertices, vertex)];
       };
       for (const auto &cell : vertex_dofs.active_cell_iterators())
         if (!cell->is_artificial())
@@ -391,7 +403,8 @@ namespace coulomb_adapt
       const IndexSet &    owned = fits.get_partitioner()->locally_owned_range();
       std::vector<double> entries(layout.n_entries());
       for (const VertexPatch &patch : patches)
-        if (owned.is_element(patch.vertex * layout.n_entries()) &&
+        if (!patch.cells.empty() &&
+            owned.is_element(patch.vertex * layout.n_entries()) &&
             !hanging_vertices.is_constrained(patch.vertex))
           {
             const auto dof = [&](const unsigned int e) {
@@ -427,10 +440,16 @@ namespace coulomb_adapt
       result.reserve(patches.size());
       for (const VertexPatch &patch : patches)
         {
+          PatchFit fit;
+          if (patch.cells.empty())
+            {
+              // Not a vertex of this rank's cells: never read.
+              result.push_back(fit);
+              continue;
+            }
           const auto dof = [&](const unsigned int e) {
             return patch.vertex * layout.n_entries() + e;
           };
-          PatchFit fit;
           fit.centre = patch.location;
           const double degree_plus_one =
             fits(dof(layout.fitted_degree_entry()));
@@ -457,13 +476,13 @@ namespace coulomb_adapt
     // @p collect_surrounding gives the vertices of the cells containing the
     // node; it is called only if no own vertex is a centre (nodes on or
     // next to the boundary): for the others the set would be wasted work.
+    template <typename CollectSurrounding>
     Tensor<1, 3>
-    node_value(
-      const Point<2> &                                     x,
-      const std::vector<types::global_dof_index> &         own_vertices,
-      const std::function<std::set<types::global_dof_index>()> &collect_surrounding,
-      const std::vector<PatchFit> &                        fits,
-      const IndexSet &                                     relevant_vertices)
+    node_value(const Point<2> &                             x,
+               const std::vector<types::global_dof_index> &own_vertices,
+               const CollectSurrounding &                  collect_surrounding,
+               const std::vector<PatchFit> &               fits,
+               const IndexSet &                            relevant_vertices)
     {
       const auto average = [&](const auto &vertices,
                                const bool  centres_only,
@@ -472,7 +491,7 @@ namespace coulomb_adapt
         unsigned int n_found = 0;
         for (const auto v : vertices)
           {
-            const PatchFit &fit = fits[relevant_vertices.index_within_set(v)];
+            const PatchFit &fit = fits[relevant_position(relevant_vertices, v)];
             if (centres_only ? fit.is_centre : fit.has_fit)
               {
                 sigma += fit.value(x);
@@ -600,19 +619,23 @@ namespace coulomb_adapt
                 for (const unsigned int v : c->vertex_indices())
                   set.insert(c->vertex_dof_index(v, 0));
               };
-              std::function<std::set<types::global_dof_index>()> surrounding;
+              const Point<2> &x = node_positions.quadrature_point(node);
+              Tensor<1, 3>    sigma;
               if (node < first_line_node)
                 {
                   const auto vertex = vertex_cell->vertex_dof_index(
                     node / base.n_dofs_per_vertex(), 0);
                   own_vertices = {vertex};
-                  surrounding  = [&, vertex]() {
+                  const auto surrounding = [&]() {
                     std::set<types::global_dof_index> set;
                     for (const auto &c :
-                         patches[relevant_vertices.index_within_set(vertex)].cells)
+                         patches[relevant_position(relevant_vertices, vertex)]
+                           .cells)
                       vertices_of(c, set);
                     return set;
                   };
+                  sigma = node_value(
+                    x, own_vertices, surrounding, fits, relevant_vertices);
                 }
               else if (node < first_interior_node)
                 {
@@ -621,34 +644,32 @@ namespace coulomb_adapt
                     (node - first_line_node) / base.n_dofs_per_line());
                   own_vertices = {line->vertex_dof_index(0, 0),
                                   line->vertex_dof_index(1, 0)};
-                  surrounding  = [&]() {
+                  const auto surrounding = [&]() {
                     std::set<types::global_dof_index> set;
                     for (const auto &c :
-                         patches[relevant_vertices.index_within_set(own_vertices[0])]
+                         patches[relevant_position(relevant_vertices,
+                                                   own_vertices[0])]
                            .cells)
                       for (const unsigned int v : c->vertex_indices())
                         if (c->vertex_dof_index(v, 0) == own_vertices[1])
                           vertices_of(c, set);
                     return set;
                   };
+                  sigma = node_value(
+                    x, own_vertices, surrounding, fits, relevant_vertices);
                 }
               else
                 {
                   for (const unsigned int v : vertex_cell->vertex_indices())
                     own_vertices.push_back(vertex_cell->vertex_dof_index(v, 0));
-                  surrounding = [&]() {
+                  const auto surrounding = [&]() {
                     std::set<types::global_dof_index> set;
                     vertices_of(vertex_cell, set);
                     return set;
                   };
+                  sigma = node_value(
+                    x, own_vertices, surrounding, fits, relevant_vertices);
                 }
-
-              const Tensor<1, 3> sigma =
-                node_value(node_positions.quadrature_point(node),
-                           own_vertices,
-                           surrounding,
-                           fits,
-                           relevant_vertices);
               for (unsigned int c = 0; c < 3; ++c)
                 owned_values[c][dof] = sigma[c];
             }

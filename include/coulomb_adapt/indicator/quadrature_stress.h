@@ -1,6 +1,7 @@
 #ifndef coulomb_adapt_indicator_quadrature_stress_h
 #define coulomb_adapt_indicator_quadrature_stress_h
 
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/lac/trilinos_vector.h>
@@ -11,6 +12,27 @@
 
 namespace coulomb_adapt
 {
+  /** sigma as the three components (xx, yy, xy) that the indicator stores
+   * (raw stress at quadrature points, recovered stress). */
+  inline Tensor<1, 3>
+  stress_components(const SymmetricTensor<2, 2> &sigma)
+  {
+    return Tensor<1, 3>({sigma[0][0], sigma[1][1], sigma[0][1]});
+  }
+
+  /** The inverse of stress_components. */
+  inline SymmetricTensor<2, 2>
+  stress_tensor(const Tensor<1, 3> &components)
+  {
+    SymmetricTensor<2, 2> sigma;
+    sigma[0][0] = components[0];
+    sigma[1][1] = components[1];
+    sigma[0][1] = components[2];
+    return sigma;
+  }
+
+
+
   /**
    * The stress sigma_c = K eps(u) of one body and the weights JxW at the
    * points of the body's cell quadrature, for every locally owned cell.
@@ -33,6 +55,9 @@ namespace coulomb_adapt
      * vector of the body's displacement space). Keeps references to both. */
     QuadratureStress(const ElasticBody &                  body,
                      const TrilinosWrappers::MPI::Vector &displacement);
+    /** The reference kept to the displacement must not dangle. */
+    QuadratureStress(const ElasticBody &,
+                     TrilinosWrappers::MPI::Vector &&) = delete;
 
     const ElasticBody &
     body() const;
@@ -43,6 +68,11 @@ namespace coulomb_adapt
     /** Points per cell (the size of ElasticBody::cell_quadrature()). */
     unsigned int
     n_points() const;
+
+    /** Locally owned cells: a pass that reads this data must have counted
+     * as many. */
+    unsigned int
+    n_cells() const;
 
     /** (xx, yy, xy) of sigma_c at point @p q of owned cell number @p cell. */
     const Tensor<1, 3> &

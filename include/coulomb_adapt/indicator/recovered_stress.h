@@ -1,8 +1,6 @@
 #ifndef coulomb_adapt_indicator_recovered_stress_h
 #define coulomb_adapt_indicator_recovered_stress_h
 
-#include <deal.II/base/symmetric_tensor.h>
-
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/fe.h>
@@ -59,7 +57,9 @@ namespace coulomb_adapt
     explicit RecoveredStress(const ElasticBody &body);
 
     /** Recover sigma~ from the raw stress K eps(u) of @p raw_stress (same
-     * body and mesh). */
+     * body and mesh). ZZ integrates the stress and weights @p raw_stress
+     * holds; SPR samples K eps(u) of its displacement at its own points
+     * (the Gauss points of order p). */
     void
     recover(const QuadratureStress &raw_stress,
             const StressRecoveryMethod method);
@@ -98,23 +98,6 @@ namespace coulomb_adapt
     FullMatrix<double> shape_values;
   };
 
-  /** sigma as the three components (xx, yy, xy) the stress space uses. */
-  inline Tensor<1, 3>
-  stress_components(const SymmetricTensor<2, 2> &sigma)
-  {
-    return Tensor<1, 3>({sigma[0][0], sigma[1][1], sigma[0][1]});
-  }
-
-  /** The inverse of stress_components. */
-  inline SymmetricTensor<2, 2>
-  stress_tensor(const Tensor<1, 3> &components)
-  {
-    SymmetricTensor<2, 2> sigma;
-    sigma[0][0] = components[0];
-    sigma[1][1] = components[1];
-    sigma[0][1] = components[2];
-    return sigma;
-  }
 } // namespace coulomb_adapt
 
 #endif
