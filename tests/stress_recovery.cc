@@ -41,6 +41,7 @@
 #include <cmath>
 #include <iomanip>
 #include <map>
+#include <memory>
 #include <utility>
 
 using namespace coulomb_adapt;
@@ -300,6 +301,25 @@ interpolate_displacement(ElasticBody &body, const Function<2> &u)
   body.set_solution(owned);
 }
 
+// One body on @p scene's (unrefined) mesh, of degree @p degree, whose
+// solution is the interpolant of @p u.
+std::unique_ptr<ElasticBody>
+interpolated_body(const RecoveryScene &scene,
+                  const unsigned int   degree,
+                  const Function<2> &  u)
+{
+  auto body = std::make_unique<ElasticBody>(
+    MPI_COMM_WORLD,
+    scene,
+    0,
+    CellType::quadrilateral,
+    0,
+    parameters::FiniteElements{degree, PlaneModel::plane_strain});
+  body->setup_system();
+  interpolate_displacement(*body, u);
+  return body;
+}
+
 // QuadratureStress (strain from the scalar base element's gradients and
 // the nodal values) against deal.II's FEValues of the displacement's
 // FESystem at the same points: stresses and each weight must agree to
@@ -313,14 +333,8 @@ check_quadrature_stress(const std::string &  label,
                         const unsigned int   degree,
                         const Function<2> &  u)
 {
-  ElasticBody body(MPI_COMM_WORLD,
-                   scene,
-                   0,
-                   CellType::quadrilateral,
-                   0,
-                   {degree, PlaneModel::plane_strain});
-  body.setup_system();
-  interpolate_displacement(body, u);
+  const auto             body_pointer = interpolated_body(scene, degree, u);
+  const ElasticBody &    body         = *body_pointer;
   const QuadratureStress raw_stress(body, body.solution());
 
   FEValues<2> reference(body.mapping(),
@@ -420,14 +434,8 @@ check_exactness(const std::string &                     label,
   const double tolerance = 1e-10;
   auto         out       = testing::root_output();
 
-  ElasticBody body(MPI_COMM_WORLD,
-                   scene,
-                   0,
-                   CellType::quadrilateral,
-                   0,
-                   {degree, PlaneModel::plane_strain});
-  body.setup_system();
-  interpolate_displacement(body, u);
+  const auto         body_pointer = interpolated_body(scene, degree, u);
+  const ElasticBody &body         = *body_pointer;
   RecoveredStress        recovery(body);
   const QuadratureStress raw_stress(body, body.solution());
 
