@@ -35,23 +35,23 @@ namespace coulomb_adapt
 
   RecoveredStress::RecoveredStress(const ElasticBody &body)
     : body(body)
-    , fe(body.dof_handler().get_fe().base_element(0).clone())
+    , fe(body.dof_handler().get_fe().base_element(0))
     , dofs(body.triangulation())
   {
-    AssertThrow(fe->n_dofs_per_cell() <= max_dofs_per_cell,
+    AssertThrow(fe.n_dofs_per_cell() <= max_dofs_per_cell,
                 ExcMessage("The recovered stress supports up to " +
                            std::to_string(max_dofs_per_cell) +
                            " nodes per cell (Q3), not " +
-                           std::to_string(fe->n_dofs_per_cell()) + "."));
+                           std::to_string(fe.n_dofs_per_cell()) + "."));
     // shape_values below holds reference values: right for the scalar
     // polynomial elements (FE_Q, FE_SimplexP: FE_Poly), whose values need
     // no mapping data.
-    AssertThrow(dynamic_cast<const FE_Poly<2> *>(fe.get()) != nullptr,
+    AssertThrow(dynamic_cast<const FE_Poly<2> *>(&fe) != nullptr,
                 ExcMessage("The recovered stress needs a scalar polynomial "
                            "element (FE_Q, FE_SimplexP), whose shape values "
                            "do not depend on the cell, not " +
-                           fe->get_name() + "."));
-    dofs.distribute_dofs(*fe);
+                           fe.get_name() + "."));
+    dofs.distribute_dofs(fe);
     owned_dofs = dofs.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dofs, relevant_dofs);
     constraints.reinit(relevant_dofs);
@@ -61,10 +61,10 @@ namespace coulomb_adapt
       c.reinit(owned_dofs, relevant_dofs, body.triangulation().get_communicator());
 
     const Quadrature<2> &quadrature = body.cell_quadrature();
-    shape_values.reinit(fe->n_dofs_per_cell(), quadrature.size());
-    for (unsigned int k = 0; k < fe->n_dofs_per_cell(); ++k)
+    shape_values.reinit(fe.n_dofs_per_cell(), quadrature.size());
+    for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
       for (unsigned int q = 0; q < quadrature.size(); ++q)
-        shape_values(k, q) = fe->shape_value(k, quadrature.point(q));
+        shape_values(k, q) = fe.shape_value(k, quadrature.point(q));
   }
 
 
@@ -109,7 +109,7 @@ namespace coulomb_adapt
     for (auto &r : rhs)
       r.reinit(owned_dofs, comm);
 
-    const unsigned int                   n_dofs   = fe->n_dofs_per_cell();
+    const unsigned int                   n_dofs   = fe.n_dofs_per_cell();
     const unsigned int                   n_points = raw_stress.n_points();
     FullMatrix<double>                   cell_matrix(n_dofs, n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
@@ -185,7 +185,7 @@ namespace coulomb_adapt
     const DoFHandler<2>::active_cell_iterator &cell,
     std::vector<Tensor<1, 3>> &                values) const
   {
-    const unsigned int n_dofs = fe->n_dofs_per_cell();
+    const unsigned int n_dofs = fe.n_dofs_per_cell();
     values.assign(shape_values.n(), Tensor<1, 3>());
     // On the stack: this runs once per cell.
     std::array<double, max_dofs_per_cell> nodal;

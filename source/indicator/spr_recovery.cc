@@ -524,7 +524,7 @@ namespace coulomb_adapt
   void
   RecoveredStress::recover_spr(const TrilinosWrappers::MPI::Vector &displacement)
   {
-    const unsigned int degree = fe->degree;
+    const unsigned int degree = fe.degree;
     AssertThrow(degree >= 1 && degree <= max_spr_degree,
                 ExcMessage("'Error indicator/Recovery = spr' supports "
                            "polynomial degrees 1 and 2, not " +
@@ -538,17 +538,32 @@ namespace coulomb_adapt
     // linear element, not an FESystem with one component per entry: the
     // entries of vertex k are k * n_entries + e (vertex_entries), so DoF
     // distribution and the DoF lookups per cell do not grow with the
-    // number of entries.
-    DoFHandler<2> vertex_dofs(body.triangulation());
-    if (simplex)
-      vertex_dofs.distribute_dofs(FE_SimplexP<2>(1));
-    else
-      vertex_dofs.distribute_dofs(FE_Q<2>(1));
-    IndexSet relevant_vertices;
-    DoFTools::extract_locally_relevant_dofs(vertex_dofs, relevant_vertices);
-    AffineConstraints<double> hanging_vertices(relevant_vertices);
-    DoFTools::make_hanging_node_constraints(vertex_dofs, hanging_vertices);
-    hanging_vertices.close();
+    // number of entries. For p = 1 the stress space is that element
+    // already; p = 2 needs one of its own.
+    const DoFHandler<2> *            vertex_numbering  = &dofs;
+    const IndexSet *                 relevant_numbered = &relevant_dofs;
+    const AffineConstraints<double> *hanging_numbered  = &constraints;
+    DoFHandler<2>                    linear_dofs;
+    IndexSet                         linear_relevant;
+    AffineConstraints<double>        linear_hanging;
+    if (degree > 1)
+      {
+        linear_dofs.reinit(body.triangulation());
+        if (simplex)
+          linear_dofs.distribute_dofs(FE_SimplexP<2>(1));
+        else
+          linear_dofs.distribute_dofs(FE_Q<2>(1));
+        DoFTools::extract_locally_relevant_dofs(linear_dofs, linear_relevant);
+        linear_hanging.reinit(linear_relevant);
+        DoFTools::make_hanging_node_constraints(linear_dofs, linear_hanging);
+        linear_hanging.close();
+        vertex_numbering  = &linear_dofs;
+        relevant_numbered = &linear_relevant;
+        hanging_numbered  = &linear_hanging;
+      }
+    const DoFHandler<2> &            vertex_dofs       = *vertex_numbering;
+    const IndexSet &                 relevant_vertices = *relevant_numbered;
+    const AffineConstraints<double> &hanging_vertices  = *hanging_numbered;
     const IndexSet owned_entries =
       vertex_entries(vertex_dofs.locally_owned_dofs(), layout.n_entries());
     const IndexSet relevant_entries =
@@ -579,7 +594,7 @@ namespace coulomb_adapt
 
     // Nodal values of the owned, unconstrained nodes of the stress space,
     // at the nodes' physical positions.
-    const FiniteElement<2> &base = *fe;
+    const FiniteElement<2> &base = fe;
     FEValues<2>             node_positions(body.mapping(),
                                 base,
                                 Quadrature<2>(base.get_unit_support_points()),

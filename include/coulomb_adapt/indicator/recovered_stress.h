@@ -13,7 +13,6 @@
 #include <coulomb_adapt/indicator/quadrature_stress.h>
 
 #include <array>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -87,7 +86,8 @@ namespace coulomb_adapt
     recover_spr(const TrilinosWrappers::MPI::Vector &displacement);
 
     const ElasticBody &                          body;
-    std::unique_ptr<FiniteElement<2>>            fe;
+    /** The scalar base element of the body's displacement space. */
+    const FiniteElement<2> &                     fe;
     DoFHandler<2>                                dofs;
     IndexSet                                     owned_dofs;
     IndexSet                                     relevant_dofs;
