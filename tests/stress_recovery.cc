@@ -16,7 +16,8 @@
 // ZZ integrates and the volume terms read) is checked against deal.II's
 // FEValues of the displacement's FESystem, and the recovered stress at
 // those points (RecoveredStress::get_quadrature_values) against FEValues
-// of the stress space.
+// of the stress space; the ZZ mass operator against the assembled mass
+// matrix.
 // The output is the same on any number of ranks.
 
 #include <deal.II/base/convergence_table.h>
@@ -24,12 +25,19 @@
 
 #include <deal.II/fe/fe_values.h>
 
+#include <deal.II/dofs/dof_tools.h>
+
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
 
 #include <deal.II/numerics/vector_tools.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/indicator/element_mass_operator.h>
 #include <coulomb_adapt/indicator/quadrature_stress.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
@@ -411,6 +419,129 @@ check_quadrature_stress(const std::string &  label,
                          std::to_string(recovered_difference)));
 }
 
+// The ZZ mass system's operator (element matrices from QuadratureStress's
+// weights and the reference shape values, hanging nodes resolved in each
+// product) against the mass matrix that deal.II's FEValues assembles
+// through AffineConstraints: A x = C^T M C x on the unconstrained DoFs to
+// round-off, the identity on the constrained ones, and the Jacobi
+// preconditioner 1 / diag(C^T M C), for three different vectors at once.
+void
+check_mass_operator(const std::string &  label,
+                    const RecoveryScene &scene,
+                    const unsigned int   degree,
+                    const Function<2> &  u)
+{
+  const auto             body_pointer = interpolated_body(scene, degree, u);
+  const ElasticBody &    body         = *body_pointer;
+  const QuadratureStress raw_stress(body, body.solution());
+  const MPI_Comm         comm = body.triangulation().get_communicator();
+
+  const FiniteElement<2> &fe = body.dof_handler().get_fe().base_element(0);
+  DoFHandler<2>           dofs(body.triangulation());
+  dofs.distribute_dofs(fe);
+  const IndexSet owned = dofs.locally_owned_dofs();
+  IndexSet       relevant;
+  DoFTools::extract_locally_relevant_dofs(dofs, relevant);
+  AffineConstraints<double> constraints(relevant);
+  DoFTools::make_hanging_node_constraints(dofs, constraints);
+  constraints.close();
+
+  const Quadrature<2> &quadrature = body.cell_quadrature();
+  FullMatrix<double>   shape_values(fe.n_dofs_per_cell(), quadrature.size());
+  for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
+    for (unsigned int q = 0; q < quadrature.size(); ++q)
+      shape_values(k, q) = fe.shape_value(k, quadrature.point(q));
+  const ElementMassOperator mass(dofs, constraints, shape_values, raw_stress);
+
+  DynamicSparsityPattern dsp(relevant);
+  DoFTools::make_sparsity_pattern(dofs, dsp, constraints, false);
+  SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+  TrilinosWrappers::SparseMatrix reference;
+  reference.reinit(owned, owned, dsp, comm);
+  FEValues<2>        fe_values(body.mapping(),
+                        fe,
+                        quadrature,
+                        update_values | update_JxW_values);
+  FullMatrix<double> cell_matrix(fe.n_dofs_per_cell(), fe.n_dofs_per_cell());
+  std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
+  for (const auto &cell : dofs.active_cell_iterators())
+    if (cell->is_locally_owned())
+      {
+        fe_values.reinit(cell);
+        cell_matrix = 0;
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          for (const unsigned int i : fe_values.dof_indices())
+            for (const unsigned int j : fe_values.dof_indices())
+              cell_matrix(i, j) += fe_values.shape_value(i, q) *
+                                   fe_values.shape_value(j, q) *
+                                   fe_values.JxW(q);
+        cell->get_dof_indices(dof_indices);
+        constraints.distribute_local_to_global(cell_matrix,
+                                               dof_indices,
+                                               reference);
+      }
+  reference.compress(VectorOperation::add);
+
+  ElementMassOperator::BlockVectorType x, y, ones, inverse_diagonal;
+  for (auto *v : {&x, &y, &ones, &inverse_diagonal})
+    mass.initialize_dof_vector(*v);
+  for (const types::global_dof_index i : owned)
+    for (unsigned int b = 0; b < ElementMassOperator::n_blocks; ++b)
+      {
+        ones.block(b)(i) = 1;
+        if (!constraints.is_constrained(i))
+          x.block(b)(i) = std::sin(1. + 0.7 * i + 2. * b);
+      }
+  mass.vmult(y, x);
+  mass.precondition_Jacobi(inverse_diagonal, ones, 1.);
+
+  double largest = 0, product_difference = 0, diagonal_difference = 0;
+  bool   identity_on_constrained = true;
+  for (unsigned int b = 0; b < ElementMassOperator::n_blocks; ++b)
+    {
+      TrilinosWrappers::MPI::Vector x_reference(owned, comm);
+      TrilinosWrappers::MPI::Vector y_reference(owned, comm);
+      for (const types::global_dof_index i : owned)
+        x_reference(i) = x.block(b)(i);
+      x_reference.compress(VectorOperation::insert);
+      reference.vmult(y_reference, x_reference);
+      for (const types::global_dof_index i : owned)
+        if (constraints.is_constrained(i))
+          identity_on_constrained =
+            identity_on_constrained && y.block(b)(i) == x.block(b)(i) &&
+            inverse_diagonal.block(b)(i) == 1.;
+        else
+          {
+            largest = std::max(largest, std::abs(y_reference(i)));
+            product_difference =
+              std::max(product_difference,
+                       std::abs(y.block(b)(i) - y_reference(i)));
+            diagonal_difference = std::max(
+              diagonal_difference,
+              std::abs(inverse_diagonal.block(b)(i) * reference.diag_element(i) -
+                       1.));
+          }
+    }
+  largest                 = Utilities::MPI::max(largest, comm);
+  product_difference      = Utilities::MPI::max(product_difference, comm);
+  diagonal_difference     = Utilities::MPI::max(diagonal_difference, comm);
+  identity_on_constrained = Utilities::MPI::min(identity_on_constrained ? 1 : 0, comm) == 1;
+  const bool same = product_difference <= 1e-13 * largest &&
+                    diagonal_difference <= 1e-13 && identity_on_constrained;
+  testing::root_output() << "ZZ mass operator, " << label << ", "
+                         << (body.is_simplex_mesh() ? "P" : "Q") << degree
+                         << ": same as the assembled C^T M C: "
+                         << (same ? "yes" : "no") << std::endl;
+  AssertThrow(same,
+              ExcMessage(label + ": mass operator differs from the assembled "
+                                 "matrix: product " +
+                         std::to_string(product_difference / largest) +
+                         " (relative), diagonal " +
+                         std::to_string(diagonal_difference) +
+                         " (relative), identity on constrained DoFs " +
+                         (identity_on_constrained ? "yes" : "no")));
+}
+
 const std::vector<StressRecoveryMethod> methods = {
   StressRecoveryMethod::l2_projection,
   StressRecoveryMethod::spr};
@@ -570,6 +701,17 @@ main(int argc, char *argv[])
                               distorted_triangles,
                               p,
                               smooth);
+    }
+  for (const unsigned int p : {1u, 2u})
+    {
+      check_mass_operator("distorted quadrilaterals with hanging nodes",
+                          distorted_quadrilaterals_with_hanging_nodes,
+                          p,
+                          smooth);
+      check_mass_operator("distorted triangles",
+                          distorted_triangles,
+                          p,
+                          smooth);
     }
   testing::root_output() << std::endl;
 

@@ -2,16 +2,14 @@
 
 #include <deal.II/fe/fe_poly.h>
 
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/precondition.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/sparsity_tools.h>
-#include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/vector.h>
 
+#include <coulomb_adapt/indicator/element_mass_operator.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 
+#include <algorithm>
 #include <array>
 
 namespace coulomb_adapt
@@ -85,96 +83,74 @@ namespace coulomb_adapt
 
   // ZZ1: minimise int (sigma~ - sigma_c)^2 over the continuous space, the
   // mass system M s_k = b_k for each component k. The components share M,
-  // so M is assembled once on the scalar space and solved for three
-  // right-hand sides. Both integrals use the points and weights of
-  // @p raw_stress, so no FEValues is needed here. The mass matrix is
-  // spectrally equivalent to its diagonal on any shape-regular mesh, graded
-  // or not: CG with Jacobi converges in a number of steps independent of
-  // the mesh size. deal.II's CG on the Trilinos matrix and vectors: the
-  // same parallel solve without AztecOO's set-up per call, which matters on
-  // the small meshes.
+  // which is kept element by element (ElementMassOperator) from the weights
+  // of @p raw_stress; the right-hand sides integrate its stresses. No
+  // FEValues, sparsity pattern or assembled matrix is needed. The mass
+  // matrix is spectrally equivalent to its diagonal on any shape-regular
+  // mesh, graded or not: CG with Jacobi converges in a number of steps
+  // independent of the mesh size.
   void
   RecoveredStress::project_l2(const QuadratureStress &raw_stress)
   {
-    const MPI_Comm comm = body.triangulation().get_communicator();
-    DynamicSparsityPattern dsp(relevant_dofs);
-    DoFTools::make_sparsity_pattern(dofs, dsp, constraints, false);
-    SparsityTools::distribute_sparsity_pattern(dsp,
-                                               owned_dofs,
-                                               comm,
-                                               relevant_dofs);
-    TrilinosWrappers::SparseMatrix mass;
-    mass.reinit(owned_dofs, owned_dofs, dsp, comm);
-    std::array<TrilinosWrappers::MPI::Vector, 3> rhs;
-    for (auto &r : rhs)
-      r.reinit(owned_dofs, comm);
+    using BlockVectorType = ElementMassOperator::BlockVectorType;
+    const ElementMassOperator mass(dofs, constraints, shape_values, raw_stress);
 
-    const unsigned int                   n_dofs   = fe.n_dofs_per_cell();
-    const unsigned int                   n_points = raw_stress.n_points();
-    FullMatrix<double>                   cell_matrix(n_dofs, n_dofs);
-    std::vector<types::global_dof_index> dof_indices(n_dofs);
-    // The right-hand sides are summed per locally relevant DoF first and
-    // handed to Trilinos (through the hanging-node constraints) once at
-    // the end: one Epetra insertion per DoF instead of one per cell and
-    // DoF, which was a third of the assembly on small meshes.
-    std::array<Vector<double>, 3> relevant_rhs;
-    for (auto &r : relevant_rhs)
-      r.reinit(relevant_dofs.n_elements());
-    std::array<unsigned int, max_dofs_per_cell> relevant_index;
-
+    BlockVectorType rhs;
+    mass.initialize_dof_vector(rhs);
+    const unsigned int n_dofs   = fe.n_dofs_per_cell();
+    const unsigned int n_points = raw_stress.n_points();
     AssertDimension(n_points, shape_values.n());
-    unsigned int owned_cell = 0;
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(dof_indices);
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            relevant_index[i] = relevant_dofs.index_within_set(dof_indices[i]);
-          cell_matrix = 0;
-          for (unsigned int q = 0; q < n_points; ++q)
-            {
-              const Tensor<1, 3> &sigma = raw_stress.stress(owned_cell, q);
-              const double        JxW   = raw_stress.JxW(owned_cell, q);
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                {
-                  const double phi_i = shape_values(i, q) * JxW;
-                  for (unsigned int j = 0; j < n_dofs; ++j)
-                    cell_matrix(i, j) += phi_i * shape_values(j, q);
-                  for (unsigned int c = 0; c < 3; ++c)
-                    relevant_rhs[c](relevant_index[i]) += phi_i * sigma[c];
-                }
-            }
-          ++owned_cell;
-          constraints.distribute_local_to_global(cell_matrix,
-                                                 dof_indices,
-                                                 mass);
-        }
-    AssertDimension(owned_cell, raw_stress.n_cells());
-    std::vector<types::global_dof_index> relevant_indices;
-    relevant_dofs.fill_index_vector(relevant_indices);
-    for (unsigned int c = 0; c < 3; ++c)
-      constraints.distribute_local_to_global(relevant_rhs[c],
-                                             relevant_indices,
-                                             rhs[c]);
-    mass.compress(VectorOperation::add);
-    for (auto &r : rhs)
-      r.compress(VectorOperation::add);
+    std::array<std::array<double, max_dofs_per_cell>, 3> cell_rhs;
+    for (unsigned int cell = 0; cell < raw_stress.n_cells(); ++cell)
+      {
+        for (auto &r : cell_rhs)
+          std::fill(r.begin(), r.begin() + n_dofs, 0.);
+        for (unsigned int q = 0; q < n_points; ++q)
+          {
+            const Tensor<1, 3> &sigma = raw_stress.stress(cell, q);
+            const double        JxW   = raw_stress.JxW(cell, q);
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              {
+                const double phi_i = shape_values(i, q) * JxW;
+                for (unsigned int c = 0; c < 3; ++c)
+                  cell_rhs[c][i] += phi_i * sigma[c];
+              }
+          }
+        for (unsigned int c = 0; c < 3; ++c)
+          mass.distribute_local_to_global(
+            cell,
+            make_array_view(cell_rhs[c].begin(), cell_rhs[c].begin() + n_dofs),
+            rhs.block(c));
+      }
+    rhs.compress(VectorOperation::add);
 
-    TrilinosWrappers::PreconditionJacobi jacobi;
-    jacobi.initialize(mass);
+    BlockVectorType solution;
+    mass.initialize_dof_vector(solution);
+    // A zero stress (an unloaded body) has nothing to solve for.
+    if (rhs.linfty_norm() > 0)
+      {
+        // Relative to the right-hand side of all three components: the
+        // indicator measures sigma~ in a norm of the whole stress.
+        SolverControl control(1000, 1e-12 * rhs.l2_norm());
+        SolverCG<BlockVectorType> cg(control);
+        PreconditionJacobi<ElementMassOperator> jacobi;
+        jacobi.initialize(mass);
+        cg.solve(mass, solution, rhs, jacobi);
+      }
+
+    const MPI_Comm comm = body.triangulation().get_communicator();
     for (unsigned int c = 0; c < 3; ++c)
       {
-        TrilinosWrappers::MPI::Vector solution(owned_dofs, comm);
-        // A component that vanishes identically (sigma_xy of a uniform
-        // pressure) has nothing to solve for.
-        if (rhs[c].linfty_norm() > 0)
-          {
-            SolverControl control(1000, 1e-12 * rhs[c].l2_norm());
-            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-            cg.solve(mass, solution, rhs[c], jacobi);
-          }
-        constraints.distribute(solution);
-        components[c] = solution;
+        // Both vectors hold the owned entries in increasing order of
+        // their global indices (IndexSet order).
+        TrilinosWrappers::MPI::Vector owned_solution(owned_dofs, comm);
+        AssertDimension(owned_solution.locally_owned_size(),
+                        solution.block(c).locally_owned_size());
+        std::copy(solution.block(c).begin(),
+                  solution.block(c).end(),
+                  owned_solution.trilinos_vector()[0]);
+        constraints.distribute(owned_solution);
+        components[c] = owned_solution;
       }
   }
 
