@@ -451,7 +451,10 @@ check_mass_operator(const std::string &  label,
   for (unsigned int k = 0; k < fe.n_dofs_per_cell(); ++k)
     for (unsigned int q = 0; q < quadrature.size(); ++q)
       shape_values(k, q) = fe.shape_value(k, quadrature.point(q));
-  const ElementMassOperator mass(dofs, constraints, shape_values, raw_stress);
+  const auto partitioner =
+    std::make_shared<Utilities::MPI::Partitioner>(owned, relevant, comm);
+  const ElementMassOperator mass(
+    dofs, constraints, partitioner, shape_values, raw_stress);
 
   DynamicSparsityPattern dsp(relevant);
   DoFTools::make_sparsity_pattern(dofs, dsp, constraints, false);

@@ -15,17 +15,17 @@ namespace coulomb_adapt
 
 
   ElementMassOperator::ElementMassOperator(
-    const DoFHandler<2> &            dofs,
-    const AffineConstraints<double> &constraints,
-    const FullMatrix<double> &       shape_values,
-    const QuadratureStress &         weights)
+    const DoFHandler<2> &                                     dofs,
+    const AffineConstraints<double> &                         constraints,
+    const std::shared_ptr<const Utilities::MPI::Partitioner> &partitioner,
+    const FullMatrix<double> &                                shape_values,
+    const QuadratureStress &                                  weights)
     : constraints(constraints)
-    , partitioner(std::make_shared<Utilities::MPI::Partitioner>(
-        dofs.locally_owned_dofs(),
-        constraints.get_local_lines(),
-        dofs.get_triangulation().get_communicator()))
+    , partitioner(partitioner)
     , n_dofs_per_cell(dofs.get_fe().n_dofs_per_cell())
   {
+    AssertDimension(partitioner->locally_owned_size(),
+                    dofs.locally_owned_dofs().n_elements());
     AssertThrow(n_dofs_per_cell <= max_dofs_per_cell,
                 ExcMessage("The element mass operator supports up to " +
                            std::to_string(max_dofs_per_cell) +

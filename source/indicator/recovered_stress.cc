@@ -55,8 +55,10 @@ namespace coulomb_adapt
     constraints.reinit(relevant_dofs);
     DoFTools::make_hanging_node_constraints(dofs, constraints);
     constraints.close();
+    partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+      owned_dofs, relevant_dofs, body.triangulation().get_communicator());
     for (auto &c : components)
-      c.reinit(owned_dofs, relevant_dofs, body.triangulation().get_communicator());
+      c.reinit(partitioner);
 
     const Quadrature<2> &quadrature = body.cell_quadrature();
     shape_values.reinit(fe.n_dofs_per_cell(), quadrature.size());
@@ -93,7 +95,8 @@ namespace coulomb_adapt
   RecoveredStress::project_l2(const QuadratureStress &raw_stress)
   {
     using BlockVectorType = ElementMassOperator::BlockVectorType;
-    const ElementMassOperator mass(dofs, constraints, shape_values, raw_stress);
+    const ElementMassOperator mass(
+      dofs, constraints, partitioner, shape_values, raw_stress);
 
     BlockVectorType rhs;
     mass.initialize_dof_vector(rhs);
@@ -138,19 +141,11 @@ namespace coulomb_adapt
         cg.solve(mass, solution, rhs, jacobi);
       }
 
-    const MPI_Comm comm = body.triangulation().get_communicator();
     for (unsigned int c = 0; c < 3; ++c)
       {
-        // Both vectors hold the owned entries in increasing order of
-        // their global indices (IndexSet order).
-        TrilinosWrappers::MPI::Vector owned_solution(owned_dofs, comm);
-        AssertDimension(owned_solution.locally_owned_size(),
-                        solution.block(c).locally_owned_size());
-        std::copy(solution.block(c).begin(),
-                  solution.block(c).end(),
-                  owned_solution.trilinos_vector()[0]);
-        constraints.distribute(owned_solution);
-        components[c] = owned_solution;
+        components[c] = solution.block(c);
+        constraints.distribute(components[c]);
+        components[c].update_ghost_values();
       }
   }
 
@@ -184,7 +179,7 @@ namespace coulomb_adapt
 
 
 
-  const TrilinosWrappers::MPI::Vector &
+  const RecoveredStress::VectorType &
   RecoveredStress::component(const unsigned int c) const
   {
     AssertIndexRange(c, 3);

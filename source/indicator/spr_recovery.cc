@@ -601,9 +601,13 @@ namespace coulomb_adapt
                                 update_quadrature_points);
     std::vector<types::global_dof_index> dof_indices(base.n_dofs_per_cell());
     std::vector<bool> done(owned_dofs.n_elements(), false);
-    std::array<TrilinosWrappers::MPI::Vector, 3> owned_values;
-    for (auto &v : owned_values)
-      v.reinit(owned_dofs, comm);
+    // Only owned entries are written below; the constrained ones and the
+    // ghosts are filled in at the end.
+    for (auto &v : components)
+      {
+        v.zero_out_ghost_values();
+        v = 0;
+      }
 
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -686,14 +690,13 @@ namespace coulomb_adapt
                     x, own_vertices, surrounding, fits, relevant_vertices);
                 }
               for (unsigned int c = 0; c < 3; ++c)
-                owned_values[c][dof] = sigma[c];
+                components[c](dof) = sigma[c];
             }
         }
-    for (unsigned int c = 0; c < 3; ++c)
+    for (auto &v : components)
       {
-        owned_values[c].compress(VectorOperation::insert);
-        constraints.distribute(owned_values[c]);
-        components[c] = owned_values[c];
+        constraints.distribute(v);
+        v.update_ghost_values();
       }
   }
 } // namespace coulomb_adapt

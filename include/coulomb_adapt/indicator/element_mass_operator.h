@@ -54,14 +54,17 @@ namespace coulomb_adapt
 
     /**
      * Set up on @p dofs (a scalar space on the body of @p weights, with the
-     * hanging-node @p constraints, which must know the locally relevant
-     * DoFs). @p shape_values holds phi_k at the points of the body's cell
-     * quadrature (k, q). Keeps references to @p dofs and @p constraints.
+     * hanging-node @p constraints), whose vectors have the owned and ghost
+     * entries of @p partitioner (the locally relevant DoFs). @p shape_values
+     * holds phi_k at the points of the body's cell quadrature (k, q). Keeps
+     * a reference to @p constraints.
      */
-    ElementMassOperator(const DoFHandler<2> &            dofs,
-                        const AffineConstraints<double> &constraints,
-                        const FullMatrix<double> &       shape_values,
-                        const QuadratureStress &         weights);
+    ElementMassOperator(
+      const DoFHandler<2> &                                     dofs,
+      const AffineConstraints<double> &                         constraints,
+      const std::shared_ptr<const Utilities::MPI::Partitioner> &partitioner,
+      const FullMatrix<double> &                                shape_values,
+      const QuadratureStress &                                  weights);
 
     /** A vector with the locally owned and ghost entries of this space. */
     void

@@ -7,6 +7,7 @@
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
@@ -52,6 +53,10 @@ namespace coulomb_adapt
   class RecoveredStress
   {
   public:
+    /** deal.II's distributed vector: the ZZ solve's own type, so the
+     * solution is kept without a copy into another library's layout. */
+    using VectorType = LinearAlgebra::distributed::Vector<double>;
+
     /** Set up the stress space on @p body's current mesh. */
     explicit RecoveredStress(const ElasticBody &body);
 
@@ -69,7 +74,7 @@ namespace coulomb_adapt
 
     /** The nodal values of component @p c (0, 1, 2 = xx, yy, xy), with
      * ghost entries. */
-    const TrilinosWrappers::MPI::Vector &
+    const VectorType &
     component(const unsigned int c) const;
 
     /** sigma~ (xx, yy, xy) at the points of the body's cell quadrature on
@@ -92,7 +97,9 @@ namespace coulomb_adapt
     IndexSet                                     owned_dofs;
     IndexSet                                     relevant_dofs;
     AffineConstraints<double>                    constraints;
-    std::array<TrilinosWrappers::MPI::Vector, 3> components;
+    /** Owned and ghost (locally relevant) entries of the components. */
+    std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
+    std::array<VectorType, 3>                          components;
     /** phi_k at the points of the body's cell quadrature (k, q): the
      * values of Lagrange shape functions do not depend on the mapping. */
     FullMatrix<double> shape_values;
