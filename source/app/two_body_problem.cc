@@ -398,7 +398,8 @@ namespace coulomb_adapt
                                     contact_solver.get(),
                                     parameters.contact.friction_coefficient,
                                     recovery,
-                                    parameters.linear_solver));
+                                    parameters.linear_solver,
+                                    &computing_timer));
     const ErrorEstimate &e = *error_estimate;
     if (e.has_contact)
       {

@@ -1,6 +1,7 @@
 #include <coulomb_adapt/indicator/error_estimate.h>
 
 #include <cmath>
+#include <optional>
 
 namespace coulomb_adapt
 {
@@ -18,6 +19,22 @@ namespace coulomb_adapt
 
   namespace
   {
+    // While it lives, the section @p name of a timer, if there is one.
+    class OptionalTimerSection
+    {
+    public:
+      OptionalTimerSection(TimerOutput *timer, const std::string &name)
+      {
+        if (timer != nullptr)
+          scope.emplace(*timer, name);
+      }
+
+    private:
+      std::optional<TimerOutput::Scope> scope;
+    };
+
+
+
     // Per cell: int (sigma~ - sigma_c) K^-1 (sigma~ - sigma_c) into
     // @p difference, and the global int (sigma~ + sigma_c) K^-1 (...)
     // returned. The quadrature of the body integrates these exactly on
@@ -66,18 +83,25 @@ namespace coulomb_adapt
                  const ContactSolver *                     contact_solver,
                  const double                              mu,
                  const StressRecoveryMethod                recovery,
-                 const parameters::LinearSolver &          solver_parameters)
+                 const parameters::LinearSolver &          solver_parameters,
+                 TimerOutput *                             timer)
   {
     ErrorEstimate estimate;
     estimate.recovery    = recovery;
     estimate.has_contact = (contact_solver != nullptr);
     if (estimate.has_contact)
       {
-        estimate.correction = correct_contact_solution(*bodies[0],
-                                                       *bodies[1],
-                                                       *contact_solver,
-                                                       mu,
-                                                       solver_parameters);
+        {
+          const OptionalTimerSection section(timer,
+                                             "error indicator: correction");
+          estimate.correction = correct_contact_solution(*bodies[0],
+                                                         *bodies[1],
+                                                         *contact_solver,
+                                                         mu,
+                                                         solver_parameters);
+        }
+        const OptionalTimerSection section(timer,
+                                           "error indicator: contributions");
         estimate.contact =
           integrate_contact_error(contact_solver->mortar_interface(),
                                   estimate.correction.fields,
@@ -93,10 +117,15 @@ namespace coulomb_adapt
       {
         // sigma_c at the quadrature points, shared by the ZZ projection
         // and the volume terms.
+        std::optional<OptionalTimerSection> smoothing;
+        smoothing.emplace(timer, "error indicator: smoothing");
         const QuadratureStress raw_stress(*bodies[b],
                                           estimate.correction.displacement(b));
         estimate.recovered[b] = std::make_unique<RecoveredStress>(*bodies[b]);
         estimate.recovered[b]->recover(raw_stress, recovery);
+        smoothing.reset();
+        const OptionalTimerSection section(timer,
+                                           "error indicator: contributions");
         normalisation_squared +=
           volume_terms(raw_stress,
                        *estimate.recovered[b],
@@ -106,6 +135,8 @@ namespace coulomb_adapt
           bodies[b]->triangulation().get_communicator());
       }
 
+    const OptionalTimerSection section(timer,
+                                       "error indicator: contributions");
     // The contact term on the contact faces of each side's cells.
     if (estimate.has_contact)
       for (unsigned int b = 0; b < 2; ++b)

@@ -1,6 +1,8 @@
 #ifndef coulomb_adapt_indicator_error_estimate_h
 #define coulomb_adapt_indicator_error_estimate_h
 
+#include <deal.II/base/timer.h>
+
 #include <deal.II/lac/vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
@@ -49,13 +51,20 @@ namespace coulomb_adapt
    *
    * into epsilon_E = e_E / D and epsilon (theory.md 3.4, 3.5). @p contact_solver
    * may be null (no contact zone).
+   *
+   * With a @p timer, the three phases are timed in its sections
+   * "error indicator: correction" (the corrected contact fields),
+   * "error indicator: smoothing" (sigma_c at the quadrature points, the
+   * stress space and the recovery) and "error indicator: contributions"
+   * (volume and contact terms, epsilon and epsilon_E).
    */
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
                  const ContactSolver *                     contact_solver,
                  const double                              friction_coefficient,
                  const StressRecoveryMethod                recovery,
-                 const parameters::LinearSolver &          solver_parameters);
+                 const parameters::LinearSolver &          solver_parameters,
+                 TimerOutput *                             timer = nullptr);
 
   /** For a per-cell quantity on the boundary (the contact term): the
    * locally owned boundary cells' CellId and active index. Interior cells
