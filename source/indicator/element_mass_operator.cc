@@ -5,15 +5,6 @@
 
 namespace coulomb_adapt
 {
-  namespace
-  {
-    // Nodes per cell of a Q3 element: more than the degrees the program
-    // offers (1 and 2). Local vectors of this size live on the stack.
-    constexpr unsigned int max_dofs_per_cell = 16;
-  } // namespace
-
-
-
   ElementMassOperator::ElementMassOperator(
     const DoFHandler<2> &                                     dofs,
     const AffineConstraints<double> &                         constraints,
@@ -26,6 +17,10 @@ namespace coulomb_adapt
   {
     AssertDimension(partitioner->locally_owned_size(),
                     dofs.locally_owned_dofs().n_elements());
+    Assert(&dofs.get_triangulation() == &weights.body().triangulation(),
+           ExcMessage("The weights belong to another mesh."));
+    Assert(!constraints.has_inhomogeneities(),
+           ExcMessage("The mass operator takes homogeneous constraints."));
     AssertThrow(n_dofs_per_cell <= max_dofs_per_cell,
                 ExcMessage("The element mass operator supports up to " +
                            std::to_string(max_dofs_per_cell) +
@@ -33,7 +28,8 @@ namespace coulomb_adapt
                            std::to_string(n_dofs_per_cell) + "."));
     AssertDimension(shape_values.m(), n_dofs_per_cell);
     AssertDimension(shape_values.n(), weights.n_points());
-    const unsigned int n_cells  = weights.n_cells();
+    // std::size_t: n_cells * n^2 entries in all.
+    const std::size_t  n_cells  = weights.n_cells();
     const unsigned int n_points = weights.n_points();
     local_indices.resize(n_cells * n_dofs_per_cell);
     global_indices.resize(n_cells * n_dofs_per_cell);
@@ -55,7 +51,7 @@ namespace coulomb_adapt
               if (constraints.is_constrained(dof_indices[i]))
                 cell_is_constrained[owned_cell] = 1;
             }
-          double *matrix = &cell_matrices[first * n_dofs_per_cell];
+          double *matrix = &cell_matrices[std::size_t(first) * n_dofs_per_cell];
           for (unsigned int q = 0; q < n_points; ++q)
             {
               const double JxW = weights.JxW(owned_cell, q);
@@ -114,7 +110,7 @@ namespace coulomb_adapt
     const bool src_had_ghost_values = src.has_ghost_elements();
     if (!src_had_ghost_values)
       src.update_ghost_values();
-    dst.zero_out_ghost_values();
+    // Also zeroes the ghost entries, which the cell loop adds into.
     dst = 0;
     // The element loops with the number of nodes known to the compiler:
     // for 3 or 4 nodes a loop of unknown length costs more in control than
@@ -166,7 +162,7 @@ namespace coulomb_adapt
     for (unsigned int cell = 0; cell < cell_is_constrained.size(); ++cell)
       {
         const unsigned int *indices = &local_indices[cell * n];
-        const double *      matrix  = &cell_matrices[cell * n * n];
+        const double *      matrix  = &cell_matrices[std::size_t(cell) * n * n];
         if (cell_is_constrained[cell])
           {
             for (unsigned int b = 0; b < n_blocks; ++b)
@@ -258,7 +254,7 @@ namespace coulomb_adapt
     std::array<double, max_dofs_per_cell> w;
     for (unsigned int cell = 0; cell < cell_is_constrained.size(); ++cell)
       {
-        const double *matrix = &cell_matrices[cell * n * n];
+        const double *matrix = &cell_matrices[std::size_t(cell) * n * n];
         const types::global_dof_index *dofs = &global_indices[cell * n];
         if (!cell_is_constrained[cell])
           {

@@ -16,9 +16,8 @@ namespace coulomb_adapt
 {
   namespace
   {
-    // Nodes per cell of a Q3 element: more than the degrees the program
-    // offers (1 and 2).
-    constexpr unsigned int max_dofs_per_cell = 16;
+    constexpr unsigned int max_dofs_per_cell =
+      ElementMassOperator::max_dofs_per_cell;
   } // namespace
 
 
@@ -103,7 +102,9 @@ namespace coulomb_adapt
     const unsigned int n_dofs   = fe.n_dofs_per_cell();
     const unsigned int n_points = raw_stress.n_points();
     AssertDimension(n_points, shape_values.n());
-    std::array<std::array<double, max_dofs_per_cell>, 3> cell_rhs;
+    std::array<std::array<double, max_dofs_per_cell>,
+               ElementMassOperator::n_blocks>
+      cell_rhs;
     for (unsigned int cell = 0; cell < raw_stress.n_cells(); ++cell)
       {
         for (auto &r : cell_rhs)
@@ -119,7 +120,7 @@ namespace coulomb_adapt
                   cell_rhs[c][i] += phi_i * sigma[c];
               }
           }
-        for (unsigned int c = 0; c < 3; ++c)
+        for (unsigned int c = 0; c < ElementMassOperator::n_blocks; ++c)
           mass.distribute_local_to_global(
             cell,
             make_array_view(cell_rhs[c].begin(), cell_rhs[c].begin() + n_dofs),
@@ -143,7 +144,8 @@ namespace coulomb_adapt
 
     for (unsigned int c = 0; c < 3; ++c)
       {
-        components[c] = solution.block(c);
+        // The same partitioner: take the solution over without a copy.
+        components[c].swap(solution.block(c));
         constraints.distribute(components[c]);
         components[c].update_ghost_values();
       }
@@ -162,7 +164,9 @@ namespace coulomb_adapt
     std::array<double, max_dofs_per_cell> nodal;
     for (unsigned int c = 0; c < 3; ++c)
       {
-        cell->get_dof_values(components[c], nodal.begin(), nodal.begin() + n_dofs);
+        cell->get_dof_values(components[c],
+                             nodal.begin(),
+                             nodal.begin() + n_dofs);
         for (unsigned int q = 0; q < shape_values.n(); ++q)
           for (unsigned int k = 0; k < n_dofs; ++k)
             values[q][c] += shape_values(k, q) * nodal[k];

@@ -604,10 +604,7 @@ namespace coulomb_adapt
     // Only owned entries are written below; the constrained ones and the
     // ghosts are filled in at the end.
     for (auto &v : components)
-      {
-        v.zero_out_ghost_values();
-        v = 0;
-      }
+      v = 0;
 
     for (const auto &cell : dofs.active_cell_iterators())
       if (cell->is_locally_owned())

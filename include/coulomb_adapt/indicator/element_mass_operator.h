@@ -52,12 +52,17 @@ namespace coulomb_adapt
     /** Blocks of the vectors that vmult() acts on (xx, yy, xy). */
     static constexpr unsigned int n_blocks = 3;
 
+    /** Nodes per cell of a Q3 element: more than the degrees the program
+     * offers (1 and 2). Local vectors of this size live on the stack. */
+    static constexpr unsigned int max_dofs_per_cell = 16;
+
     /**
      * Set up on @p dofs (a scalar space on the body of @p weights, with the
      * hanging-node @p constraints), whose vectors have the owned and ghost
      * entries of @p partitioner (the locally relevant DoFs). @p shape_values
      * holds phi_k at the points of the body's cell quadrature (k, q). Keeps
-     * a reference to @p constraints.
+     * a reference to @p constraints, which must be homogeneous (hanging
+     * nodes): the operator is linear only then.
      */
     ElementMassOperator(
       const DoFHandler<2> &                                     dofs,
