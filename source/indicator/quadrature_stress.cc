@@ -11,9 +11,19 @@ namespace coulomb_adapt
   QuadratureStress::QuadratureStress(
     const ElasticBody &                  body,
     const TrilinosWrappers::MPI::Vector &displacement)
+    : QuadratureStress(body, displacement, body.cell_quadrature(), false)
+  {}
+
+
+
+  QuadratureStress::QuadratureStress(
+    const ElasticBody &                  body,
+    const TrilinosWrappers::MPI::Vector &displacement,
+    const Quadrature<2> &                quadrature,
+    const bool                           with_points)
     : body_(body)
     , displacement_(displacement)
-    , n_points_(body.cell_quadrature().size())
+    , n_points_(quadrature.size())
   {
     // An upper bound: the owned cells are a part of the active ones.
     stresses.reserve(body.triangulation().n_active_cells() * n_points_);
@@ -26,8 +36,12 @@ namespace coulomb_adapt
     const FiniteElement<2> &base            = displacement_fe.base_element(0);
     FEValues<2>             fe_values(body.mapping(),
                           base,
-                          body.cell_quadrature(),
-                          update_gradients | update_JxW_values);
+                          quadrature,
+                          update_gradients | update_JxW_values |
+                            (with_points ? update_quadrature_points :
+                                           update_default));
+    if (with_points)
+      points.reserve(body.triangulation().n_active_cells() * n_points_);
     const unsigned int      n_dofs = displacement_fe.n_dofs_per_cell();
     std::vector<std::pair<unsigned int, unsigned int>> component_node(n_dofs);
     for (unsigned int i = 0; i < n_dofs; ++i)
@@ -47,6 +61,8 @@ namespace coulomb_adapt
               stresses.push_back(stress_components(
                 body.material().stress(symmetrize(gradient))));
               weights.push_back(fe_values.JxW(q));
+              if (with_points)
+                points.push_back(fe_values.quadrature_point(q));
             }
         }
   }
@@ -99,5 +115,16 @@ namespace coulomb_adapt
   {
     AssertIndexRange(cell * n_points_ + q, weights.size());
     return weights[cell * n_points_ + q];
+  }
+
+
+
+  const Point<2> &
+  QuadratureStress::point(const unsigned int cell, const unsigned int q) const
+  {
+    Assert(!points.empty() || weights.empty(),
+           ExcMessage("Constructed without the points' positions."));
+    AssertIndexRange(cell * n_points_ + q, points.size());
+    return points[cell * n_points_ + q];
   }
 } // namespace coulomb_adapt

@@ -35,11 +35,14 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <boost/container/small_vector.hpp>
+
 #include <coulomb_adapt/indicator/recovered_stress.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -310,6 +313,10 @@ namespace coulomb_adapt
                   {
                     patch.vertex   = cell->vertex_dof_index(v, 0);
                     patch.location = cell->vertex(v);
+                    // One allocation per vertex for the usual valence
+                    // (6 triangles, 4 quadrilaterals; more after
+                    // refinement), instead of one per doubling.
+                    patch.cells.reserve(2 * cell->n_vertices());
                   }
                 patch.cells.push_back(cell);
               }
@@ -323,49 +330,30 @@ namespace coulomb_adapt
 
 
 
-    // The raw stress at the sampling points of the locally owned cells,
-    // added into the normal equations of each of the cell's vertices (in
-    // coordinates relative to that vertex).
+    // The raw stress at the sampling points of the locally owned cells
+    // (@p sampled, with the points' positions), added into the normal
+    // equations of each of the cell's vertices (in coordinates relative to
+    // that vertex).
     void
     add_cell_contributions(
-      const ElasticBody &                         body,
-      const TrilinosWrappers::MPI::Vector &       displacement,
-      const Quadrature<2> &                       sampling_points,
+      const QuadratureStress &                    sampled,
       const DoFHandler<2> &                       vertex_dofs,
       const PatchLayout &                         layout,
       LinearAlgebra::distributed::Vector<double> &normal_equations)
     {
-      FEValues<2> fe_values(body.mapping(),
-                            body.dof_handler().get_fe(),
-                            sampling_points,
-                            update_gradients | update_quadrature_points);
-      const FEValuesExtractors::Vector   u(0);
-      const unsigned int                 n = layout.n_fit_monomials();
-      std::vector<SymmetricTensor<2, 2>> strains(sampling_points.size());
-      std::vector<Tensor<1, 3>>          stresses(sampling_points.size());
-      std::vector<double>                cell_entries(layout.n_entries());
-
-      for (const auto &cell : body.dof_handler().active_cell_iterators())
+      const unsigned int  n = layout.n_fit_monomials();
+      std::vector<double> cell_entries(layout.n_entries());
+      unsigned int        owned_cell = 0;
+      for (const auto &cell : vertex_dofs.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            fe_values.reinit(cell);
-            fe_values[u].get_function_symmetric_gradients(displacement,
-                                                          strains);
-            for (const unsigned int q : fe_values.quadrature_point_indices())
-              stresses[q] =
-                stress_components(body.material().stress(strains[q]));
-
-            const VertexCell vertex_cell(&body.triangulation(),
-                                         cell->level(),
-                                         cell->index(),
-                                         &vertex_dofs);
             for (const unsigned int v : cell->vertex_indices())
               {
                 std::fill(cell_entries.begin(), cell_entries.end(), 0.);
-                for (const unsigned int q :
-                     fe_values.quadrature_point_indices())
+                for (unsigned int q = 0; q < sampled.n_points(); ++q)
                   {
-                    const auto m = monomials(fe_values.quadrature_point(q) -
+                    const Tensor<1, 3> &sigma = sampled.stress(owned_cell, q);
+                    const auto m = monomials(sampled.point(owned_cell, q) -
                                              cell->vertex(v));
                     for (unsigned int i = 0; i < n; ++i)
                       {
@@ -374,15 +362,17 @@ namespace coulomb_adapt
                             m[i] * m[j];
                         for (unsigned int c = 0; c < 3; ++c)
                           cell_entries[layout.rhs_entry(c, i)] +=
-                            m[i] * stresses[q][c];
+                            m[i] * sigma[c];
                       }
                   }
                 const auto first_entry =
-                  vertex_cell->vertex_dof_index(v, 0) * layout.n_entries();
+                  cell->vertex_dof_index(v, 0) * layout.n_entries();
                 for (unsigned int e = 0; e < layout.n_entries(); ++e)
                   normal_equations(first_entry + e) += cell_entries[e];
               }
+            ++owned_cell;
           }
+      AssertDimension(owned_cell, sampled.n_cells());
       normal_equations.compress(VectorOperation::add);
     }
 
@@ -476,10 +466,10 @@ namespace coulomb_adapt
     // @p collect_surrounding gives the vertices of the cells containing the
     // node; it is called only if no own vertex is a centre (nodes on or
     // next to the boundary): for the others the set would be wasted work.
-    template <typename CollectSurrounding>
+    template <typename OwnVertices, typename CollectSurrounding>
     Tensor<1, 3>
     node_value(const Point<2> &                             x,
-               const std::vector<types::global_dof_index> &own_vertices,
+               const OwnVertices &                          own_vertices,
                const CollectSurrounding &                  collect_surrounding,
                const std::vector<PatchFit> &               fits,
                const IndexSet &                            relevant_vertices)
@@ -577,28 +567,36 @@ namespace coulomb_adapt
 
     LinearAlgebra::distributed::Vector<double> normal_equations(
       owned_entries, relevant_entries, comm);
-    add_cell_contributions(body,
-                           displacement,
-                           sampling_points,
+    add_cell_contributions(QuadratureStress(body,
+                                            displacement,
+                                            sampling_points,
+                                            true),
                            vertex_dofs,
                            layout,
                            normal_equations);
 
     const auto patches = collect_vertex_patches(vertex_dofs, relevant_vertices);
-    LinearAlgebra::distributed::Vector<double> fit_vector(owned_entries,
-                                                          relevant_entries,
-                                                          comm);
+    // The same layout: share the partitioner (set up with MPI).
+    LinearAlgebra::distributed::Vector<double> fit_vector;
+    fit_vector.reinit(normal_equations);
     fit_owned_patches(
       patches, normal_equations, hanging_vertices, layout, degree, fit_vector);
     const auto fits = read_fits(patches, fit_vector, layout);
 
     // Nodal values of the owned, unconstrained nodes of the stress space,
-    // at the nodes' physical positions.
+    // at the nodes' physical positions. The vertex nodes (all of them for
+    // p = 1) sit at the cell's vertices, which every mapping keeps; only
+    // the nodes on lines and inside cells need the mapping.
     const FiniteElement<2> &base = fe;
-    FEValues<2>             node_positions(body.mapping(),
-                                base,
-                                Quadrature<2>(base.get_unit_support_points()),
-                                update_quadrature_points);
+    const bool              only_vertex_nodes =
+      base.n_dofs_per_cell() ==
+      base.reference_cell().n_vertices() * base.n_dofs_per_vertex();
+    std::optional<FEValues<2>> node_positions;
+    if (!only_vertex_nodes)
+      node_positions.emplace(body.mapping(),
+                             base,
+                             Quadrature<2>(base.get_unit_support_points()),
+                             update_quadrature_points);
     std::vector<types::global_dof_index> dof_indices(base.n_dofs_per_cell());
     std::vector<bool> done(owned_dofs.n_elements(), false);
     // Only owned entries are written below; the constrained ones and the
@@ -610,7 +608,8 @@ namespace coulomb_adapt
       if (cell->is_locally_owned())
         {
           cell->get_dof_indices(dof_indices);
-          node_positions.reinit(cell);
+          if (node_positions)
+            node_positions->reinit(cell);
           const VertexCell vertex_cell(&body.triangulation(),
                                        cell->level(),
                                        cell->index(),
@@ -629,13 +628,19 @@ namespace coulomb_adapt
                 continue;
               done[owned_dofs.index_within_set(dof)] = true;
 
-              std::vector<types::global_dof_index> own_vertices;
+              // A vertex, a line's two or a cell's three or four: on the
+              // stack, this runs once per node.
+              boost::container::small_vector<types::global_dof_index, 4>
+                own_vertices;
               const auto vertices_of = [](const VertexCell &                   c,
                                           std::set<types::global_dof_index> &set) {
                 for (const unsigned int v : c->vertex_indices())
                   set.insert(c->vertex_dof_index(v, 0));
               };
-              const Point<2> &x = node_positions.quadrature_point(node);
+              const Point<2> &x =
+                node < first_line_node ?
+                  cell->vertex(node / base.n_dofs_per_vertex()) :
+                  node_positions->quadrature_point(node);
               Tensor<1, 3>    sigma;
               if (node < first_line_node)
                 {

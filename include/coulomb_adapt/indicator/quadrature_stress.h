@@ -1,6 +1,8 @@
 #ifndef coulomb_adapt_indicator_quadrature_stress_h
 #define coulomb_adapt_indicator_quadrature_stress_h
 
+#include <deal.II/base/point.h>
+#include <deal.II/base/quadrature.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
@@ -55,9 +57,20 @@ namespace coulomb_adapt
      * vector of the body's displacement space). Keeps references to both. */
     QuadratureStress(const ElasticBody &                  body,
                      const TrilinosWrappers::MPI::Vector &displacement);
+    /** The same at the points of @p quadrature instead (SPR samples the
+     * Gauss points of order p), with the points' positions if
+     * @p with_points. */
+    QuadratureStress(const ElasticBody &                  body,
+                     const TrilinosWrappers::MPI::Vector &displacement,
+                     const Quadrature<2> &                quadrature,
+                     const bool                           with_points);
     /** The reference kept to the displacement must not dangle. */
     QuadratureStress(const ElasticBody &,
                      TrilinosWrappers::MPI::Vector &&) = delete;
+    QuadratureStress(const ElasticBody &,
+                     TrilinosWrappers::MPI::Vector &&,
+                     const Quadrature<2> &,
+                     const bool) = delete;
 
     const ElasticBody &
     body() const;
@@ -65,7 +78,8 @@ namespace coulomb_adapt
     const TrilinosWrappers::MPI::Vector &
     displacement() const;
 
-    /** Points per cell (the size of ElasticBody::cell_quadrature()). */
+    /** Points per cell (the size of the quadrature, by default
+     * ElasticBody::cell_quadrature()). */
     unsigned int
     n_points() const;
 
@@ -81,12 +95,18 @@ namespace coulomb_adapt
     double
     JxW(const unsigned int cell, const unsigned int q) const;
 
+    /** The position of point @p q of owned cell number @p cell; only if
+     * constructed with_points. */
+    const Point<2> &
+    point(const unsigned int cell, const unsigned int q) const;
+
   private:
     const ElasticBody &                  body_;
     const TrilinosWrappers::MPI::Vector &displacement_;
     unsigned int                         n_points_;
     std::vector<Tensor<1, 3>>            stresses;
     std::vector<double>                  weights;
+    std::vector<Point<2>>                points;
   };
 } // namespace coulomb_adapt
 
