@@ -336,13 +336,9 @@ interpolated_body(const RecoveryScene &scene,
 // shape-value table (get_quadrature_values) against FEValues of the
 // stress space.
 void
-check_quadrature_stress(const std::string &  label,
-                        const RecoveryScene &scene,
-                        const unsigned int   degree,
-                        const Function<2> &  u)
+check_quadrature_stress(const std::string &label, const ElasticBody &body)
 {
-  const auto             body_pointer = interpolated_body(scene, degree, u);
-  const ElasticBody &    body         = *body_pointer;
+  const unsigned int     degree = body.dof_handler().get_fe().degree;
   const QuadratureStress raw_stress(body, body.solution());
 
   FEValues<2> reference(body.mapping(),
@@ -426,13 +422,9 @@ check_quadrature_stress(const std::string &  label,
 // round-off, the identity on the constrained ones, and the Jacobi
 // preconditioner 1 / diag(C^T M C), for three different vectors at once.
 void
-check_mass_operator(const std::string &  label,
-                    const RecoveryScene &scene,
-                    const unsigned int   degree,
-                    const Function<2> &  u)
+check_mass_operator(const std::string &label, const ElasticBody &body)
 {
-  const auto             body_pointer = interpolated_body(scene, degree, u);
-  const ElasticBody &    body         = *body_pointer;
+  const unsigned int     degree = body.dof_handler().get_fe().degree;
   const QuadratureStress raw_stress(body, body.solution());
   const MPI_Comm         comm = body.triangulation().get_communicator();
 
@@ -702,28 +694,17 @@ main(int argc, char *argv[])
   const auto zz  = StressRecoveryMethod::l2_projection;
 
   const SmoothDisplacement smooth;
+  const std::vector<std::pair<std::string, const RecoveryScene *>>
+    checked_meshes = {{"distorted quadrilaterals with hanging nodes",
+                       &distorted_quadrilaterals_with_hanging_nodes},
+                      {"distorted triangles", &distorted_triangles}};
   for (const unsigned int p : {1u, 2u})
-    {
-      check_quadrature_stress("distorted quadrilaterals with hanging nodes",
-                              distorted_quadrilaterals_with_hanging_nodes,
-                              p,
-                              smooth);
-      check_quadrature_stress("distorted triangles",
-                              distorted_triangles,
-                              p,
-                              smooth);
-    }
-  for (const unsigned int p : {1u, 2u})
-    {
-      check_mass_operator("distorted quadrilaterals with hanging nodes",
-                          distorted_quadrilaterals_with_hanging_nodes,
-                          p,
-                          smooth);
-      check_mass_operator("distorted triangles",
-                          distorted_triangles,
-                          p,
-                          smooth);
-    }
+    for (const auto &[label, scene] : checked_meshes)
+      {
+        const auto body = interpolated_body(*scene, p, smooth);
+        check_quadrature_stress(label, *body);
+        check_mass_operator(label, *body);
+      }
   testing::root_output() << std::endl;
 
   for (const unsigned int p : {1u, 2u})
