@@ -17,7 +17,8 @@
 // FEValues of the displacement's FESystem, and the recovered stress at
 // those points (RecoveredStress::get_quadrature_values) against FEValues
 // of the stress space; the ZZ mass operator against the assembled mass
-// matrix.
+// matrix; SPR's samples (stress and position at the Gauss points of order
+// p) against FEValues.
 // The output is the same on any number of ranks.
 
 #include <deal.II/base/convergence_table.h>
@@ -415,6 +416,69 @@ check_quadrature_stress(const std::string &label, const ElasticBody &body)
                          std::to_string(recovered_difference)));
 }
 
+// SPR's samples: QuadratureStress at the Gauss points of order p, with the
+// points' positions, against deal.II's FEValues of the displacement's
+// FESystem at the same points (stresses and positions to round-off).
+void
+check_sampled_stress(const std::string &label, const ElasticBody &body)
+{
+  const unsigned int  degree   = body.dof_handler().get_fe().degree;
+  const Quadrature<2> sampling =
+    body.is_simplex_mesh() ?
+      static_cast<Quadrature<2>>(QGaussSimplex<2>(degree)) :
+      static_cast<Quadrature<2>>(QGauss<2>(degree));
+  const QuadratureStress sampled(body, body.solution(), sampling, true);
+  FEValues<2>            reference(body.mapping(),
+                        body.dof_handler().get_fe(),
+                        sampling,
+                        update_gradients | update_quadrature_points);
+  std::vector<SymmetricTensor<2, 2>> strains(sampling.size());
+  double       largest_stress = 0, stress_difference = 0;
+  double       largest_coordinate = 0, point_difference = 0;
+  unsigned int owned_cell = 0;
+  for (const auto &cell : body.dof_handler().active_cell_iterators())
+    if (cell->is_locally_owned())
+      {
+        reference.reinit(cell);
+        reference[FEValuesExtractors::Vector(0)]
+          .get_function_symmetric_gradients(body.solution(), strains);
+        for (const unsigned int q : reference.quadrature_point_indices())
+          {
+            const Tensor<1, 3> sigma =
+              stress_components(body.material().stress(strains[q]));
+            largest_stress = std::max(largest_stress, sigma.norm());
+            stress_difference =
+              std::max(stress_difference,
+                       (sampled.stress(owned_cell, q) - sigma).norm());
+            largest_coordinate =
+              std::max(largest_coordinate, reference.quadrature_point(q).norm());
+            point_difference = std::max(
+              point_difference,
+              sampled.point(owned_cell, q).distance(
+                reference.quadrature_point(q)));
+          }
+        ++owned_cell;
+      }
+  const MPI_Comm comm = body.triangulation().get_communicator();
+  largest_stress      = Utilities::MPI::max(largest_stress, comm);
+  stress_difference   = Utilities::MPI::max(stress_difference, comm);
+  largest_coordinate  = Utilities::MPI::max(largest_coordinate, comm);
+  point_difference    = Utilities::MPI::max(point_difference, comm);
+  const bool same     = owned_cell == sampled.n_cells() &&
+                    stress_difference <= 1e-13 * largest_stress &&
+                    point_difference <= 1e-14 * largest_coordinate;
+  testing::root_output() << "SPR samples (Gauss points of order p), " << label
+                         << ", " << (body.is_simplex_mesh() ? "P" : "Q")
+                         << degree
+                         << ": same as FEValues: " << (same ? "yes" : "no")
+                         << std::endl;
+  AssertThrow(same,
+              ExcMessage(label + ": SPR samples differ from FEValues: "
+                                 "stress " +
+                         std::to_string(stress_difference) + ", position " +
+                         std::to_string(point_difference)));
+}
+
 // The ZZ mass system's operator (element matrices from QuadratureStress's
 // weights and the reference shape values, hanging nodes resolved in each
 // product) against the mass matrix that deal.II's FEValues assembles
@@ -704,6 +768,7 @@ main(int argc, char *argv[])
         const auto body = interpolated_body(*scene, p, smooth);
         check_quadrature_stress(label, *body);
         check_mass_operator(label, *body);
+        check_sampled_stress(label, *body);
       }
   testing::root_output() << std::endl;
 

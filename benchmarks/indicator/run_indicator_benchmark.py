@@ -403,7 +403,7 @@ BREAKDOWN_FIELDS = [
     "series", "scene", "cell_type", "recovery", "refinements", "n_dofs",
     "status", "newton_iterations", "contact_solve_s", "indicator_s",
     "fraction", "correction_s", "smoothing_s", "contributions_s",
-    "unaccounted_s", "repeats", "version", "message", "command",
+    "unaccounted_s", "repeats", "version", "message",
 ]
 BREAKDOWN_JOBS = [("blocks P1", 1), ("blocks Q1", 2), ("blocks P1", 4),
                   ("blocks Q1", 5), ("hertz Q1", 2)]
@@ -413,14 +413,22 @@ BREAKDOWN_PARTS = [("correction_s", "error indicator: correction"),
 
 
 def breakdown(args, exe):
+    """Returns 1 if a job failed. With --append, as in the other parts, the
+    CSV's finished (ok) rows are kept and their jobs not run again."""
     series = {s["key"]: s for s in COST_SERIES}
     recoveries = args.recovery
-    rows = []
+    rows = [x for x in read_csv(BREAKDOWN_CSV) if x["status"] == "ok"] \
+        if args.append else []
+    done = {(x["series"], int(x["refinements"]), x["recovery"])
+            for x in rows}
+    n_failed = 0
     for key, r in BREAKDOWN_JOBS:
         s = series[key]
         if args.max_dofs and estimated_dofs(s, r) > args.max_dofs:
             continue
         for rec in recoveries:
+            if (key, r, rec) in done:
+                continue
             runs = []
             while True:
                 wait_for_quiet(args.quiet_wait)
@@ -454,7 +462,8 @@ def breakdown(args, exe):
                                indicator_s=t["error indicator"],
                                version=summary.get("version", ""))
                     row["fraction"] = row["indicator_s"] / \
-                        row["contact_solve_s"]
+                        row["contact_solve_s"] if row["contact_solve_s"] \
+                        else ""
                     for field, section in BREAKDOWN_PARTS:
                         row[field] = t[section]
                     row["unaccounted_s"] = row["indicator_s"] - sum(
@@ -466,13 +475,16 @@ def breakdown(args, exe):
                         key=lambda x: x["indicator_s"])
             row = dict(ok[len(ok) // 2]) if ok else runs[-1]
             row["repeats"] = len(runs)
+            if ok and len(ok) < len(runs):
+                row["message"] = "a repeat failed: " + runs[-1]["message"]
+            n_failed += not ok
             print("breakdown %s r=%d %s: %s" % (key, r, rec, ", ".join(
-                "%s %s" % (k, fmt(row.get(k))) for k in BREAKDOWN_FIELDS[5:-2]
+                "%s %s" % (k, fmt(row.get(k))) for k in BREAKDOWN_FIELDS[5:-1]
                 if row.get(k) not in ("", None))), flush=True)
             rows.append(row)
             write_csv(rows, BREAKDOWN_CSV, BREAKDOWN_FIELDS)
     print(breakdown_table(rows))
-    return 0
+    return 1 if n_failed else 0
 
 
 def breakdown_table(rows):

@@ -782,5 +782,8 @@ namespace coulomb_adapt
                                TableHandler::org_mode_table);
       }
     computing_timer.print_summary();
+    pcout << "(the 'error indicator: ...' sections are parts of 'error "
+             "indicator': the percentages add up to more than 100)"
+          << std::endl;
   }
 } // namespace coulomb_adapt

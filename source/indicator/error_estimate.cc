@@ -117,17 +117,20 @@ namespace coulomb_adapt
       {
         // sigma_c at the quadrature points, shared by the ZZ projection
         // and the volume terms.
-        std::optional<OptionalTimerSection> smoothing;
-        smoothing.emplace(timer, "error indicator: smoothing");
-        const QuadratureStress raw_stress(*bodies[b],
-                                          estimate.correction.displacement(b));
-        estimate.recovered[b] = std::make_unique<RecoveredStress>(*bodies[b]);
-        estimate.recovered[b]->recover(raw_stress, recovery);
-        smoothing.reset();
+        std::unique_ptr<const QuadratureStress> raw_stress;
+        {
+          const OptionalTimerSection section(timer,
+                                             "error indicator: smoothing");
+          raw_stress = std::make_unique<const QuadratureStress>(
+            *bodies[b], estimate.correction.displacement(b));
+          estimate.recovered[b] =
+            std::make_unique<RecoveredStress>(*bodies[b]);
+          estimate.recovered[b]->recover(*raw_stress, recovery);
+        }
         const OptionalTimerSection section(timer,
                                            "error indicator: contributions");
         normalisation_squared +=
-          volume_terms(raw_stress,
+          volume_terms(*raw_stress,
                        *estimate.recovered[b],
                        estimate.contribution_squared[b]);
         volume_squared[b] = Utilities::MPI::sum(
