@@ -9,6 +9,14 @@
 //  - the finest cells of the final meshes sit at the ends of the contact
 //    zone (x = 50 and x = 150 on y = 200), where the indicator density of
 //    the initial mesh is largest;
+//  - 'Maximum number of DoFs' bounds the adapted meshes too: for an
+//    epsilon_0 far below reach (0.01 %) the size ratios alone let the mesh
+//    grow up to 100-fold per cycle (here 68 -> 2,756 -> 165,380 DoFs
+//    without a cap; 4.2e5 -> 2.7e7 DoFs, killed for memory, on the seed's
+//    mesh with the default cap of 2e6). With a cap of 3000 DoFs every mesh
+//    stays within 4 times the cap (one level of refinement: the refine
+//    strategy rounds r_E to whole levels, which gave 2.2 times here; gmsh
+//    1.06 times) and the log says the mesh was limited;
 //  - the 2-rank run prints what the 1-rank run prints (same meshes, DoFs,
 //    epsilon, Newton steps).
 
@@ -209,6 +217,46 @@ main(int argc, char **argv)
   out << "refine (size ratio), Q1, epsilon_0 = 2 %" << std::endl;
   run_loop(blocks("quadrilateral", "refine", "2, 2", "4, 4", "2", "output-q2"),
            0.02, true, false, out);
+  for (const std::string strategy : {"refine", "remesh"})
+    {
+      out << strategy << ", epsilon_0 = 0.01 %, at most 3000 DoFs"
+          << std::endl;
+      auto settings =
+        blocks(strategy == "refine" ? "quadrilateral" : "triangle",
+               strategy, "2, 2", "4, 4", "0.01", "output-cap-" + strategy);
+      settings.push_back({"Adaptation/Maximum number of DoFs", "3000"});
+      settings.push_back({"Adaptation/Number of cycles", "4"});
+      ParameterHandler prm;
+      const Parameters parameters = testing::make_parameters(prm, settings);
+      prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
+      std::ostringstream log;
+      TwoBodyProblem problem(MPI_COMM_WORLD, parameters, prm, "test", log);
+      problem.run();
+      MPI_Barrier(MPI_COMM_WORLD);
+      nlohmann::json summary;
+      std::ifstream(parameters.output.directory + "/summary.json") >> summary;
+      unsigned int n_limited = 0;
+      for (const auto &c : summary["cycles"])
+        {
+          const auto n_dofs = c["n_dofs"].get<unsigned int>();
+          const bool limited =
+            c.contains("adaptation") &&
+            c["adaptation"]["limited_by_max_dofs"].get<bool>();
+          n_limited += limited;
+          out << "    cycle " << c["cycle"].get<unsigned int>() << ": DoFs "
+              << n_dofs << (limited ? ", mesh limited by the cap" : "")
+              << std::endl;
+          AssertThrow(n_dofs <= 4 * 3000,
+                      ExcMessage("an adapted mesh far above the DoF cap"));
+        }
+      AssertThrow(n_limited > 0, ExcMessage("the cap never acted"));
+      // The log is rank 0's.
+      AssertThrow(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) > 0 ||
+                    log.str().find("more cells than 'Maximum number of "
+                                   "DoFs'") != std::string::npos,
+                  ExcMessage("the log does not say the mesh was limited"));
+      out << "    " << summary["stop_reason"].get<std::string>() << std::endl;
+    }
   {
     out << "refine (optimize), Q1, epsilon_0 = 2 %" << std::endl;
     auto settings = blocks("quadrilateral", "refine", "2, 2", "4, 4", "2", "output-o2");

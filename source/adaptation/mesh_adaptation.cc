@@ -34,6 +34,16 @@ namespace coulomb_adapt
     OptimalSizeRatios ratios;
     if (use_ratios)
       {
+        // 'Maximum number of DoFs' bounds the next mesh too, as a cell
+        // count at the current DoFs per cell (the element and cell type do
+        // not change between cycles).
+        double n_cells = 0, n_dofs = 0;
+        for (const ElasticBody *body : const_bodies)
+          {
+            n_cells += body->triangulation().n_global_active_cells();
+            n_dofs += body->dof_handler().n_dofs();
+          }
+        const double max_n_cells = parameters.max_dofs * n_cells / n_dofs;
         ratios = optimal_size_ratios(const_bodies,
                                      estimate,
                                      find_singular_points(const_bodies,
@@ -42,12 +52,14 @@ namespace coulomb_adapt
                                      degree,
                                      parameters.singular_rate,
                                      parameters.min_size_ratio,
-                                     parameters.max_size_ratio);
+                                     parameters.max_size_ratio,
+                                     max_n_cells);
         report.predicted_n_cells = ratios.predicted_n_cells;
         report.predicted_epsilon = ratios.predicted_epsilon;
         report.n_singular_cells  = ratios.n_singular_cells;
         report.n_at_min_ratio    = ratios.n_at_min_ratio;
         report.n_at_max_ratio    = ratios.n_at_max_ratio;
+        report.limited_by_max_dofs = ratios.limited_by_max_n_cells;
       }
 
     if (parameters.strategy == "remesh")

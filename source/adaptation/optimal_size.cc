@@ -108,7 +108,8 @@ namespace coulomb_adapt
                       const unsigned int                        degree,
                       const double                              singular_rate,
                       const double                              min_ratio,
-                      const double                              max_ratio)
+                      const double                              max_ratio,
+                      const double max_n_cells)
   {
     Assert(target_error > 0, ExcMessage("a target error is needed"));
     const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
@@ -184,17 +185,40 @@ namespace coulomb_adapt
           L_high = L;
       }
 
+    // The cell count, which grows with L, as the error falls.
+    auto predicted_n_cells = [&](const double L) {
+      double sum = 0;
+      for (const auto &c : cells)
+        sum += std::pow(ratio(c, L, true), -dimension);
+      return Utilities::MPI::sum(sum, comm);
+    };
+    double L = L_high;
+    if (max_n_cells > 0 && predicted_n_cells(L) > max_n_cells)
+      {
+        result.limited_by_max_n_cells = true;
+        double L_fewer = -1400;
+        for (unsigned int k = 0; k < 200 && L - L_fewer > 1e-12; ++k)
+          {
+            const double L_middle = 0.5 * (L_fewer + L);
+            if (predicted_n_cells(L_middle) > max_n_cells)
+              L = L_middle;
+            else
+              L_fewer = L_middle;
+          }
+        L = L_fewer;
+      }
+
     double n_cells = 0;
     for (const auto &c : cells)
       {
-        const double r              = ratio(c, L_high, true);
+        const double r              = ratio(c, L, true);
         result.ratio[c.body](c.index) = r;
         n_cells += std::pow(r, -dimension);
         result.n_at_min_ratio += (r <= min_ratio * (1 + 1e-12));
         result.n_at_max_ratio += (r >= max_ratio * (1 - 1e-12));
       }
     result.predicted_n_cells = Utilities::MPI::sum(n_cells, comm);
-    result.predicted_epsilon = std::sqrt(predicted_error_squared(L_high, true));
+    result.predicted_epsilon = std::sqrt(predicted_error_squared(L, true));
     result.n_at_min_ratio    = Utilities::MPI::sum(result.n_at_min_ratio, comm);
     result.n_at_max_ratio    = Utilities::MPI::sum(result.n_at_max_ratio, comm);
     return result;

@@ -560,6 +560,10 @@ namespace coulomb_adapt
             << std::min<double>(parameters.finite_elements.degree,
                                 a.singular_rate)
             << " in " << r.n_singular_cells << " cells at singular points)";
+    if (r.limited_by_max_dofs)
+      pcout << "; more cells than 'Maximum number of DoFs' = " << a.max_dofs
+            << " allows: the optimal mesh of that size instead (predicted "
+               "epsilon above epsilon_0)";
     if (r.strategy == "refine")
       pcout << (r.predicted_n_cells >= 0 ? "; " : "") << r.n_refine_flags
             << " cells flagged for refinement, " << r.n_coarsen_flags
@@ -680,7 +684,8 @@ namespace coulomb_adapt
               {"predicted_n_cells", last_adaptation->predicted_n_cells},
               {"predicted_epsilon", last_adaptation->predicted_epsilon},
               {"obtained_n_cells", obtained},
-              {"singular_cells", last_adaptation->n_singular_cells}};
+              {"singular_cells", last_adaptation->n_singular_cells},
+              {"limited_by_max_dofs", last_adaptation->limited_by_max_dofs}};
           }
         if (last_adaptation && last_adaptation->strategy == "refine")
           {

@@ -372,7 +372,15 @@ namespace coulomb_adapt
                           "2e6",
                           Patterns::Double(1),
                           "No further cycle once a cycle has at least this "
-                          "many DoFs (both bodies).");
+                          "many DoFs (both bodies). The size-ratio "
+                          "adaptation ('remesh', 'refine' with 'size ratio') "
+                          "also plans no mesh above it: if the optimal mesh "
+                          "for the target has more cells than this many DoFs "
+                          "allow (at the current DoFs per cell), the optimal "
+                          "mesh of that size is built instead (the log and "
+                          "summary.json's 'limited_by_max_dofs' say so). "
+                          "'refine' rounds to whole levels and may land up "
+                          "to 4 times above it.");
         prm.declare_entry("Refinement criterion",
                           "size ratio",
                           Patterns::Selection(

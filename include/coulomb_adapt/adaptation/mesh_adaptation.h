@@ -22,6 +22,9 @@ namespace coulomb_adapt
     double       predicted_epsilon = -1;
     unsigned int n_singular_cells  = 0;
     unsigned int n_at_min_ratio = 0, n_at_max_ratio = 0;
+    /** Whether the optimal mesh for epsilon_0 exceeded 'Maximum number of
+     * DoFs' and the optimal mesh of that size was taken instead. */
+    bool limited_by_max_dofs = false;
     /** Cells flagged (refine strategy). */
     unsigned int n_refine_flags = 0, n_coarsen_flags = 0;
   };

@@ -34,6 +34,9 @@ namespace coulomb_adapt
     unsigned int n_singular_cells = 0;
     /** Cells at the lower / upper bound of r_E. */
     unsigned int n_at_min_ratio = 0, n_at_max_ratio = 0;
+    /** Whether the optimal mesh for epsilon_0 had more cells than allowed,
+     * and the mesh is the optimal one with that many cells instead. */
+    bool limited_by_max_n_cells = false;
   };
 
   /**
@@ -58,6 +61,12 @@ namespace coulomb_adapt
    * r_E^{2 q_E + d} = d / (2 Lambda q_E epsilon_E^2) holds in every cell and
    * the multiplier Lambda is found by bisection (the predicted error is
    * monotone in it).
+   *
+   * If that mesh would have more than @p max_n_cells cells (0: no limit),
+   * Lambda is lowered until it has at most that many: the same Lagrange
+   * condition, so the mesh of the least predicted error for that cell
+   * count. Without the limit, a small epsilon_0 asks for a mesh that
+   * min_ratio lets grow up to 1/min_ratio^2 = 100-fold in one cycle.
    */
   OptimalSizeRatios
   optimal_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
@@ -67,7 +76,8 @@ namespace coulomb_adapt
                       const unsigned int                        degree,
                       const double                              singular_rate,
                       const double                              min_ratio,
-                      const double                              max_ratio);
+                      const double                              max_ratio,
+                      const double max_n_cells = 0);
 } // namespace coulomb_adapt
 
 #endif
