@@ -31,6 +31,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 
 using namespace coulomb_adapt;
@@ -48,6 +49,29 @@ namespace
   }
 
   using Settings = std::vector<std::pair<std::string, std::string>>;
+
+  // The program run to its end on @p settings, with what it keeps
+  // references to (the parameters) and what it wrote (log, summary.json).
+  struct ProgramRun
+  {
+    ParameterHandler                prm;
+    const Parameters                parameters;
+    std::ostringstream              log;
+    std::unique_ptr<TwoBodyProblem> problem;
+    nlohmann::json                  summary;
+
+    explicit ProgramRun(const Settings &settings)
+      : parameters(testing::make_parameters(prm, settings))
+    {
+      prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
+      problem = std::make_unique<TwoBodyProblem>(
+        MPI_COMM_WORLD, parameters, prm, "test", log);
+      problem->run();
+      // Rank 0 writes the summary; the others read it once it is complete.
+      MPI_Barrier(MPI_COMM_WORLD);
+      std::ifstream(parameters.output.directory + "/summary.json") >> summary;
+    }
+  };
 
   Settings
   blocks(const std::string &cell_type,
@@ -106,18 +130,9 @@ namespace
            const bool      check_prediction,
            ConditionalOStream &out)
   {
-    ParameterHandler prm;
-    const Parameters parameters = testing::make_parameters(prm, settings);
-    prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
-    std::ostringstream log;
-    TwoBodyProblem     problem(MPI_COMM_WORLD, parameters, prm, "test", log);
-    problem.run();
-    // Rank 0 writes the summary; the others read it once it is complete.
-    MPI_Barrier(MPI_COMM_WORLD);
-
-    nlohmann::json summary;
-    std::ifstream(parameters.output.directory + "/summary.json") >> summary;
-    const auto &cycles = summary["cycles"];
+    const ProgramRun      run(settings);
+    const nlohmann::json &summary = run.summary;
+    const auto &          cycles  = summary["cycles"];
     for (const auto &c : cycles)
       {
         out << "    cycle " << c["cycle"].get<unsigned int>() << ": cells "
@@ -153,8 +168,9 @@ namespace
     // whose finest level spreads over a patch of a few cells (one level
     // per cycle, 2:1 balance).
     if (check_finest)
-      check_finest_cells(problem,
-                         parameters.adaptation.strategy == "remesh" ? 10 : 20,
+      check_finest_cells(*run.problem,
+                         run.parameters.adaptation.strategy == "remesh" ? 10 :
+                                                                          20,
                          out);
   }
 } // namespace
@@ -168,16 +184,12 @@ main(int argc, char **argv)
 
   // Where the initial mesh's indicator density peaks: the contact zone ends.
   {
-    ParameterHandler   prm;
     auto settings =
       blocks("triangle", "uniform", "3, 3", "6, 7", "0", "output-density");
     settings.push_back({"Adaptation/Number of cycles", "1"});
-    const Parameters parameters = testing::make_parameters(prm, settings);
-    prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
-    std::ostringstream log;
-    TwoBodyProblem     problem(MPI_COMM_WORLD, parameters, prm, "test", log);
-    problem.run();
-    const ErrorEstimate &e = problem.last_error_estimate();
+    const ProgramRun      run(settings);
+    const TwoBodyProblem &problem = *run.problem;
+    const ErrorEstimate & e       = problem.last_error_estimate();
     for (unsigned int b = 0; b < 2; ++b)
       {
         std::pair<double, double> best = {-1, 0}; // density, distance
@@ -226,17 +238,9 @@ main(int argc, char **argv)
                strategy, "2, 2", "4, 4", "0.01", "output-cap-" + strategy);
       settings.push_back({"Adaptation/Maximum number of DoFs", "3000"});
       settings.push_back({"Adaptation/Number of cycles", "4"});
-      ParameterHandler prm;
-      const Parameters parameters = testing::make_parameters(prm, settings);
-      prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
-      std::ostringstream log;
-      TwoBodyProblem problem(MPI_COMM_WORLD, parameters, prm, "test", log);
-      problem.run();
-      MPI_Barrier(MPI_COMM_WORLD);
-      nlohmann::json summary;
-      std::ifstream(parameters.output.directory + "/summary.json") >> summary;
-      unsigned int n_limited = 0;
-      for (const auto &c : summary["cycles"])
+      const ProgramRun run(settings);
+      unsigned int     n_limited = 0;
+      for (const auto &c : run.summary["cycles"])
         {
           const auto n_dofs = c["n_dofs"].get<unsigned int>();
           const bool limited =
@@ -252,10 +256,11 @@ main(int argc, char **argv)
       AssertThrow(n_limited > 0, ExcMessage("the cap never acted"));
       // The log is rank 0's.
       AssertThrow(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) > 0 ||
-                    log.str().find("more cells than 'Maximum number of "
-                                   "DoFs'") != std::string::npos,
+                    run.log.str().find("more cells than 'Maximum number "
+                                       "of DoFs'") != std::string::npos,
                   ExcMessage("the log does not say the mesh was limited"));
-      out << "    " << summary["stop_reason"].get<std::string>() << std::endl;
+      out << "    " << run.summary["stop_reason"].get<std::string>()
+          << std::endl;
     }
   {
     out << "refine (optimize), Q1, epsilon_0 = 2 %" << std::endl;

@@ -329,6 +329,24 @@ interpolated_body(const RecoveryScene &scene,
   return body;
 }
 
+// The reference for QuadratureStress: sigma_c = K eps(u_h) from deal.II's
+// FEValues of the displacement's FESystem (update_gradients), reinit'ed on
+// @p cell here, at each of its points.
+std::vector<Tensor<1, 3>>
+reference_stresses(const ElasticBody &                        body,
+                   FEValues<2> &                              reference,
+                   const DoFHandler<2>::active_cell_iterator &cell)
+{
+  reference.reinit(cell);
+  std::vector<SymmetricTensor<2, 2>> strains(reference.n_quadrature_points);
+  reference[FEValuesExtractors::Vector(0)].get_function_symmetric_gradients(
+    body.solution(), strains);
+  std::vector<Tensor<1, 3>> stresses;
+  for (const auto &strain : strains)
+    stresses.push_back(stress_components(body.material().stress(strain)));
+  return stresses;
+}
+
 // QuadratureStress (strain from the scalar base element's gradients and
 // the nodal values) against deal.II's FEValues of the displacement's
 // FESystem at the same points: stresses and each weight must agree to
@@ -353,7 +371,6 @@ check_quadrature_stress(const std::string &label, const ElasticBody &body)
                                   body.cell_quadrature(),
                                   update_values);
   const unsigned int n_points = body.cell_quadrature().size();
-  std::vector<SymmetricTensor<2, 2>> strains(n_points);
   std::vector<Tensor<1, 3>>          recovered_values(n_points);
   std::array<std::vector<double>, 3> reference_components;
   for (auto &r : reference_components)
@@ -372,13 +389,10 @@ check_quadrature_stress(const std::string &label, const ElasticBody &body)
         for (unsigned int c = 0; c < 3; ++c)
           recovered_reference.get_function_values(recovered.component(c),
                                                   reference_components[c]);
-        reference.reinit(cell);
-        reference[FEValuesExtractors::Vector(0)]
-          .get_function_symmetric_gradients(body.solution(), strains);
+        const auto sigmas = reference_stresses(body, reference, cell);
         for (const unsigned int q : reference.quadrature_point_indices())
           {
-            const Tensor<1, 3> sigma =
-              stress_components(body.material().stress(strains[q]));
+            const Tensor<1, 3> &sigma = sigmas[q];
             largest_stress = std::max(largest_stress, sigma.norm());
             stress_difference =
               std::max(stress_difference,
@@ -432,20 +446,16 @@ check_sampled_stress(const std::string &label, const ElasticBody &body)
                         body.dof_handler().get_fe(),
                         sampling,
                         update_gradients | update_quadrature_points);
-  std::vector<SymmetricTensor<2, 2>> strains(sampling.size());
   double       largest_stress = 0, stress_difference = 0;
   double       largest_coordinate = 0, point_difference = 0;
   unsigned int owned_cell = 0;
   for (const auto &cell : body.dof_handler().active_cell_iterators())
     if (cell->is_locally_owned())
       {
-        reference.reinit(cell);
-        reference[FEValuesExtractors::Vector(0)]
-          .get_function_symmetric_gradients(body.solution(), strains);
+        const auto sigmas = reference_stresses(body, reference, cell);
         for (const unsigned int q : reference.quadrature_point_indices())
           {
-            const Tensor<1, 3> sigma =
-              stress_components(body.material().stress(strains[q]));
+            const Tensor<1, 3> &sigma = sigmas[q];
             largest_stress = std::max(largest_stress, sigma.norm());
             stress_difference =
               std::max(stress_difference,
