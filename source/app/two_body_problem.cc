@@ -389,17 +389,29 @@ namespace coulomb_adapt
   TwoBodyProblem::estimate_error()
   {
     TimerOutput::Scope t(computing_timer, "error indicator");
-    const StressRecoveryMethod recovery =
-      parameters.error_indicator.recovery == "spr" ?
-        StressRecoveryMethod::spr :
-        StressRecoveryMethod::l2_projection;
+    const auto &indicator = parameters.error_indicator;
+    const std::array<const ElasticBody *, 2> body_pointers = {
+      {bodies[0].get(), bodies[1].get()}};
     error_estimate = std::make_unique<ErrorEstimate>(
-      coulomb_adapt::estimate_error({{bodies[0].get(), bodies[1].get()}},
+      coulomb_adapt::estimate_error(body_pointers,
                                     contact_solver.get(),
                                     parameters.contact.friction_coefficient,
-                                    recovery,
+                                    indicator.estimator,
+                                    indicator,
                                     parameters.linear_solver,
                                     &computing_timer));
+    compared_estimates.clear();
+    if (indicator.compare_estimators)
+      for (const ErrorEstimator other : all_error_estimators())
+        if (other != indicator.estimator)
+          compared_estimates.push_back(
+            std::make_unique<ErrorEstimate>(coulomb_adapt::estimate_error(
+              body_pointers,
+              contact_solver.get(),
+              parameters.contact.friction_coefficient,
+              other,
+              indicator,
+              parameters.linear_solver)));
     const ErrorEstimate &e = *error_estimate;
     if (e.has_contact)
       {
@@ -419,18 +431,58 @@ namespace coulomb_adapt
                 << c.max_penetration << " mm clipped";
         pcout << std::endl;
       }
-    pcout << "  error indicator (" << to_string(e.recovery)
-          << "): epsilon = " << std::fixed << std::setprecision(3)
-          << 100 * e.epsilon << " % (volume: body 1 "
-          << 100 * e.epsilon_volume[0] << " %, body 2 "
-          << 100 * e.epsilon_volume[1] << " %; contact "
-          << 100 * e.epsilon_contact << " %)" << std::defaultfloat
-          << std::endl;
+    if (e.estimator == ErrorEstimator::cre)
+      pcout << "  cre: equilibrated stress of degree p + "
+            << indicator.cre_degree_increase
+            << (e.has_contact ? " from the solution under the consistent "
+                                "contact load (solved: the mortar's "
+                                "dual-basis traction is not in the cone "
+                                "between the nodes)" :
+                                "")
+            << "; node systems' defect " << std::scientific
+            << std::setprecision(1) << e.node_system_defect
+            << ", local problems' rigid-motion load " << e.local_problem_defect
+            << std::defaultfloat << std::endl;
+    auto report = [&](const ErrorEstimate &estimate) {
+      pcout << "  error indicator (" << to_string(estimate.estimator)
+            << "): epsilon = " << std::fixed << std::setprecision(3)
+            << 100 * estimate.epsilon << " % (volume: body 1 "
+            << 100 * estimate.epsilon_volume[0] << " %, body 2 "
+            << 100 * estimate.epsilon_volume[1] << " %; contact "
+            << 100 * estimate.epsilon_contact << " %)" << std::defaultfloat
+            << (&estimate == &e ? "" : " [compared, not driving]")
+            << std::endl;
+    };
+    report(e);
+    for (const auto &other : compared_estimates)
+      report(*other);
     cycle_record["epsilon"]         = e.epsilon;
     cycle_record["epsilon_volume"]  = {e.epsilon_volume[0],
                                       e.epsilon_volume[1]};
     cycle_record["epsilon_contact"] = e.epsilon_contact;
-    cycle_record["recovery"]        = to_string(e.recovery);
+    cycle_record["estimator"]       = to_string(e.estimator);
+    if (e.estimator != ErrorEstimator::cre)
+      cycle_record["recovery"] = to_string(e.recovery);
+    else
+      cycle_record["cre"] = {{"degree_increase", indicator.cre_degree_increase},
+                             {"node_system_defect", e.node_system_defect},
+                             {"local_problem_defect", e.local_problem_defect}};
+    if (!compared_estimates.empty())
+      {
+        auto record_of = [](const ErrorEstimate &estimate) {
+          return nlohmann::json{
+            {"epsilon", estimate.epsilon},
+            {"epsilon_volume",
+             {estimate.epsilon_volume[0], estimate.epsilon_volume[1]}},
+            {"epsilon_contact", estimate.epsilon_contact},
+            {"normalisation_squared", estimate.normalisation_squared}};
+        };
+        nlohmann::json estimators;
+        estimators[to_string(e.estimator)] = record_of(e);
+        for (const auto &other : compared_estimates)
+          estimators[to_string(other->estimator)] = record_of(*other);
+        cycle_record["estimators"] = estimators;
+      }
     if (e.has_contact)
       cycle_record["correction"] = {
         {"skipped", e.correction.skipped},
@@ -495,6 +547,34 @@ namespace coulomb_adapt
       {"max", c.element_effectivity_max},
       {"n_elements", c.n_elements}};
     cycle_record["exact_error_reference"] = reference.description();
+    // Compared estimators: each against the exact error of its own
+    // corrected solution (the field it estimates).
+    if (!compared_estimates.empty())
+      {
+        auto add_effectivity = [&](const ErrorEstimate &        estimate,
+                                   const ExactErrorComparison &x) {
+          cycle_record["estimators"][to_string(estimate.estimator)].update(
+            {{"epsilon_exact", x.epsilon_exact},
+             {"effectivity", x.effectivity},
+             {"element_effectivity",
+              {{"mean", x.element_effectivity_mean},
+               {"std", x.element_effectivity_std},
+               {"min", x.element_effectivity_min},
+               {"max", x.element_effectivity_max},
+               {"n_elements", x.n_elements}}}});
+          pcout << "  exact error of " << to_string(estimate.estimator)
+                << "'s corrected solution: " << std::fixed
+                << std::setprecision(3) << 100 * x.epsilon_exact
+                << " %, effectivity " << x.effectivity << std::defaultfloat
+                << std::endl;
+        };
+        add_effectivity(*error_estimate, c);
+        for (const auto &other : compared_estimates)
+          add_effectivity(*other,
+                          coulomb_adapt::compare_with_exact_error(body_pointers,
+                                                                  *other,
+                                                                  reference));
+      }
   }
 
 
@@ -532,6 +612,7 @@ namespace coulomb_adapt
     TimerOutput::Scope t(computing_timer, "adapt mesh");
     // What lives on the old meshes goes; the contact sets are kept by
     // position for the warm start.
+    compared_estimates.clear();
     previous_contact_states.clear();
     if (contact_solver)
       previous_contact_states = contact_solver->node_states();

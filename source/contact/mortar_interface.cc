@@ -290,6 +290,54 @@ namespace coulomb_adapt
 
 
 
+  std::vector<double>
+  MortarInterface::master_shape_values(const double eta) const
+  {
+    return segment_shape_values(master_degree, eta);
+  }
+
+
+
+  std::vector<MortarInterface::OverlapPoint>
+  MortarInterface::overlap_quadrature(const unsigned int n_points) const
+  {
+    const QGauss<1>           gauss(n_points);
+    std::vector<OverlapPoint> points;
+    points.reserve(overlap_list.size() * n_points);
+    for (unsigned int o = 0; o < overlap_list.size(); ++o)
+      {
+        const Overlap &    overlap = overlap_list[o];
+        const Segment &    s_seg   = slave_segments[overlap.slave_segment];
+        const Segment &    m_seg   = master_segments[overlap.master_segment];
+        const Point<2> &   a       = slave[s_seg.nodes[0]].position;
+        const Point<2> &   b       = slave[s_seg.nodes[1]].position;
+        const Point<2> &   c       = master[m_seg.nodes[0]].position;
+        const Point<2> &   d       = master[m_seg.nodes[1]].position;
+        const Tensor<1, 2> n       = s_seg.normal;
+        const Tensor<1, 2> cd      = d - c;
+        const double       det     = -cd[0] * n[1] + cd[1] * n[0];
+        const double       h       = (b - a).norm();
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            const double xi = overlap.begin +
+                              (overlap.end - overlap.begin) * gauss.point(q)[0];
+            const Point<2>     x   = a + xi * (b - a);
+            const Tensor<1, 2> r   = x - c;
+            const double       eta = (-r[0] * n[1] + r[1] * n[0]) / det;
+            points.push_back({o,
+                              xi,
+                              eta,
+                              x,
+                              c + eta * cd,
+                              gauss.weight(q) * (overlap.end - overlap.begin) *
+                                h});
+          }
+      }
+    return points;
+  }
+
+
+
   bool
   MortarInterface::is_covered(const unsigned int j) const
   {

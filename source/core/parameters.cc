@@ -289,15 +289,44 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Error indicator");
       {
-        prm.declare_entry("Recovery",
+        prm.declare_entry("Estimator",
                           "zz",
-                          Patterns::Selection("zz|spr"),
-                          "How the smoothed stress is recovered from the "
-                          "corrected FE stress on each body. zz: global L2 "
+                          Patterns::Selection("zz|spr|cre"),
+                          "The a posteriori error estimator; the one that "
+                          "drives the adaptation. zz: the seed's, the "
+                          "corrected FE stress smoothed by global L2 "
                           "projection onto the continuous FE space of the "
-                          "same degree (Zienkiewicz-Zhu 1987, the seed's "
-                          "choice); spr: superconvergent patch recovery "
-                          "(Zienkiewicz-Zhu 1992).");
+                          "same degree (Zienkiewicz-Zhu 1987); spr: smoothed "
+                          "by superconvergent patch recovery (Zienkiewicz-Zhu "
+                          "1992); cre: error in constitutive relation with a "
+                          "statically admissible stress built by the element "
+                          "equilibration technique (Ladeveze-Leguillon 1983, "
+                          "Coorevits-Hild-Hjiaj 2001), an upper bound of the "
+                          "exact error for frictionless contact; conforming "
+                          "meshes only (not with Adaptation/Strategy = "
+                          "refine). All three add the same contact term and "
+                          "use the seed's normalisation.");
+        prm.declare_entry("Recovery",
+                          "",
+                          Patterns::Anything(),
+                          "Removed: replaced by 'Estimator' (zz | spr | cre). "
+                          "A file that sets it is refused with a message "
+                          "naming the new entry.");
+        prm.declare_entry("Compare estimators",
+                          "false",
+                          Patterns::Bool(),
+                          "Compute zz, spr and cre on the same solution in "
+                          "every cycle (summary.json 'estimators', with "
+                          "their effectivity when the exact error is "
+                          "computed); 'Estimator' still drives the "
+                          "adaptation. For studies of the estimators: it "
+                          "costs the two other estimators' time.");
+        prm.declare_entry("CRE degree increase",
+                          "2",
+                          Patterns::Integer(1, 3),
+                          "k: the local problems of the cre estimator are "
+                          "solved with polynomials of degree p + k (k >= 2 "
+                          "makes their discretisation error negligible).");
         prm.declare_entry("Compute exact error",
                           "false",
                           Patterns::Bool(),
@@ -324,7 +353,19 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Error indicator");
       {
-        recovery              = prm.get("Recovery");
+        const std::string removed = prm.get("Recovery");
+        if (!removed.empty())
+          throw ParameterError(
+            "Error indicator/Recovery",
+            removed,
+            "this entry was replaced by 'Error indicator/Estimator' "
+            "(zz | spr | cre): write 'set Estimator = " +
+              (removed == "zz" || removed == "spr" ? removed :
+                                                     std::string("zz")) +
+              "' instead");
+        estimator = error_estimator_from_string(prm.get("Estimator"));
+        compare_estimators = prm.get_bool("Compare estimators");
+        cre_degree_increase = prm.get_integer("CRE degree increase");
         compute_exact_error   = prm.get_bool("Compute exact error");
         reference_refinements = prm.get_integer("Reference refinements");
       }
@@ -553,6 +594,17 @@ namespace coulomb_adapt
                            "'refine' needs 'Mesh/Cell type = "
                            "quadrilateral' (hanging nodes); for triangles "
                            "use 'remesh' or 'uniform'");
+    if (adaptation.strategy == "refine" &&
+        (error_indicator.estimator == ErrorEstimator::cre ||
+         error_indicator.compare_estimators))
+      throw ParameterError(
+        error_indicator.compare_estimators ?
+          "Error indicator/Compare estimators" :
+          "Error indicator/Estimator",
+        error_indicator.compare_estimators ? "true" : "cre",
+        "the cre estimator's element equilibration is written for "
+        "conforming meshes, and 'Adaptation/Strategy = refine' makes "
+        "hanging nodes: use 'Strategy = remesh' (triangles) or 'uniform'");
     if (adaptation.strategy == "remesh" &&
         mesh.cell_type != CellType::triangle)
       throw ParameterError("Adaptation/Strategy",

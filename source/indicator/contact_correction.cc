@@ -250,19 +250,55 @@ namespace coulomb_adapt
 
 
 
+  std::vector<Tensor<1, 2>>
+  contact_traction_at(const MortarInterface &                            mortar,
+                      const std::vector<ContactNodeFields> &             fields,
+                      const std::vector<MortarInterface::OverlapPoint> &points)
+  {
+    const auto &nodes    = mortar.slave_nodes();
+    const auto &segments = mortar.slave_segment_list();
+    std::vector<Tensor<1, 2>> traction(points.size());
+    for (unsigned int q = 0; q < points.size(); ++q)
+      {
+        const auto &segment =
+          segments[mortar.overlaps()[points[q].overlap].slave_segment];
+        const auto phi = mortar.slave_shape_values(points[q].xi);
+        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+          {
+            const auto &node = nodes[segment.nodes[k]];
+            const auto &f    = fields[segment.nodes[k]];
+            traction[q] -= phi[k] * (f.pressure * node.normal +
+                                     f.tangential_traction * node.tangent);
+          }
+      }
+    return traction;
+  }
+
+
+
+  unsigned int
+  contact_traction_points_per_overlap(const unsigned int degree)
+  {
+    return degree + 3;
+  }
+
+
+
   CorrectedContactSolution
   correct_contact_solution(const ElasticBody &              slave,
                            const ElasticBody &              master,
                            const ContactSolver &            contact_solver,
                            const double                     mu,
-                           const parameters::LinearSolver & solver_parameters)
+                           const parameters::LinearSolver & solver_parameters,
+                           const ContactLoadForm            load_form)
   {
     return correct_contact_solution(slave,
                                     master,
                                     contact_solver.mortar_interface(),
                                     contact_solver.node_states(),
                                     mu,
-                                    solver_parameters);
+                                    solver_parameters,
+                                    load_form);
   }
 
 
@@ -273,7 +309,8 @@ namespace coulomb_adapt
                            const MortarInterface &              mortar,
                            const std::vector<ContactNodeState> &states,
                            const double                         mu,
-                           const parameters::LinearSolver &     solver_parameters)
+                           const parameters::LinearSolver &     solver_parameters,
+                           const ContactLoadForm                load_form)
   {
     const auto &nodes  = mortar.slave_nodes();
     const auto &D      = mortar.slave_weights();
@@ -315,6 +352,10 @@ namespace coulomb_adapt
     corrected.relative_change =
       norm > 0 ? std::sqrt(change_norm / norm) : 0.;
     corrected.skipped = (corrected.n_projected_nodes == 0);
+    // The consistent load differs from the mortar load the FE solution
+    // balances whenever there is any contact traction at all.
+    if (load_form == ContactLoadForm::consistent)
+      corrected.skipped = (largest == 0);
 
     if (!corrected.skipped)
       {
@@ -334,14 +375,46 @@ namespace coulomb_adapt
                 !bodies[b]->constraints().is_constrained(dofs[c]))
               loads[b](dofs[c]) += force[c];
         };
-        for (unsigned int j = 0; j < states.size(); ++j)
+        if (load_form == ContactLoadForm::mortar)
+          for (unsigned int j = 0; j < states.size(); ++j)
+            {
+              const Tensor<1, 2> lambda =
+                corrected.fields[j].pressure * nodes[j].normal +
+                corrected.fields[j].tangential_traction * nodes[j].tangent;
+              add_load(0, nodes[j].dofs, -D[j] * lambda);
+              for (const auto &[l, m] : M[j])
+                add_load(1, master_nodes[l].dofs, m * lambda);
+            }
+        else
           {
-            const Tensor<1, 2> lambda =
-              corrected.fields[j].pressure * nodes[j].normal +
-              corrected.fields[j].tangential_traction * nodes[j].tangent;
-            add_load(0, nodes[j].dofs, -D[j] * lambda);
-            for (const auto &[l, m] : M[j])
-              add_load(1, master_nodes[l].dofs, m * lambda);
+            // int R phi_k on the slave side, -int R phi^2_l on the master
+            // side: the same traction field, integrated where the bodies
+            // face each other (R vanishes elsewhere, since a node with a
+            // nonzero reaction has its whole support covered).
+            const auto points = mortar.overlap_quadrature(
+              contact_traction_points_per_overlap(
+                mortar.slave_element_degree()));
+            const auto  R = contact_traction_at(mortar, corrected.fields, points);
+            const auto &slave_segments  = mortar.slave_segment_list();
+            const auto &master_segments = mortar.master_segment_list();
+            for (unsigned int q = 0; q < points.size(); ++q)
+              {
+                const auto &overlap = mortar.overlaps()[points[q].overlap];
+                const auto &s_nodes =
+                  slave_segments[overlap.slave_segment].nodes;
+                const auto &m_nodes =
+                  master_segments[overlap.master_segment].nodes;
+                const auto phi_s = mortar.slave_shape_values(points[q].xi);
+                const auto phi_m = mortar.master_shape_values(points[q].eta);
+                for (unsigned int k = 0; k < s_nodes.size(); ++k)
+                  add_load(0,
+                           nodes[s_nodes[k]].dofs,
+                           phi_s[k] * points[q].weight * R[q]);
+                for (unsigned int k = 0; k < m_nodes.size(); ++k)
+                  add_load(1,
+                           master_nodes[m_nodes[k]].dofs,
+                           -phi_m[k] * points[q].weight * R[q]);
+              }
           }
         for (unsigned int b = 0; b < 2; ++b)
           {

@@ -78,6 +78,83 @@ namespace coulomb_adapt
 
 
 
+  void
+  finish_error_estimate(const std::array<const ElasticBody *, 2> &bodies,
+                        const std::array<double, 2> &volume_squared,
+                        const double                 normalisation_squared,
+                        ErrorEstimate &              estimate)
+  {
+    // The contact term on the contact faces of each side's cells.
+    if (estimate.has_contact)
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          const auto cells = owned_boundary_cell_indices(*bodies[b]);
+          for (const auto &[id, value] :
+               (b == 0 ? estimate.contact.slave_cells :
+                         estimate.contact.master_cells))
+            if (const auto c = cells.find(id); c != cells.end())
+              estimate.contribution_squared[b](c->second) += value;
+        }
+
+    estimate.normalisation_squared = normalisation_squared;
+    const double D2 = normalisation_squared > 0 ? normalisation_squared : 1.;
+    for (unsigned int b = 0; b < 2; ++b)
+      estimate.epsilon_volume[b] = std::sqrt(volume_squared[b] / D2);
+    estimate.epsilon_contact =
+      std::sqrt(std::max(0., 2 * estimate.contact.integral) / D2);
+    estimate.epsilon = std::sqrt(
+      (volume_squared[0] + volume_squared[1] + 2 * estimate.contact.integral) /
+      D2);
+
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const auto n = bodies[b]->triangulation().n_active_cells();
+        estimate.indicator[b].reinit(n);
+        estimate.density[b].reinit(n);
+        for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const auto   i  = cell->active_cell_index();
+              const double e2 = estimate.contribution_squared[b](i) / D2;
+              estimate.indicator[b](i) = std::sqrt(std::max(0., e2));
+              estimate.density[b](i)   = e2 / cell->measure();
+            }
+      }
+  }
+
+
+
+  ErrorEstimate
+  estimate_error(const std::array<const ElasticBody *, 2> &bodies,
+                 const ContactSolver *                     contact_solver,
+                 const double                              mu,
+                 const ErrorEstimator                      estimator,
+                 const parameters::ErrorIndicator &        indicator_parameters,
+                 const parameters::LinearSolver &          solver_parameters,
+                 TimerOutput *                             timer)
+  {
+    if (estimator == ErrorEstimator::cre)
+      return estimate_error_cre(bodies,
+                                contact_solver,
+                                mu,
+                                indicator_parameters.cre_degree_increase,
+                                solver_parameters,
+                                timer);
+    ErrorEstimate estimate =
+      estimate_error(bodies,
+                     contact_solver,
+                     mu,
+                     estimator == ErrorEstimator::spr ?
+                       StressRecoveryMethod::spr :
+                       StressRecoveryMethod::l2_projection,
+                     solver_parameters,
+                     timer);
+    estimate.estimator = estimator;
+    return estimate;
+  }
+
+
+
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
                  const ContactSolver *                     contact_solver,
@@ -88,6 +165,9 @@ namespace coulomb_adapt
   {
     ErrorEstimate estimate;
     estimate.recovery    = recovery;
+    estimate.estimator   = recovery == StressRecoveryMethod::spr ?
+                             ErrorEstimator::spr :
+                             ErrorEstimator::zz;
     estimate.has_contact = (contact_solver != nullptr);
     if (estimate.has_contact)
       {
@@ -140,42 +220,7 @@ namespace coulomb_adapt
 
     const OptionalTimerSection section(timer,
                                        "error indicator: contributions");
-    // The contact term on the contact faces of each side's cells.
-    if (estimate.has_contact)
-      for (unsigned int b = 0; b < 2; ++b)
-        {
-          const auto cells = owned_boundary_cell_indices(*bodies[b]);
-          for (const auto &[id, value] :
-               (b == 0 ? estimate.contact.slave_cells :
-                         estimate.contact.master_cells))
-            if (const auto c = cells.find(id); c != cells.end())
-              estimate.contribution_squared[b](c->second) += value;
-        }
-
-    estimate.normalisation_squared = normalisation_squared;
-    const double D2 = normalisation_squared > 0 ? normalisation_squared : 1.;
-    for (unsigned int b = 0; b < 2; ++b)
-      estimate.epsilon_volume[b] = std::sqrt(volume_squared[b] / D2);
-    estimate.epsilon_contact =
-      std::sqrt(std::max(0., 2 * estimate.contact.integral) / D2);
-    estimate.epsilon = std::sqrt(
-      (volume_squared[0] + volume_squared[1] + 2 * estimate.contact.integral) /
-      D2);
-
-    for (unsigned int b = 0; b < 2; ++b)
-      {
-        const auto n = bodies[b]->triangulation().n_active_cells();
-        estimate.indicator[b].reinit(n);
-        estimate.density[b].reinit(n);
-        for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              const auto   i  = cell->active_cell_index();
-              const double e2 = estimate.contribution_squared[b](i) / D2;
-              estimate.indicator[b](i) = std::sqrt(std::max(0., e2));
-              estimate.density[b](i)   = e2 / cell->measure();
-            }
-      }
+    finish_error_estimate(bodies, volume_squared, normalisation_squared, estimate);
     return estimate;
   }
 } // namespace coulomb_adapt

@@ -99,6 +99,9 @@ namespace coulomb_adapt
     std::unique_ptr<ContactSolver>            contact_solver;
     std::unique_ptr<ContactOutput>            contact_output;
     std::unique_ptr<ErrorEstimate>            error_estimate;
+    /** With `Compare estimators`: the other estimators on the same
+     * solution (they do not drive the adaptation). */
+    std::vector<std::unique_ptr<ErrorEstimate>> compared_estimates;
     nlohmann::json                            cycle_record;
     /** The contact sets of the previous cycle, for the warm start. */
     std::vector<ContactNodeState>             previous_contact_states;

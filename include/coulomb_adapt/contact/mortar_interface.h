@@ -120,6 +120,33 @@ namespace coulomb_adapt
     std::vector<double>
     slave_shape_values(const double xi) const;
 
+    /** Values of the master segment's shape functions (ends, then middle
+     * node) at parameter @p eta in [0, 1] of its chord. */
+    std::vector<double>
+    master_shape_values(const double eta) const;
+
+    /** A Gauss point of an overlap: where a slave segment faces a master
+     * segment. The slave point is projected onto the master chord along the
+     * slave segment's normal, as in the integrals of M and g~. */
+    struct OverlapPoint
+    {
+      /** Index into overlaps(). */
+      unsigned int overlap;
+      /** Parameters on the slave and master chords, in [0, 1]. */
+      double xi;
+      double eta;
+      Point<2> slave_point;
+      Point<2> master_point;
+      /** Gauss weight times the slave chord length (mm). */
+      double weight;
+    };
+
+    /** @p n_points Gauss points on every overlap: a quadrature of the part of
+     * the interface where the bodies face each other, exact for polynomials
+     * of degree 2 n_points - 1 in the slave parameter. */
+    std::vector<OverlapPoint>
+    overlap_quadrature(const unsigned int n_points) const;
+
     /** Whether the master surface covers slave node j's support
      * completely (sum_l M_jl = D_jj): only such nodes can come into
      * contact; the others lie beyond the master's edge. */

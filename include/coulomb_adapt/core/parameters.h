@@ -3,6 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <coulomb_adapt/core/error_estimator.h>
+
 #include <string>
 
 namespace coulomb_adapt
@@ -112,8 +114,12 @@ namespace coulomb_adapt
     /** Subsection `Error indicator`. */
     struct ErrorIndicator
     {
-      /** "zz" (global L2 projection) or "spr" (patch recovery). */
-      std::string  recovery;
+      /** The estimator that drives the adaptation. */
+      ErrorEstimator estimator;
+      /** Compute all estimators on the same solution every cycle. */
+      bool         compare_estimators;
+      /** k of the cre estimator's local problems (degree p + k). */
+      unsigned int cre_degree_increase;
       /** Compare with the exact error: the scene's exact solution if it
        * has one, else a reference solution on a finer mesh. */
       bool         compute_exact_error;

@@ -12,6 +12,20 @@
 
 namespace coulomb_adapt
 {
+  /** How the corrected contact traction R_c loads the bodies. */
+  enum class ContactLoadForm
+  {
+    /** As in the contact solve: D R_c on the slave nodes, M^T lambda_c on
+     * the master nodes (R_c with Wohlmuth's dual basis). The recovery
+     * estimators (zz, spr) use it: with R_c = R_h it returns U_h. */
+    mortar,
+    /** int R_c phi_i with R_c interpolated by the standard slave basis,
+     * the same field on both sides (body 2 at the projected points). The
+     * CRE estimator uses it: this R_c lies in the Coulomb cone between the
+     * nodes, so the equilibrated stress can carry it as Neumann data. */
+    consistent
+  };
+
   /** The corrected FE solution of theory.md section 3.2. */
   struct CorrectedContactSolution
   {
@@ -63,7 +77,8 @@ namespace coulomb_adapt
                            const ElasticBody &               master,
                            const ContactSolver &             contact_solver,
                            const double                      friction_coefficient,
-                           const parameters::LinearSolver &  solver_parameters);
+                           const parameters::LinearSolver &  solver_parameters,
+                           const ContactLoadForm load_form = ContactLoadForm::mortar);
 
   /** The same, for given nodal contact states on @p mortar (the
    * solver's, or modified ones in tests). */
@@ -73,7 +88,23 @@ namespace coulomb_adapt
                            const MortarInterface &              mortar,
                            const std::vector<ContactNodeState> &states,
                            const double                         friction_coefficient,
-                           const parameters::LinearSolver &     solver_parameters);
+                           const parameters::LinearSolver &     solver_parameters,
+                           const ContactLoadForm load_form = ContactLoadForm::mortar);
+
+  /** The contact traction on body 1, R = -lambda, at the points of
+   * MortarInterface::overlap_quadrature(): the nodal values of @p fields
+   * interpolated with the standard slave basis (body 2 carries -R at the
+   * projected points). */
+  std::vector<Tensor<1, 2>>
+  contact_traction_at(const MortarInterface &                      mortar,
+                      const std::vector<ContactNodeFields> &       fields,
+                      const std::vector<MortarInterface::OverlapPoint> &points);
+
+  /** Gauss points per overlap for the consistent contact load and the
+   * Neumann data of the equilibrated stress: exact for R (degree p) times
+   * a polynomial of degree p + 3 on both sides. */
+  unsigned int
+  contact_traction_points_per_overlap(const unsigned int degree);
 
   /** The Euclidean projection of (lambda_n, lambda_t) onto the cone
    * lambda_n >= 0, |lambda_t| <= mu lambda_n (R in K_mu). */

@@ -9,6 +9,7 @@
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/indicator/contact_correction.h>
 #include <coulomb_adapt/indicator/contact_error.h>
+#include <coulomb_adapt/core/error_estimator.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 
 #include <array>
@@ -34,6 +35,12 @@ namespace coulomb_adapt
     /** e_E^2 = epsilon_E^2 D^2 per cell, unrounded, for the sums. */
     std::array<Vector<double>, 2> contribution_squared;
     StressRecoveryMethod          recovery = StressRecoveryMethod::l2_projection;
+    /** Which estimator computed it. */
+    ErrorEstimator                estimator = ErrorEstimator::zz;
+    /** cre only: the equilibration's defects (equilibrated_stress.h), the
+     * larger of the two bodies'. */
+    double                        node_system_defect   = 0;
+    double                        local_problem_defect = 0;
     /** The corrected solution (for scenes with contact). */
     CorrectedContactSolution correction;
     bool                     has_contact = false;
@@ -65,6 +72,51 @@ namespace coulomb_adapt
                  const StressRecoveryMethod                recovery,
                  const parameters::LinearSolver &          solver_parameters,
                  TimerOutput *                             timer = nullptr);
+
+  /**
+   * The estimator @p estimator (zz, spr or cre) for the current solution:
+   * zz and spr as above; cre is the error in constitutive relation of
+   * theory.md section 7 (estimate_error_cre).
+   */
+  ErrorEstimate
+  estimate_error(const std::array<const ElasticBody *, 2> &bodies,
+                 const ContactSolver *                     contact_solver,
+                 const double                              friction_coefficient,
+                 const ErrorEstimator                      estimator,
+                 const parameters::ErrorIndicator &        indicator_parameters,
+                 const parameters::LinearSolver &          solver_parameters,
+                 TimerOutput *                             timer = nullptr);
+
+  /**
+   * The error in constitutive relation (theory.md section 7): the
+   * corrected solution with the contact traction R_c in its consistent
+   * form (ContactLoadForm::consistent, always solved when there is contact
+   * pressure), a statically admissible stress sigma^ per body by the
+   * element equilibration technique with R_c (body 1) and -R_c (body 2) as
+   * Neumann data on Gamma_c, local problems of degree p + @p degree_increase,
+   * and
+   *   e_E^2 = ||sigma^ - sigma_c||^2_E + int_{Gamma_c cap dE} c(W_c, R_c),
+   *   D^2 = sum_l ||sigma^ + sigma_c||^2.
+   * Conforming meshes only (no hanging nodes).
+   */
+  ErrorEstimate
+  estimate_error_cre(const std::array<const ElasticBody *, 2> &bodies,
+                     const ContactSolver *                     contact_solver,
+                     const double                              friction_coefficient,
+                     const unsigned int                        degree_increase,
+                     const parameters::LinearSolver &          solver_parameters,
+                     TimerOutput *                             timer = nullptr);
+
+  /** The common end of every estimator: the contact term added to the
+   * contact cells of each side (the factor 2 of (3-10)), the seed's
+   * normalisation D^2, epsilon, its parts, and epsilon_E and the density
+   * per cell, from the volume terms already in
+   * estimate.contribution_squared. */
+  void
+  finish_error_estimate(const std::array<const ElasticBody *, 2> &bodies,
+                        const std::array<double, 2> &volume_squared,
+                        const double                 normalisation_squared,
+                        ErrorEstimate &              estimate);
 
   /** For a per-cell quantity on the boundary (the contact term): the
    * locally owned boundary cells' CellId and active index. Interior cells

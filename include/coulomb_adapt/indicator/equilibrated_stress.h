@@ -1,0 +1,79 @@
+#ifndef coulomb_adapt_indicator_equilibrated_stress_h
+#define coulomb_adapt_indicator_equilibrated_stress_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/grid/cell_id.h>
+
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+
+#include <map>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /** A traction (MPa) prescribed at one point of a cell's boundary, with
+   * its quadrature weight (mm): the contact traction of the statically
+   * admissible stress, given at the Gauss points of the mortar overlaps. */
+  struct BoundaryTractionPoint
+  {
+    Point<2>     point;
+    double       weight;
+    Tensor<1, 2> traction;
+  };
+
+  /** The traction points of a body's contact boundary, by cell. */
+  using ContactTractionData = std::map<CellId, std::vector<BoundaryTractionPoint>>;
+
+  /** The volume part of the CRE on one body (theory.md section 7). */
+  struct EquilibratedStressErrors
+  {
+    /** ||sigma^ - sigma_c||^2 on each locally owned active cell (indexed by
+     * active cell index; N per unit thickness). */
+    Vector<double> error_squared;
+    /** sum over all cells of ||sigma^ + sigma_c||^2 (every rank). */
+    double sum_norm_squared = 0;
+    /** Largest residual of the node systems of the edge moments, relative
+     * to the largest element residual: 0 up to round-off when the FE
+     * stress is in equilibrium at every free node. */
+    double node_system_defect = 0;
+    /** Largest load on a rigid motion in the local problems, relative to
+     * the load's size: the local problems' data are self-equilibrated to
+     * this accuracy. */
+    double local_problem_defect = 0;
+  };
+
+  /**
+   * The element equilibration technique of Ladeveze and Leguillon (1983)
+   * on @p body, and the CRE's volume terms ||sigma^ - K eps(u_kin)||^2 per
+   * cell. @p u_equilibrium (ghosted) must be the FE solution of the body
+   * under its own data plus the contact traction @p contact (exactly:
+   * its element residuals are what the edge tractions balance);
+   * @p u_kinematic (ghosted) is the kinematically admissible field whose
+   * error is measured. Conforming meshes only (no hanging nodes).
+   *
+   * 1. Edge moments b_{G,i} = int_G F_G phi_i: for every node i, the
+   *    prolongation conditions of the cells around it,
+   *      sum_{G in dE} eta_{E,G} b_{G,i} = int_E sigma : eps(phi_i) - f phi_i,
+   *    with the moments known on loaded, free and contact edges and unknown
+   *    on interior and Dirichlet edges; solved in least squares closest to
+   *    the moments of the averaged traction.
+   * 2. F_G: the polynomial of degree p on each edge with these moments.
+   * 3. On each cell, the Neumann problem with body force f and tractions
+   *    eta F_G (the prescribed data on loaded and contact edges) in the
+   *    complete polynomials of degree p + @p degree_increase, rigid motions
+   *    removed; sigma^ = K eps(u^).
+   */
+  EquilibratedStressErrors
+  equilibrated_stress_errors(const ElasticBody &                  body,
+                             const TrilinosWrappers::MPI::Vector &u_equilibrium,
+                             const TrilinosWrappers::MPI::Vector &u_kinematic,
+                             const ContactTractionData &          contact,
+                             const unsigned int                   degree_increase);
+} // namespace coulomb_adapt
+
+#endif

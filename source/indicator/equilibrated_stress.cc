@@ -1,0 +1,739 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+
+#include <coulomb_adapt/indicator/equilibrated_stress.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <set>
+
+namespace coulomb_adapt
+{
+  namespace
+  {
+    // A cell of the local mesh (locally owned or ghost) with what the node
+    // systems need from it.
+    struct CellData
+    {
+      DoFHandler<2>::active_cell_iterator cell;
+      bool                                owned;
+      /** Per node k of the scalar base element: the global DoF index of its
+       * x component (the node's name on every rank). */
+      std::vector<types::global_dof_index> nodes;
+      /** int_E sigma_c : eps(phi_k e_c) - f . phi_k e_c, [k][c]. */
+      std::vector<std::array<double, 2>> residual;
+      /** Local face index of each of the cell's faces. */
+      std::vector<unsigned int> faces;
+    };
+
+    // A face of the local mesh. Its traction F is sigma^ n of the "plus"
+    // cell (the smaller CellId), the other cell sees -F.
+    struct FaceData
+    {
+      int           plus = -1, minus = -1;
+      Point<2>      v0, v1;
+      Tensor<1, 2>  normal; // outward normal of the plus cell
+      double        length = 0;
+      bool          at_boundary = false;
+      /** Per component: the moments are unknown (interior and Dirichlet
+       * edges) rather than prescribed data. */
+      std::array<bool, 2> unknown = {{true, true}};
+      /** The nodes on the face and their parameter s in [0, 1] along
+       * v0 -> v1. */
+      std::vector<types::global_dof_index> nodes;
+      std::vector<double>                  s;
+      /** Moments b[node][c], and those of the averaged FE traction. */
+      std::vector<std::array<double, 2>> moments, average;
+      /** Nodal coefficients of F (degree p, Lagrange in s). */
+      std::vector<std::array<double, 2>> coefficients;
+    };
+
+    // Lagrange polynomials of the face's nodes at parameter s.
+    std::vector<double>
+    face_shape_values(const std::vector<double> &nodes_s, const double s)
+    {
+      std::vector<double> values(nodes_s.size(), 1.);
+      for (unsigned int k = 0; k < nodes_s.size(); ++k)
+        for (unsigned int l = 0; l < nodes_s.size(); ++l)
+          if (l != k)
+            values[k] *= (s - nodes_s[l]) / (nodes_s[k] - nodes_s[l]);
+      return values;
+    }
+
+    double
+    face_parameter(const FaceData &face, const Point<2> &x)
+    {
+      const Tensor<1, 2> d = face.v1 - face.v0;
+      return (x - face.v0) * d / d.norm_square();
+    }
+
+    // The complete polynomials of degree P in the scaled coordinates
+    // (x - centre) / h of a cell: a basis of the local problem's space that
+    // is the same for triangles and quadrilaterals, and contains the rigid
+    // motions and the FE space (P >= 2p).
+    class MonomialBasis
+    {
+    public:
+      MonomialBasis(const unsigned int degree)
+      {
+        for (unsigned int total = 0; total <= degree; ++total)
+          for (unsigned int b = 0; b <= total; ++b)
+            exponents.push_back({{total - b, b}});
+      }
+
+      unsigned int
+      size() const
+      {
+        return exponents.size();
+      }
+
+      void
+      reinit(const Point<2> &c, const double size)
+      {
+        centre = c;
+        h      = size;
+      }
+
+      // Values and gradients of all monomials at x.
+      void
+      evaluate(const Point<2> &             x,
+               std::vector<double> &        values,
+               std::vector<Tensor<1, 2>> &  gradients) const
+      {
+        const double xi[2] = {(x[0] - centre[0]) / h, (x[1] - centre[1]) / h};
+        values.resize(size());
+        gradients.resize(size());
+        for (unsigned int m = 0; m < size(); ++m)
+          {
+            const auto &e = exponents[m];
+            values[m]     = std::pow(xi[0], e[0]) * std::pow(xi[1], e[1]);
+            gradients[m][0] =
+              e[0] == 0 ? 0. :
+                          e[0] * std::pow(xi[0], e[0] - 1) *
+                            std::pow(xi[1], e[1]) / h;
+            gradients[m][1] =
+              e[1] == 0 ? 0. :
+                          e[1] * std::pow(xi[0], e[0]) *
+                            std::pow(xi[1], e[1] - 1) / h;
+          }
+      }
+
+      // Coefficient vectors (x block, then y block) of the rigid motions:
+      // the translations and the rotation (-xi_y, xi_x).
+      std::array<std::vector<double>, 3>
+      rigid_motions() const
+      {
+        const unsigned int M = size();
+        std::array<std::vector<double>, 3> modes;
+        for (auto &m : modes)
+          m.assign(2 * M, 0.);
+        // exponents: (0,0) is 0, (1,0) is 1, (0,1) is 2.
+        modes[0][0]     = 1;
+        modes[1][M]     = 1;
+        modes[2][2]     = -1;
+        modes[2][M + 1] = 1;
+        return modes;
+      }
+
+    private:
+      std::vector<std::array<unsigned int, 2>> exponents;
+      Point<2>                                 centre;
+      double                                   h = 1;
+    };
+
+    // eps of basis function a of the vector space (x block, then y block).
+    SymmetricTensor<2, 2>
+    basis_strain(const std::vector<Tensor<1, 2>> &gradients,
+                 const unsigned int               a)
+    {
+      const unsigned int    M = gradients.size();
+      const unsigned int    c = a / M;
+      const Tensor<1, 2> &  g = gradients[a % M];
+      SymmetricTensor<2, 2> e;
+      e[c][c]         = g[c];
+      e[0][1]         = 0.5 * g[1 - c];
+      return e;
+    }
+  } // namespace
+
+
+
+  EquilibratedStressErrors
+  equilibrated_stress_errors(const ElasticBody &                  body,
+                             const TrilinosWrappers::MPI::Vector &u_equilibrium,
+                             const TrilinosWrappers::MPI::Vector &u_kinematic_in,
+                             const ContactTractionData &          contact,
+                             const unsigned int                   degree_increase)
+  {
+    // Ghosted copies: the node systems read the ghost cells too (the
+    // corrected solutions come without ghost entries).
+    const MPI_Comm                      comm = body.triangulation().get_communicator();
+    TrilinosWrappers::MPI::Vector       u(body.locally_owned_dof_set(),
+                                    body.locally_relevant_dof_set(),
+                                    comm);
+    TrilinosWrappers::MPI::Vector       u_kinematic(u);
+    u           = u_equilibrium;
+    u_kinematic = u_kinematic_in;
+
+    const auto &           dof_handler = body.dof_handler();
+    const FiniteElement<2> &fe         = dof_handler.get_fe();
+    const FiniteElement<2> &base       = fe.base_element(0);
+    const unsigned int      p          = base.degree;
+    const unsigned int      n_nodes    = base.n_dofs_per_cell();
+    const ElasticMaterial & material   = body.material();
+    const BodyDescription & description = body.description();
+    const FEValuesExtractors::Vector displacement(0);
+
+    // 1. The local cells (owned and ghost) and their element residuals.
+    std::vector<CellData>                 cells;
+    std::map<CellId, unsigned int>        slot_of;
+    {
+      FEValues<2> fe_values(body.mapping(),
+                            fe,
+                            body.cell_quadrature(),
+                            update_values | update_gradients |
+                              update_quadrature_points | update_JxW_values);
+      std::vector<SymmetricTensor<2, 2>>   strains(fe_values.n_quadrature_points);
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned() || cell->is_ghost())
+          {
+            for (const unsigned int f : cell->face_indices())
+              AssertThrow(cell->at_boundary(f) ||
+                            (!cell->face(f)->has_children() &&
+                             !cell->neighbor_is_coarser(f)),
+                          ExcMessage(
+                            "Error indicator/Estimator = cre: the mesh of " +
+                            body.name() +
+                            " has hanging nodes. The element equilibration "
+                            "is written for conforming meshes: use "
+                            "Adaptation/Strategy = remesh or uniform "
+                            "(quadrilaterals without a scene's local "
+                            "refinement, or triangles)."));
+            CellData data;
+            data.cell  = cell;
+            data.owned = cell->is_locally_owned();
+            data.nodes.resize(n_nodes);
+            data.residual.assign(n_nodes, {{0., 0.}});
+            cell->get_dof_indices(dofs);
+            fe_values.reinit(cell);
+            fe_values[displacement].get_function_symmetric_gradients(u,
+                                                                     strains);
+            for (unsigned int j = 0; j < fe.n_dofs_per_cell(); ++j)
+              {
+                const auto [c, k] = fe.system_to_component_index(j);
+                if (c == 0)
+                  data.nodes[k] = dofs[j];
+                double r = 0;
+                for (const unsigned int q :
+                     fe_values.quadrature_point_indices())
+                  {
+                    double value = material.stress(strains[q]) *
+                                   fe_values[displacement].symmetric_gradient(j, q);
+                    if (description.body_force)
+                      value -= fe_values[displacement].value(j, q) *
+                               description.body_force(
+                                 fe_values.quadrature_point(q));
+                    r += value * fe_values.JxW(q);
+                  }
+                data.residual[k][c] = r;
+              }
+            slot_of[cell->id()] = cells.size();
+            cells.push_back(std::move(data));
+          }
+    }
+
+    // 2. The faces: geometry, orientation, nodes, which moments are known.
+    std::map<types::boundary_id, ComponentMask> dirichlet_on;
+    for (const auto &d : description.dirichlet)
+      dirichlet_on[d.boundary_id] = d.components;
+    std::map<types::boundary_id, const TractionFunction *> traction_on;
+    for (const auto &t : description.tractions)
+      traction_on[t.boundary_id] = &t.traction;
+
+    std::vector<FaceData>                    faces;
+    std::map<unsigned int, unsigned int>     face_of_index;
+    for (unsigned int slot = 0; slot < cells.size(); ++slot)
+      {
+        const auto &cell = cells[slot].cell;
+        cells[slot].faces.resize(cell->n_faces());
+        for (const unsigned int f : cell->face_indices())
+          {
+            const unsigned int key = cell->face(f)->index();
+            auto [it, inserted] = face_of_index.emplace(key, faces.size());
+            cells[slot].faces[f] = it->second;
+            if (inserted)
+              faces.emplace_back();
+            FaceData &face = faces[it->second];
+            // The plus cell is the one with the smaller CellId.
+            const bool becomes_plus =
+              face.plus < 0 || cell->id() < cells[face.plus].cell->id();
+            if (face.plus >= 0 && !becomes_plus)
+              {
+                face.minus = slot;
+                continue;
+              }
+            if (face.plus >= 0)
+              face.minus = face.plus;
+            face.plus        = slot;
+            face.v0          = cell->face(f)->vertex(0);
+            face.v1          = cell->face(f)->vertex(1);
+            face.length      = face.v0.distance(face.v1);
+            face.normal[0]   = (face.v1 - face.v0)[1] / face.length;
+            face.normal[1]   = -(face.v1 - face.v0)[0] / face.length;
+            if ((cell->face(f)->center() - cell->center()) * face.normal < 0)
+              face.normal *= -1;
+            face.at_boundary = cell->at_boundary(f);
+            if (face.at_boundary)
+              {
+                const auto d = dirichlet_on.find(cell->face(f)->boundary_id());
+                for (unsigned int c = 0; c < 2; ++c)
+                  face.unknown[c] =
+                    (d != dirichlet_on.end() && d->second[c]);
+              }
+            face.nodes.clear();
+            face.s.clear();
+            // The nodes on the face: support points on its chord (up to
+            // the sagitta of a curved face; has_support_on_face() is not
+            // precise for every element).
+            for (unsigned int k = 0; k < n_nodes; ++k)
+              {
+                const Point<2> x = body.mapping().transform_unit_to_real_cell(
+                  cell, base.get_unit_support_points()[k]);
+                const double s = face_parameter(face, x);
+                const double distance =
+                  x.distance(face.v0 + s * (face.v1 - face.v0));
+                if (s > -1e-8 && s < 1 + 1e-8 &&
+                    distance < 0.05 * face.length)
+                  {
+                    face.nodes.push_back(cells[slot].nodes[k]);
+                    // Vertices at 0 and 1, an edge's middle node at 1/2.
+                    face.s.push_back(std::round(2 * s) / 2);
+                  }
+              }
+          }
+      }
+
+    // Known moments (loaded, free and contact edges) and the moments of the
+    // averaged FE traction on the others. The prescribed traction uses the
+    // FE assembly's face quadrature, so that the moments are those of the
+    // FE load vector.
+    {
+      const unsigned int n_face_q = p + 1;
+      const QGauss<1>    face_gauss(n_face_q);
+      for (auto &face : faces)
+        {
+          face.moments.assign(face.nodes.size(), {{0., 0.}});
+          face.average.assign(face.nodes.size(), {{0., 0.}});
+          if (!face.at_boundary)
+            continue;
+          const auto &cell = cells[face.plus].cell;
+          unsigned int f   = 0;
+          for (; f < cell->n_faces(); ++f)
+            if (cells[face.plus].faces[f] ==
+                static_cast<unsigned int>(&face - faces.data()))
+              break;
+          const auto t = traction_on.find(cell->face(f)->boundary_id());
+          if (t != traction_on.end())
+            for (unsigned int q = 0; q < face_gauss.size(); ++q)
+              {
+                const double   s = face_gauss.point(q)[0];
+                const Point<2> x = face.v0 + s * (face.v1 - face.v0);
+                const Tensor<1, 2> F = (*t->second)(x, face.normal);
+                const auto phi = face_shape_values(face.s, s);
+                for (unsigned int k = 0; k < face.nodes.size(); ++k)
+                  for (unsigned int c = 0; c < 2; ++c)
+                    face.moments[k][c] +=
+                      F[c] * phi[k] * face_gauss.weight(q) * face.length;
+              }
+        }
+      // The contact traction, on the face of its cell that holds the point.
+      for (const auto &[id, points] : contact)
+        {
+          const auto slot = slot_of.find(id);
+          if (slot == slot_of.end())
+            continue;
+          for (const auto &point : points)
+            {
+              double       best = 1e300;
+              unsigned int face = 0;
+              for (const unsigned int fi : cells[slot->second].faces)
+                if (faces[fi].at_boundary)
+                  {
+                    const double s =
+                      std::clamp(face_parameter(faces[fi], point.point), 0., 1.);
+                    const double d = point.point.distance(
+                      faces[fi].v0 + s * (faces[fi].v1 - faces[fi].v0));
+                    if (d < best)
+                      best = d, face = fi;
+                  }
+              const auto phi = face_shape_values(
+                faces[face].s, face_parameter(faces[face], point.point));
+              for (unsigned int k = 0; k < faces[face].nodes.size(); ++k)
+                for (unsigned int c = 0; c < 2; ++c)
+                  if (!faces[face].unknown[c])
+                    faces[face].moments[k][c] +=
+                      point.traction[c] * phi[k] * point.weight;
+            }
+        }
+
+      // Averaged traction 1/2 (sigma_c|E+ + sigma_c|E-) n+ (the one side's
+      // on Dirichlet edges), from each side's own face quadrature.
+      FEFaceValues<2> face_values(body.mapping(),
+                                  fe,
+                                  QGauss<1>(p + 1),
+                                  update_gradients | update_quadrature_points |
+                                    update_JxW_values);
+      std::vector<SymmetricTensor<2, 2>> strains(face_values.n_quadrature_points);
+      for (unsigned int slot = 0; slot < cells.size(); ++slot)
+        for (const unsigned int f : cells[slot].cell->face_indices())
+          {
+            FaceData &face = faces[cells[slot].faces[f]];
+            if ((face.at_boundary && !face.unknown[0] && !face.unknown[1]) ||
+                (!face.at_boundary && (face.plus < 0 || face.minus < 0)))
+              continue;
+            const double weight = face.at_boundary ? 1. : 0.5;
+            face_values.reinit(cells[slot].cell, f);
+            face_values[displacement].get_function_symmetric_gradients(u,
+                                                                       strains);
+            for (const unsigned int q : face_values.quadrature_point_indices())
+              {
+                const Tensor<1, 2> F =
+                  material.stress(strains[q]) * face.normal;
+                const auto phi = face_shape_values(
+                  face.s, face_parameter(face, face_values.quadrature_point(q)));
+                for (unsigned int k = 0; k < face.nodes.size(); ++k)
+                  for (unsigned int c = 0; c < 2; ++c)
+                    face.average[k][c] +=
+                      weight * F[c] * phi[k] * face_values.JxW(q);
+              }
+          }
+    }
+
+    // 3. The node systems, for every node of a locally owned cell (its
+    // star is then all local: the ghost layer holds every cell that shares
+    // a vertex with an owned cell).
+    EquilibratedStressErrors result;
+    {
+      std::map<types::global_dof_index,
+               std::vector<std::pair<unsigned int, unsigned int>>>
+        star; // node -> (cell slot, local node)
+      for (unsigned int slot = 0; slot < cells.size(); ++slot)
+        for (unsigned int k = 0; k < n_nodes; ++k)
+          star[cells[slot].nodes[k]].emplace_back(slot, k);
+      std::set<types::global_dof_index> owned_nodes;
+      for (const auto &cell : cells)
+        if (cell.owned)
+          owned_nodes.insert(cell.nodes.begin(), cell.nodes.end());
+
+      double largest_residual = 0;
+      for (const auto &cell : cells)
+        for (const auto &r : cell.residual)
+          largest_residual =
+            std::max({largest_residual, std::abs(r[0]), std::abs(r[1])});
+
+      for (const auto node : owned_nodes)
+        {
+          auto &cells_of_node = star[node];
+          std::sort(cells_of_node.begin(),
+                    cells_of_node.end(),
+                    [&](const auto &a, const auto &b) {
+                      return cells[a.first].cell->id() <
+                             cells[b.first].cell->id();
+                    });
+          // The faces of the star through the node, and the node's place
+          // on each.
+          std::vector<std::pair<unsigned int, unsigned int>> node_faces;
+          for (const auto &[slot, k] : cells_of_node)
+            for (const unsigned int fi : cells[slot].faces)
+              {
+                const auto &nodes = faces[fi].nodes;
+                const auto  where = std::find(nodes.begin(), nodes.end(), node);
+                if (where != nodes.end() &&
+                    std::find_if(node_faces.begin(),
+                                 node_faces.end(),
+                                 [fi = fi](const auto &e) {
+                                   return e.first == fi;
+                                 }) == node_faces.end())
+                  node_faces.emplace_back(fi, where - nodes.begin());
+              }
+
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              std::vector<unsigned int> columns; // index into node_faces
+              for (unsigned int e = 0; e < node_faces.size(); ++e)
+                if (faces[node_faces[e].first].unknown[c])
+                  columns.push_back(e);
+              const unsigned int n_rows = cells_of_node.size();
+              const unsigned int n_cols = columns.size();
+              FullMatrix<double> A(n_rows, n_cols);
+              Vector<double>     r(n_rows);
+              for (unsigned int row = 0; row < n_rows; ++row)
+                {
+                  const auto [slot, k] = cells_of_node[row];
+                  r(row)               = cells[slot].residual[k][c];
+                  for (unsigned int e = 0; e < node_faces.size(); ++e)
+                    {
+                      const FaceData &face = faces[node_faces[e].first];
+                      const int sign = face.plus == static_cast<int>(slot) ? 1 :
+                                       face.minus == static_cast<int>(slot) ? -1 :
+                                                                             0;
+                      if (sign == 0)
+                        continue;
+                      const auto col =
+                        std::find(columns.begin(), columns.end(), e);
+                      if (col != columns.end())
+                        A(row, col - columns.begin()) = sign;
+                      else
+                        r(row) -= sign * face.moments[node_faces[e].second][c];
+                    }
+                }
+              if (n_cols == 0)
+                {
+                  result.node_system_defect =
+                    std::max(result.node_system_defect, r.linfty_norm());
+                  continue;
+                }
+              // x = b_avg + A^+ (r - A b_avg): the least-squares solution
+              // closest to the averaged moments (A^+ from the SVD; the
+              // systems of interior nodes are singular by one).
+              Vector<double> x0(n_cols), rhs(n_rows), y(n_cols);
+              for (unsigned int j = 0; j < n_cols; ++j)
+                {
+                  const auto &e = node_faces[columns[j]];
+                  x0(j)         = faces[e.first].average[e.second][c];
+                }
+              A.vmult(rhs, x0);
+              rhs.sadd(-1., 1., r);
+              // Closest in sum |G| (F - F_avg)^2 ~ sum (b - b_avg)^2 / |G|:
+              // columns scaled by sqrt|G|.
+              std::vector<double> scale(n_cols);
+              for (unsigned int j = 0; j < n_cols; ++j)
+                scale[j] = std::sqrt(faces[node_faces[columns[j]].first].length);
+              LAPACKFullMatrix<double> svd(n_rows, n_cols);
+              for (unsigned int row = 0; row < n_rows; ++row)
+                for (unsigned int j = 0; j < n_cols; ++j)
+                  svd(row, j) = A(row, j) * scale[j];
+              svd.compute_svd();
+              const auto &U  = svd.get_svd_u();
+              const auto &Vt = svd.get_svd_vt();
+              for (unsigned int i = 0; i < std::min(n_rows, n_cols); ++i)
+                if (svd.singular_value(i) > 1e-10 * svd.singular_value(0))
+                  {
+                    double coefficient = 0;
+                    for (unsigned int row = 0; row < n_rows; ++row)
+                      coefficient += U(row, i) * rhs(row);
+                    coefficient /= svd.singular_value(i);
+                    for (unsigned int j = 0; j < n_cols; ++j)
+                      y(j) += coefficient * Vt(i, j) * scale[j];
+                  }
+              Vector<double> defect(n_rows);
+              A.vmult(defect, y);
+              defect -= rhs;
+              result.node_system_defect =
+                std::max(result.node_system_defect, defect.linfty_norm());
+              for (unsigned int j = 0; j < n_cols; ++j)
+                {
+                  const auto &e = node_faces[columns[j]];
+                  faces[e.first].moments[e.second][c] = x0(j) + y(j);
+                }
+            }
+        }
+      if (largest_residual > 0)
+        result.node_system_defect /= largest_residual;
+    }
+
+    // 4. F on each face of an owned cell: the polynomial of degree p with
+    // the face's moments (edge mass matrix on the chord).
+    for (auto &face : faces)
+      {
+        const unsigned int n = face.nodes.size();
+        face.coefficients.assign(n, {{0., 0.}});
+        if (face.plus < 0 || (!face.unknown[0] && !face.unknown[1]))
+          continue;
+        FullMatrix<double> mass(n, n);
+        const QGauss<1>    gauss(p + 1);
+        for (unsigned int q = 0; q < gauss.size(); ++q)
+          {
+            const auto phi = face_shape_values(face.s, gauss.point(q)[0]);
+            for (unsigned int k = 0; k < n; ++k)
+              for (unsigned int l = 0; l < n; ++l)
+                mass(k, l) += phi[k] * phi[l] * gauss.weight(q) * face.length;
+          }
+        mass.gauss_jordan();
+        for (unsigned int k = 0; k < n; ++k)
+          for (unsigned int l = 0; l < n; ++l)
+            for (unsigned int c = 0; c < 2; ++c)
+              face.coefficients[k][c] += mass(k, l) * face.moments[l][c];
+      }
+
+    // 5. The local Neumann problems and the errors, cell by cell.
+    const unsigned int P = p + degree_increase;
+    MonomialBasis      basis(P);
+    const unsigned int M = basis.size();
+    const std::unique_ptr<Quadrature<2>> cell_rule =
+      body.is_simplex_mesh() ?
+        // Witherden-Vincent: QGaussSimplex stops at 4 points per direction.
+        std::unique_ptr<Quadrature<2>>(
+          new QWitherdenVincentSimplex<2>(std::min(P + 1, 7u))) :
+        std::unique_ptr<Quadrature<2>>(new QGauss<2>(P + 1));
+    FEValues<2> fe_values(body.mapping(),
+                          fe,
+                          *cell_rule,
+                          update_gradients | update_quadrature_points |
+                            update_JxW_values);
+    const QGauss<1> edge_rule(P + 2);
+    std::vector<SymmetricTensor<2, 2>> strains(cell_rule->size());
+    std::vector<double>                values;
+    std::vector<Tensor<1, 2>>          gradients;
+    std::vector<std::vector<SymmetricTensor<2, 2>>> basis_strains(
+      cell_rule->size(), std::vector<SymmetricTensor<2, 2>>(2 * M));
+    const auto         rigid = basis.rigid_motions();
+    FullMatrix<double> K(2 * M, 2 * M);
+    Vector<double>     load(2 * M), coefficients(2 * M);
+
+    result.error_squared.reinit(body.triangulation().n_active_cells());
+    double sum_norm = 0;
+    for (unsigned int slot = 0; slot < cells.size(); ++slot)
+      if (cells[slot].owned)
+        {
+          const auto &cell = cells[slot].cell;
+          basis.reinit(cell->center(), cell->diameter());
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_symmetric_gradients(u_kinematic,
+                                                                   strains);
+          K    = 0;
+          load = 0;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              basis.evaluate(fe_values.quadrature_point(q), values, gradients);
+              for (unsigned int a = 0; a < 2 * M; ++a)
+                basis_strains[q][a] = basis_strain(gradients, a);
+              const double JxW = fe_values.JxW(q);
+              for (unsigned int a = 0; a < 2 * M; ++a)
+                {
+                  const SymmetricTensor<2, 2> sigma_a =
+                    material.stress(basis_strains[q][a]);
+                  for (unsigned int b = 0; b <= a; ++b)
+                    K(a, b) += sigma_a * basis_strains[q][b] * JxW;
+                }
+              if (description.body_force)
+                {
+                  const Tensor<1, 2> f =
+                    description.body_force(fe_values.quadrature_point(q));
+                  for (unsigned int a = 0; a < 2 * M; ++a)
+                    load(a) += f[a / M] * values[a % M] * JxW;
+                }
+            }
+          for (unsigned int a = 0; a < 2 * M; ++a)
+            for (unsigned int b = a + 1; b < 2 * M; ++b)
+              K(a, b) = K(b, a);
+
+          // Tractions on the faces: eta F where the moments were solved
+          // for, the prescribed data elsewhere.
+          auto add_traction = [&](const Point<2> &    x,
+                                  const Tensor<1, 2> &t,
+                                  const double        w,
+                                  const bool          component[2]) {
+            basis.evaluate(x, values, gradients);
+            for (unsigned int a = 0; a < 2 * M; ++a)
+              if (component[a / M])
+                load(a) += t[a / M] * values[a % M] * w;
+          };
+          for (const unsigned int f : cell->face_indices())
+            {
+              const FaceData &face = faces[cells[slot].faces[f]];
+              const double    eta  = face.plus == static_cast<int>(slot) ? 1 : -1;
+              const bool      solved[2] = {face.unknown[0], face.unknown[1]};
+              if (solved[0] || solved[1])
+                for (unsigned int q = 0; q < edge_rule.size(); ++q)
+                  {
+                    const double   s   = edge_rule.point(q)[0];
+                    const auto     phi = face_shape_values(face.s, s);
+                    Tensor<1, 2>   F;
+                    for (unsigned int k = 0; k < face.nodes.size(); ++k)
+                      for (unsigned int c = 0; c < 2; ++c)
+                        F[c] += phi[k] * face.coefficients[k][c];
+                    add_traction(face.v0 + s * (face.v1 - face.v0),
+                                 eta * F,
+                                 edge_rule.weight(q) * face.length,
+                                 solved);
+                  }
+              const bool prescribed[2] = {!solved[0], !solved[1]};
+              if (face.at_boundary && (prescribed[0] || prescribed[1]))
+                {
+                  const auto t = traction_on.find(cell->face(f)->boundary_id());
+                  if (t != traction_on.end())
+                    for (unsigned int q = 0; q < edge_rule.size(); ++q)
+                      {
+                        const Point<2> x =
+                          face.v0 + edge_rule.point(q)[0] * (face.v1 - face.v0);
+                        add_traction(x,
+                                     (*t->second)(x, face.normal),
+                                     edge_rule.weight(q) * face.length,
+                                     prescribed);
+                      }
+                }
+            }
+          if (const auto c = contact.find(cell->id()); c != contact.end())
+            for (const auto &point : c->second)
+              {
+                // Only on components whose moments are prescribed (a
+                // contact edge is not a Dirichlet edge).
+                const bool all[2] = {true, true};
+                add_traction(point.point, point.traction, point.weight, all);
+              }
+
+          // The data are self-equilibrated up to round-off and the
+          // quadrature of non-polynomial data: measure, then solve with
+          // the rigid motions penalised (K + s R R^T has the solution of
+          // K u = load orthogonal to R when load is orthogonal to R).
+          double load_size = 0, rigid_load = 0, diagonal = 0;
+          for (unsigned int a = 0; a < 2 * M; ++a)
+            {
+              load_size += std::abs(load(a));
+              diagonal = std::max(diagonal, K(a, a));
+            }
+          for (const auto &mode : rigid)
+            {
+              double w = 0;
+              for (unsigned int a = 0; a < 2 * M; ++a)
+                w += mode[a] * load(a);
+              rigid_load = std::max(rigid_load, std::abs(w));
+              for (unsigned int a = 0; a < 2 * M; ++a)
+                for (unsigned int b = 0; b < 2 * M; ++b)
+                  K(a, b) += diagonal * mode[a] * mode[b];
+            }
+          if (load_size > 0)
+            result.local_problem_defect =
+              std::max(result.local_problem_defect, rigid_load / load_size);
+          K.gauss_jordan();
+          K.vmult(coefficients, load);
+
+          double error = 0;
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              SymmetricTensor<2, 2> strain;
+              for (unsigned int a = 0; a < 2 * M; ++a)
+                strain += coefficients(a) * basis_strains[q][a];
+              const SymmetricTensor<2, 2> sigma_hat = material.stress(strain);
+              const SymmetricTensor<2, 2> sigma_c = material.stress(strains[q]);
+              const SymmetricTensor<2, 2> minus   = sigma_hat - sigma_c;
+              const SymmetricTensor<2, 2> plus    = sigma_hat + sigma_c;
+              error += minus * material.strain(minus) * fe_values.JxW(q);
+              sum_norm += plus * material.strain(plus) * fe_values.JxW(q);
+            }
+          result.error_squared(cell->active_cell_index()) = error;
+        }
+
+    result.sum_norm_squared     = Utilities::MPI::sum(sum_norm, comm);
+    result.node_system_defect   = Utilities::MPI::max(result.node_system_defect, comm);
+    result.local_problem_defect = Utilities::MPI::max(result.local_problem_defect, comm);
+    return result;
+  }
+} // namespace coulomb_adapt
