@@ -69,7 +69,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(
     __file__))))
 import common  # noqa: E402
 import report_contact_benchmark as report  # noqa: E402
-from report_contact_benchmark import SERIES, num  # noqa: E402
+from report_contact_benchmark import num  # noqa: E402
 
 
 # Blocks meshes beyond the 4 x 4 / 8 x 8 ladder: (upper coarse subdivisions,

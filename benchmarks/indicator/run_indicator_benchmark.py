@@ -278,12 +278,14 @@ def breakdown(args, exe):
     CSV's finished (ok) rows are kept and their jobs not run again."""
     series = {s["key"]: s for s in COST_SERIES}
     recoveries = args.recovery
-    rows = [x for x in read_csv(args.paths["breakdown_csv"]) if x["status"] == "ok"] \
+    rows = [x for x in read_csv(args.paths["breakdown_csv"])
+            if x["status"] == "ok"] \
         if args.append else []
     done = {(x["series"], int(x["refinements"]), x["recovery"])
             for x in rows}
     n_failed = 0
-    for key, r in BREAKDOWN_JOBS[:1] if args.smoke else BREAKDOWN_JOBS:
+    jobs = BREAKDOWN_JOBS[:1] if args.smoke else BREAKDOWN_JOBS
+    for key, r in jobs:
         s = series[key]
         if args.max_dofs and estimated_dofs(s, r) > args.max_dofs:
             continue
