@@ -7,15 +7,20 @@ subset on the `hertz` scene and a set of inputs that must stop with a
 diagnosis. Every case must either converge or exit non-zero with a
 diagnosis; no output may contain NaN/Inf.
 
-Writes (next to this script unless told otherwise):
-  stability.csv   one row per case
-  stability.md    the block between the GENERATED markers is (re)written;
-                  the hand-written text around it is kept.
+The cases are defined in stability_cases.py. Writes (next to this script
+unless told otherwise):
+  stability.csv       one row per case
+  stability_run.json  date, run time, binary and machine of the sweep
+  stability.md        the block between the GENERATED markers is
+                      (re)written by stability_report.py; the hand-written
+                      text around it is kept.
 
 Usage:
   benchmarks/contact/stability_sweep.py [--binary build/coulomb-adapt]
       [--workdir /tmp/coulomb-stability] [--jobs 1] [--groups a,b]
-      [--keep-vtu] [--no-markdown]
+      [--cases 000,001] [--keep-vtu] [--no-markdown]
+  benchmarks/contact/stability_sweep.py --smoke --outdir DIR
+      the base case and one input that must stop (a few seconds; ctest)
 
 Standard library only.
 """
@@ -28,290 +33,22 @@ import hashlib
 import json
 import math
 import os
-import platform
 import re
 import shlex
 import shutil
-import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(
+    __file__))))
+import common  # noqa: E402
+import stability_report as report  # noqa: E402
+from stability_cases import (BLOCKS_BASE, MESH_RATIOS,  # noqa: E402
+                             applied_load, build_cases, describe,
+                             existence_bound, held_sideways, hertz_reference,
+                             overrides, overrides_hold)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.abspath(os.path.join(HERE, "..", ".."))
-
-E0 = 130000.0                       # MPa, default of both bodies
-MUS = [0.0, 0.1, 0.3, 0.6, 0.95, 1.5]
-NUS = [0.0, 0.3, 0.45, 0.49, 0.499]
-E_RATIOS = [1e-3, 1.0, 1e3]         # E1 / E2, E2 = 130000 MPa
-LOAD_SCALES = [1e-6, 1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6]
-C_SCALES = [1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3]
-# mesh ratio across the interface, (lower nx / 2) : (upper nx); (lower, upper)
-# coarse x-subdivisions. "1:k": slave (upper) finer, "k:1": master finer.
-MESH_RATIOS = {
-    "8:1": (64, 4), "4:1": (32, 4), "2:1": (16, 4), "1:1": (8, 4),
-    "1:2": (8, 8), "1:4": (8, 16), "1:8": (8, 32),
-}
-
-BLOCKS_BASE = dict(scene="blocks", cell="quadrilateral", degree=1, ref=1,
-                   plane="plane strain", mu=0.3, nu1=0.3, nu2=0.3,
-                   E1=E0, E2=E0, load_scale=1.0, mesh="1:1", c=1.0,
-                   hold=None, extra=())
-HERTZ_BASE = dict(scene="hertz", cell="quadrilateral", degree=1, ref=0,
-                  plane="plane strain", mu=0.3, nu1=0.3, nu2=0.3,
-                  E1=E0, E2=E0, load_scale=1.0, mesh="graded", c=1.0,
-                  hold=None, extra=())
-BLOCKS_PRESSURE = 10.0              # MPa on a 100 mm wide top: 1000 N/mm
-HERTZ_LINE_LOAD = 1000.0            # N/mm
-HERTZ_RADIUS = 100.0
-
-
-def num(x):
-    return "%.12g" % x
-
-
-def existence_bound(nu):
-    """mu bound sqrt(3 - 4 nu) / (2 - 2 nu) for existence/uniqueness."""
-    return math.sqrt(3.0 - 4.0 * nu) / (2.0 - 2.0 * nu)
-
-
-def applied_load(case):
-    """Total external load on body 1 (N/mm); contact force must cancel it."""
-    if case["scene"] == "blocks":
-        return (0.0, -BLOCKS_PRESSURE * case["load_scale"] * 100.0)
-    return (0.0, -HERTZ_LINE_LOAD * case["load_scale"])
-
-
-def held_sideways(case):
-    """Whether the case's hold option (scene default if unset) holds body 1
-    horizontally: blocks 'Hold centre line' (default: mu = 0 only), hertz
-    'Hold axis' (default true)."""
-    if case["hold"] is not None:
-        return case["hold"]
-    return case["mu"] == 0 if case["scene"] == "blocks" else True
-
-
-def hertz_reference(case):
-    """Hertz a and p0 (plane strain) for the case's load and materials."""
-    inv = ((1 - case["nu1"] ** 2) / case["E1"] +
-           (1 - case["nu2"] ** 2) / case["E2"])
-    if case["plane"] == "plane stress":
-        inv = 1 / case["E1"] + 1 / case["E2"]
-    P = HERTZ_LINE_LOAD * case["load_scale"]
-    a = math.sqrt(4 * P * HERTZ_RADIUS * inv / math.pi)
-    return a, 2 * P / (math.pi * a)
-
-
-def overrides(case):
-    """The -s overrides that define the case."""
-    s = []
-    if case["scene"] == "blocks":
-        sec = "Scene/Blocks/"
-        lower_nx, upper_nx = MESH_RATIOS[case["mesh"]]
-        # keep the cells square: ny = nx
-        s += ["Scene/Name=blocks",
-              sec + "Pressure=" + num(BLOCKS_PRESSURE * case["load_scale"]),
-              sec + "Upper body subdivisions=%d, %d" % case.get(
-                  "upper_sub", (upper_nx, upper_nx)),
-              sec + "Lower body subdivisions=%d, %d" % (lower_nx, lower_nx)]
-        hold = case["hold"]
-        if hold is None:
-            hold = case["mu"] == 0
-        s.append(sec + "Hold centre line=" + ("true" if hold else "false"))
-    else:
-        sec = "Scene/Hertz/"
-        s += ["Scene/Name=hertz",
-              sec + "Line load=" + num(HERTZ_LINE_LOAD * case["load_scale"])]
-        if case["hold"] is not None:
-            s.append(sec + "Hold axis=" + ("true" if case["hold"] else "false"))
-    for b, (E, nu) in enumerate([(case["E1"], case["nu1"]),
-                                 (case["E2"], case["nu2"])], start=1):
-        s.append(sec + "Body %d/Young's modulus=%s" % (b, num(E)))
-        s.append(sec + "Body %d/Poisson's ratio=%s" % (b, num(nu)))
-    s += ["Mesh/Cell type=" + case["cell"],
-          "Mesh/Global refinements=%d" % case["ref"],
-          "Finite elements/Polynomial degree=%d" % case["degree"],
-          "Finite elements/Plane model=" + case["plane"],
-          "Contact/Friction coefficient=" + num(case["mu"]),
-          "Contact/Complementarity scale=" + num(case["c"])]
-    s += list(case["extra"])
-    return s
-
-
-# --------------------------------------------------------------------------
-# the cases
-
-def build_cases():
-    cases = {}      # key (tuple of overrides) -> case
-    order = []
-
-    def add(group, expect="converge", note="", **changes):
-        base = HERTZ_BASE if changes.get("scene") == "hertz" else BLOCKS_BASE
-        case = dict(base)
-        case.update(changes)
-        case["extra"] = tuple(case["extra"])
-        key = tuple(overrides(case))
-        if key in cases:
-            c = cases[key]
-            if group not in c["groups"]:
-                c["groups"].append(group)
-            if note and not c["note"]:
-                c["note"] = note
-            return c
-        case["groups"] = [group]
-        case["expect"] = expect
-        case["note"] = note
-        case["id"] = "%03d" % len(order)
-        cases[key] = case
-        order.append(case)
-        return case
-
-    # one at a time around the base case
-    add("oat", note="base case")
-    for mu in MUS:
-        add("oat", mu=mu)
-    for nu in NUS:
-        add("oat", nu1=nu, nu2=nu)
-    add("oat", nu1=0.0, nu2=0.499, note="different nu: friction acts")
-    add("oat", nu1=0.499, nu2=0.0, note="different nu: friction acts")
-    for r in E_RATIOS:
-        add("oat", E1=E0 * r)
-    add("oat", E1=1.3, E2=1.3, note="both E x 1e-5 (homogeneity in E)")
-    add("oat", E1=1.3e10, E2=1.3e10, note="both E x 1e5 (homogeneity in E)")
-    for s in LOAD_SCALES:
-        add("oat", load_scale=s)
-    for m in MESH_RATIOS:
-        add("oat", mesh=m)
-    for c in C_SCALES:
-        add("oat", c=c)
-    for ref in (0, 1, 2, 3):
-        add("oat", ref=ref)
-    add("oat", cell="triangle")
-    add("oat", degree=2, note="Q2")
-    add("oat", cell="triangle", degree=2, note="P2")
-    add("oat", plane="plane stress")
-
-    # grids (always with the base values of everything else)
-    for mu in MUS:
-        for nu in NUS:
-            for r in E_RATIOS:
-                add("grid mu x nu x E1/E2", mu=mu, nu1=nu, nu2=nu, E1=E0 * r)
-    for mu in MUS:
-        for c in C_SCALES:
-            add("grid mu x c", mu=mu, c=c)
-    for mu in MUS:
-        for s in LOAD_SCALES:
-            add("grid mu x load", mu=mu, load_scale=s)
-    for mu in MUS:
-        for m in MESH_RATIOS:
-            add("grid mu x mesh ratio", mu=mu, mesh=m)
-    for mu in MUS:
-        add("grid mu x cell", mu=mu, cell="triangle")
-        add("grid mu x cell", mu=mu, degree=2)
-        add("grid mu x cell", mu=mu, cell="triangle", degree=2)
-
-    # combined extremes
-    X = "extreme"
-    add(X, mu=1.5, nu1=0.499, nu2=0.499)
-    add(X, mu=0.95, nu1=0.0, nu2=0.0, note="mu above the bound 0.866")
-    add(X, mu=1.5, nu1=0.499, nu2=0.499, c=1e3)
-    add(X, mu=1.5, nu1=0.499, nu2=0.499, c=1e-3)
-    add(X, mu=1.5, nu1=0.0, nu2=0.499, note="different nu, mu over bound")
-    add(X, mu=0.95, nu1=0.499, nu2=0.0, E1=E0 * 1e-3)
-    add(X, E1=E0 * 1e3, mesh="1:8")
-    add(X, E1=E0 * 1e-3, mesh="1:8")
-    add(X, E1=E0 * 1e-3, mesh="8:1")
-    add(X, E1=E0 * 1e3, mesh="8:1")
-    add(X, cell="triangle", mu=1.5, nu1=0.499, nu2=0.499)
-    add(X, cell="triangle", mesh="1:8", E1=E0 * 1e3)
-    add(X, cell="triangle", degree=2, mu=0.95, nu1=0.499, nu2=0.499)
-    add(X, mu=0.6, load_scale=1e6, c=1e-3)
-    add(X, mu=0.1, load_scale=1e-6, c=1e3)
-    add(X, mu=0.0, nu1=0.499, nu2=0.499, E1=E0 * 1e-3)
-    add(X, ref=3, mu=1.5, E1=E0 * 1e3)
-    add(X, ref=3, mu=0.1, E1=E0 * 1e-3, mesh="1:4")
-    add(X, degree=2, mesh="1:8", nu1=0.49, nu2=0.49)
-    add(X, plane="plane stress", mu=0.95, nu1=0.499, nu2=0.499)
-    add(X, cell="triangle", mu=1.5, nu1=0.499, nu2=0.499, E1=E0 * 1e3,
-        load_scale=1e6, mesh="1:8", c=1e3, note="everything at once (high)")
-    add(X, cell="triangle", mu=0.1, nu1=0.499, nu2=0.0, E1=E0 * 1e-3,
-        load_scale=1e-6, mesh="8:1", c=1e-3, note="everything at once (low)")
-    add(X, mu=0.6, nu1=0.45, nu2=0.0, E1=E0 * 1e3, mesh="1:8", c=1e3)
-
-    # inputs that must stop with a diagnosis
-    D = "diagnosis"
-    add(D, expect="diagnose", mu=0.0, hold=False,
-        note="mu = 0 without Hold centre line: body 1 not held sideways")
-    add(D, expect="diagnose", mu=0.0, hold=True, ref=0, upper_sub=(5, 4),
-        note="Hold centre line with odd upper nx: no vertex on x = 100")
-    add(D, expect="diagnose", load_scale=-1.0,
-        note="pressure -10 MPa: body 1 pulled away from body 2")
-    add(D, expect="diagnose", load_scale=0.0,
-        note="pressure 0: nothing presses body 1 on body 2")
-    add(D, expect="diagnose", extra=("Contact/Maximum Newton iterations=1",),
-        note="iteration limit 1 (base needs 2)")
-    add(D, expect="diagnose", extra=("Contact/Tolerance=0",),
-        note="tolerance 0: unreachable")
-    add(D, expect="diagnose", scene="hertz", mu=0.0, hold=False,
-        note="hertz mu = 0 without Hold axis")
-
-    # follow-ups of the failures above: does the hint of the diagnosis help?
-    F = "follow-up"
-    nu499 = dict(nu1=0.499, nu2=0.499)
-    add(F, expect="either", nu1=0.49, nu2=0.49, E1=E0 * 1e3, c=1e-3,
-        note="074 with c x 1e-3 (the cycling diagnosis suggests another c)")
-    add(F, expect="either", nu1=0.49, nu2=0.49, E1=E0 * 1e3, c=1e3,
-        note="074 with c x 1e3")
-    add(F, expect="either", mu=0.95, E1=E0 * 1e3, c=1e-2, **nu499,
-        note="104 with c x 1e-2")
-    add(F, expect="either", mu=1.5, E1=E0 * 1e3, c=1e-3, **nu499,
-        note="118 with c x 1e-3")
-    add(F, expect="either", mu=1.5, E1=E0 * 1e3, c=1e-3, **nu499,
-        extra=("Contact/Tolerance=1e-8",),
-        note="118 with c x 1e-3 and tolerance 1e-8")
-    add(F, expect="either", mu=0.6, E1=E0 * 1e3, **nu499,
-        extra=("Contact/Tolerance=1e-9",), note="090 with tolerance 1e-9")
-    add(F, expect="either", E1=E0 * 1e3, mesh="8:1",
-        extra=("Contact/Tolerance=1e-7",), note="231 with tolerance 1e-7")
-    add(F, expect="either", E1=E0 * 1e3, mesh="8:1",
-        extra=("Linear solver/Direct solver=Amesos_Klu",),
-        note="231 with KLU instead of MUMPS")
-    add(F, expect="either", cell="triangle", E1=E0 * 1e3, mesh="1:8", **nu499,
-        note="241 reduced: no tangential load, yet 'slides' diagnosis?")
-    add(F, expect="either", cell="triangle", E1=E0 * 1e3, mesh="1:8", c=1e-3,
-        **nu499, note="the same with c x 1e-3")
-    add(F, expect="either", cell="triangle", E1=E0 * 1e3, mesh="1:8", c=1e-3,
-        extra=("Contact/Tolerance=1e-7",), **nu499,
-        note="the same with c x 1e-3 and tolerance 1e-7")
-    add(F, expect="either", cell="triangle", E1=E0 * 1e3, mesh="1:8", mu=1.5,
-        **nu499, note="241 at load x1, c x1")
-    add(F, expect="either", mu=1e-3, note="near-frictionless, no hold")
-    add(F, expect="either", mu=1e-6, note="near-frictionless, no hold")
-    add(F, expect="either", mu=1e-6, nu1=0.499, nu2=0.499,
-        note="near-frictionless, no hold")
-    add(F, expect="either", scene="hertz", E1=E0 * 1e3,
-        extra=("Contact/Tolerance=1e-6",), note="260 with tolerance 1e-6")
-    add(F, expect="either", scene="hertz", E1=E0 * 1e3, c=1e-3,
-        note="260 with c x 1e-3")
-
-    # hertz subset
-    H = "hertz"
-    add(H, scene="hertz", note="hertz base")
-    for mu in MUS:
-        add(H, scene="hertz", mu=mu)
-    for nu in (0.0, 0.499):
-        add(H, scene="hertz", nu1=nu, nu2=nu)
-    add(H, scene="hertz", E1=E0 * 1e-3, note="soft disc: friction acts")
-    add(H, scene="hertz", E1=E0 * 1e3, note="stiff disc: friction acts")
-    add(H, scene="hertz", E1=E0 * 1e3, mu=1.5)
-    add(H, scene="hertz", E1=E0 * 1e-3, mu=0.0)
-    for s in (1e-6, 1e-3, 1e3, 1e6):
-        add(H, scene="hertz", load_scale=s)
-    for c in (1e-3, 1e3):
-        add(H, scene="hertz", c=c)
-    add(H, scene="hertz", cell="triangle")
-    add(H, scene="hertz", cell="triangle", mu=1.5, nu1=0.499, nu2=0.499)
-    add(H, scene="hertz", ref=1)
-    return order
 
 
 # --------------------------------------------------------------------------
@@ -466,20 +203,14 @@ def run_case(case, binary, workdir, keep_vtu, timeout):
         args += ["-s", o]
     rec = dict(case)
     rec["command"] = " ".join(shlex.quote(a) for a in args)
+    env = common.program_env(binary)
     for attempt in range(4):
-        t0 = time.perf_counter()
-        try:
-            p = subprocess.run(args, stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True,
-                               timeout=timeout, cwd=ROOT)
-            rec["exit_code"] = p.returncode
-            stdout, stderr = p.stdout, p.stderr
-        except subprocess.TimeoutExpired as e:
-            rec["exit_code"] = "timeout"
-            stdout = (e.stdout or b"").decode() if isinstance(
-                e.stdout, bytes) else (e.stdout or "")
-            stderr = "TIMEOUT after %g s" % timeout
-        rec["wall_time_s"] = time.perf_counter() - t0
+        result = common.run(args, timeout, env, cwd=common.ROOT)
+        rec["exit_code"] = "timeout" if result.killed else result.rc
+        rec["wall_time_s"] = result.wall_s
+        stdout = result.stdout
+        stderr = ("TIMEOUT after %g s" % timeout if result.killed
+                  else result.stderr)
         # 127: the loader failed, i.e. the program is being rebuilt (another
         # engineer); wait and run again.
         if rec["exit_code"] != 127:
@@ -501,16 +232,13 @@ def run_case(case, binary, workdir, keep_vtu, timeout):
     summary_path = os.path.join(out, "summary.json")
     cyc = None
     if os.path.exists(summary_path):
-        with open(summary_path) as f:
-            text = f.read()
-        try:
-            summary = json.loads(text)
+        summary = common.read_summary(out)
+        if summary is None:
+            nan.append("summary.json unreadable")
+        else:
             nan += json_nonfinite(summary)
             rec["version"] = summary.get("version", "")
-            if summary.get("cycles"):
-                cyc = summary["cycles"][-1]
-        except ValueError as e:
-            nan.append("summary.json unreadable: %s" % e)
+            cyc = common.last_cycle(summary)
     rows = []
     csv_path = os.path.join(out, "contact_000.csv")
     if os.path.exists(csv_path):
@@ -538,8 +266,9 @@ def run_case(case, binary, workdir, keep_vtu, timeout):
                                     if nl > 0 else None)
     else:
         rec["contact_fx"] = rec["contact_fy"] = rec["equilibrium_error"] = None
-    steps = re.findall(r"^\s*Newton\s+(\d+):", stdout, re.M)
-    rec["steps_run"] = int(steps[-1]) if steps else 0
+    # A run that stopped has no cycle in summary.json: its Newton steps are
+    # only in the log.
+    rec["steps_run"] = common.newton_steps_run(stdout)
     rec["n_slave_nodes"] = len(rows)
     if rows:
         mark_coverage(rows, case)
@@ -558,6 +287,9 @@ def run_case(case, binary, workdir, keep_vtu, timeout):
                 os.remove(os.path.join(out, fn))
     return rec
 
+
+# --------------------------------------------------------------------------
+# checks across cases
 
 # --------------------------------------------------------------------------
 # checks across cases
@@ -656,9 +388,6 @@ def postprocess(recs):
             r["p_max_over_hertz_p0"] = ""
 
 
-# --------------------------------------------------------------------------
-# output
-
 CSV_FIELDS = [
     "id", "groups", "scene", "cell", "degree", "ref", "plane", "mu", "nu1",
     "nu2", "E1", "E2", "E1_over_E2", "load_scale", "load", "mesh", "c",
@@ -704,320 +433,15 @@ def row_for_csv(r):
     return out
 
 
-def overrides_hold(r):
-    for o in overrides(r):
-        if "Hold" in o:
-            return o.split("=")[1]
-    return ""
-
-
-def fmt(x, spec="%.1e"):
-    if x is None or x == "":
-        return "–"
-    return spec % x
-
-
-def short_diag(d, n=150):
-    d = d.replace("|", "\\|")
-    return d if len(d) <= n else d[:n - 1] + "…"
-
-
-def describe(r):
-    """Case parameters that differ from the scene's base case."""
-    base = HERTZ_BASE if r["scene"] == "hertz" else BLOCKS_BASE
-    parts = []
-    names = {"cell": "", "degree": "p=", "ref": "ref ", "plane": "",
-             "mu": "μ=", "nu1": "ν1=", "nu2": "ν2=", "E1": "E1/E2=",
-             "E2": "E2=", "load_scale": "load×", "mesh": "ratio ",
-             "c": "c×"}
-    if r["nu1"] == r["nu2"] and r["nu1"] != base["nu1"]:
-        parts.append("ν=%g" % r["nu1"])
-    for k, lab in names.items():
-        if k in ("nu1", "nu2") and r["nu1"] == r["nu2"]:
-            continue
-        if r[k] == base[k]:
-            continue
-        if k == "E1" and r["E1"] == r["E2"]:
-            parts.append("E1=E2=%g" % r["E1"])
-        elif k == "E2" and r["E1"] == r["E2"]:
-            continue
-        elif k == "E1":
-            parts.append("E1/E2=%g" % (r["E1"] / r["E2"]))
-        elif k in ("cell", "plane"):
-            parts.append(r[k])
-        else:
-            parts.append("%s%g" % (lab, r[k]) if not isinstance(r[k], str)
-                         else lab + r[k])
-    if r["hold"] is not None:
-        parts.append("hold=%s" % ("true" if r["hold"] else "false"))
-    if "upper_sub" in r:
-        parts.append("upper %d×%d" % r["upper_sub"])
-    parts += [e.split("/")[-1] for e in r["extra"]]
-    if r["scene"] == "hertz":
-        parts.insert(0, "hertz")
-    return ", ".join(parts) if parts else "base"
-
-
-def table(recs, with_ref=False):
-    head = ("| id | case | exit | conv | it | act/stick/slip | eq. err "
-            "| p_max | " + ("sets = ref, Δ | " if with_ref else "") +
-            "time s | verdict / diagnosis |")
-    sep = "|" + "---|" * (head.count("|") - 1)
-    lines = [head, sep]
-    for r in recs:
-        d = r["verdict"]
-        if r["diagnosis"]:
-            d += ": " + short_diag(r["diagnosis"])
-        refcol = ""
-        if with_ref:
-            if r["ref_case"]:
-                refcol = "%s, %s | " % ("yes" if r["same_sets_as_ref"] else
-                                        "**no**", fmt(r["rel_diff_to_ref"]))
-            else:
-                refcol = "– | "
-        ass = ("%s/%s/%s" % (r["active_nodes"], r["stick_nodes"],
-                             r["slip_nodes"]) if r["converged"] else "–")
-        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s%.2f | %s |"
-                     % (r["id"], describe(r), r["exit_code"],
-                        "yes" if r["converged"] else "no",
-                        r["newton_iterations"] if r["converged"]
-                        else r["steps_run"], ass,
-                        fmt(r["equilibrium_error"]),
-                        fmt(r["max_contact_pressure"], "%.4g"), refcol,
-                        r["wall_time_s"], d))
-    return "\n".join(lines)
-
-
-def grid_table(recs, rows, cols, rowkey, colkey, rowlab, collab, sel):
-    """Newton iterations per cell; F = stopped (see the case list)."""
-    idx = {}
-    for r in recs:
-        if sel(r):
-            idx[(r[rowkey], r[colkey])] = r
-    lines = ["| %s \\ %s | %s |" % (rowlab, collab,
-                                   " | ".join("%g" % c if not isinstance(c, str)
-                                              else c for c in cols)),
-             "|" + "---|" * (len(cols) + 1)]
-    for rv in rows:
-        cells = []
-        for cv in cols:
-            r = idx.get((rv, cv))
-            if r is None:
-                cells.append("")
-            elif r["verdict"].startswith("BUG"):
-                cells.append("**BUG %s**" % r["id"])
-            elif r["converged"]:
-                cells.append(str(r["newton_iterations"]))
-            else:
-                cells.append("F (%s)" % r["id"])
-        lines.append("| %g | %s |" % (rv, " | ".join(cells)))
-    return "\n".join(lines)
-
-
-def markdown(recs, info):
-    L = []
-    L.append("Generated by `stability_sweep.py` on %s: %d runs, %.0f s of "
-             "run time in total, binary `%s` (sha256 %s), version `%s`."
-             % (info["date"], len(recs), info["total"], info["binary"],
-                ", ".join(sorted(set(r["binary_sha"] for r in recs))),
-                ", ".join(sorted(set(r.get("version") for r in recs
-                                     if r.get("version"))))))
-    L.append("")
-    n_ok = sum(r["verdict"].startswith("ok") for r in recs)
-    n_diag = sum(r["verdict"].startswith("diagnosed") for r in recs)
-    n_bug = sum(r["verdict"].startswith("BUG") for r in recs)
-    n_sus = sum(r["verdict"].startswith("SUSPECT") for r in recs)
-    n_nan = sum(bool(r["n_nan"]) for r in recs)
-    conv = [r for r in recs if r["converged"]]
-    its = sorted(r["newton_iterations"] for r in conv)
-    eq = [r["equilibrium_error"] for r in conv
-          if r["equilibrium_error"] is not None]
-    L.append("**Totals.** %d converged, %d stopped with a diagnosis "
-             "(%d of them expected), %d converged but suspect, %d flagged as "
-             "bugs, %d with NaN/Inf in "
-             "any output. Newton iterations of the converged runs: median %s, "
-             "max %s. Largest equilibrium error of a converged run: %s."
-             % (n_ok, n_diag,
-                sum(r["verdict"] == "diagnosed (expected)" for r in recs),
-                n_sus, n_bug, n_nan, its[len(its) // 2] if its else "–",
-                its[-1] if its else "–", fmt(max(eq) if eq else None)))
-    hist = {}
-    for i in its:
-        hist[i] = hist.get(i, 0) + 1
-    L.append("")
-    L.append("Newton iterations of the converged runs (iterations: runs): " +
-             ", ".join("%d: %d" % kv for kv in sorted(hist.items())) + ".")
-    L.append("")
-    L.append("Machine: " + info["machine"] + ".")
-    L.append("")
-    L.append("Columns: *exit* exit code; *conv* `converged`; *it* Newton "
-             "iterations; *act/stick/slip* node counts at convergence; "
-             "*eq. err* |F_contact + F_applied| / |F_applied|; *p_max* "
-             "largest contact pressure (MPa); *sets = ref, Δ* (load and c "
-             "sweeps): same node-wise contact sets as the same case at load "
-             "×1, c ×1, and the largest difference of the load-normalised "
-             "pressure, tangential traction and slip relative to it; "
-             "*verdict*: ok, diagnosed (exit 1 with a message), or BUG (NaN, "
-             "crash, timeout, exit 0 without convergence, exit ≠ 0 without a "
-             "message, equilibrium error > 1e-6, or a converged result whose "
-             "contact CSV violates the contact conditions: penetration "
-             "beyond 1e-6 of |load|/min E, negative pressure, traction "
-             "outside the cone, all on *covered* nodes: those whose normal "
-             "ray meets body 2's contact boundary); SUSPECT (converged, but "
-             "an uncovered node moved along its normal further than its "
-             "distance to body 2). *it* of a stopped run: the Newton steps it "
-             "made. The case column lists what "
-             "differs from the base case.")
-    L.append("")
-
-    def sel_group(g):
-        return [r for r in recs if g in r["groups"]]
-
-    L.append("### One at a time around the base case (blocks)")
-    L.append("")
-    L.append(table(sel_group("oat"), with_ref=True))
-    L.append("")
-    L.append("### Grid μ × ν × E1/E2 (blocks; Newton iterations, F = stopped)")
-    L.append("")
-    for ratio in E_RATIOS:
-        L.append("E1/E2 = %g:" % ratio)
-        L.append("")
-        L.append(grid_table(recs, MUS, NUS, "mu", "nu1", "μ", "ν",
-                            lambda r, ratio=ratio: "grid mu x nu x E1/E2" in
-                            r["groups"] and r["E1"] / r["E2"] == ratio))
-        L.append("")
-    L.append("### Grid μ × c scale (blocks; Newton iterations)")
-    L.append("")
-    L.append(grid_table(recs, MUS, C_SCALES, "mu", "c", "μ", "c scale",
-                        lambda r: "grid mu x c" in r["groups"]))
-    L.append("")
-    L.append("### Grid μ × load scale (blocks; Newton iterations)")
-    L.append("")
-    L.append(grid_table(recs, MUS, LOAD_SCALES, "mu", "load_scale", "μ",
-                        "load ×", lambda r: "grid mu x load" in r["groups"]))
-    L.append("")
-    L.append("### Grid μ × mesh ratio (lower nx/2 : upper nx) (blocks; Newton "
-             "iterations)")
-    L.append("")
-    L.append(grid_table(recs, MUS, list(MESH_RATIOS), "mu", "mesh", "μ",
-                        "ratio", lambda r: "grid mu x mesh ratio" in
-                        r["groups"]))
-    L.append("")
-    L.append("### Homogeneity and c-scale independence (all grid cases)")
-    L.append("")
-    for label, key in (("load scale", "load_scale"), ("c scale", "c")):
-        sub = [r for r in recs if r["ref_case"] and r[key] != 1.0
-               and r["scene"] == "blocks"]
-        same = sum(1 for r in sub if r["same_sets_as_ref"])
-        worst = max((r["rel_diff_to_ref"] for r in sub), default=None)
-        diff_sets = [r["id"] for r in sub if not r["same_sets_as_ref"]]
-        L.append("- %s ≠ 1: %d converged cases compared with their ×1 "
-                 "reference, %d with identical node-wise sets%s; largest "
-                 "relative difference of the normalised pressure / traction "
-                 "/ slip %s." % (label, len(sub), same,
-                                 (" (different: %s)" % ", ".join(diff_sets))
-                                 if diff_sets else "", fmt(worst)))
-    L.append("")
-    L.append("### Combined extremes (blocks)")
-    L.append("")
-    L.append(table(sel_group("extreme"), with_ref=True))
-    L.append("")
-    L.append("### Inputs that must stop with a diagnosis")
-    L.append("")
-    L.append(table(sel_group("diagnosis")))
-    L.append("")
-    L.append("### Follow-ups of the failures")
-    L.append("")
-    L.append(table(sel_group("follow-up"), with_ref=True))
-    L.append("")
-    L.append("### Hertz subset")
-    L.append("")
-    hz = sel_group("hertz")
-    L.append(table(hz, with_ref=True))
-    L.append("")
-    L.append("p_max / Hertz p0 of the converged Hertz runs: " + ", ".join(
-        "%s: %.3f" % (r["id"], r["p_max_over_hertz_p0"]) for r in hz
-        if r["converged"] and r["p_max_over_hertz_p0"] != ""))
-    L.append("")
-    bad = [r for r in recs if not r["verdict"].startswith("ok")]
-    L.append("### Every run that did not end ok")
-    L.append("")
-    L.append("| id | case | exit | steps | verdict | diagnosis (stderr, full) |")
-    L.append("|---|---|---|---|---|---|")
-    for r in bad:
-        L.append("| %s | %s | %s | %s | %s | %s |" % (
-            r["id"], describe(r), r["exit_code"],
-            r["newton_iterations"] if r["converged"] else r["steps_run"],
-            r["verdict"], short_diag(r["diagnosis"], 10000)))
-    L.append("")
-    nanr = [r for r in recs if r["n_nan"]]
-    L.append("### NaN / Inf scan")
-    L.append("")
-    L.append("Scanned: stdout, stderr, every value of summary.json (nlohmann "
-             "writes NaN as null), every value of contact_000.csv "
-             "(present for %d of %d runs: a failed run writes none). "
-             % (sum(1 for r in recs if r["n_slave_nodes"]), len(recs)) +
-             ("Found in: " + "; ".join("%s (%s)" % (r["id"], r["nan"])
-                                       for r in nanr) if nanr else
-              "**None found.**"))
-    return "\n".join(L)
-
-
 def machine(jobs):
-    cpu = "?"
-    osname = platform.system()
-    try:
-        with open("/etc/os-release") as f:
-            for line in f:
-                if line.startswith("PRETTY_NAME="):
-                    osname = line.split("=", 1)[1].strip().strip('"')
-    except OSError:
-        pass
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    mem = ""
-    try:
-        with open("/proc/meminfo") as f:
-            kb = int(f.readline().split()[1])
-            mem = ", %.0f GiB RAM" % (kb / 2 ** 20)
-    except (OSError, ValueError, IndexError):
-        pass
-    return "%s, %d logical CPUs%s, %s (kernel %s), Python %s; %d run(s) " \
-           "at a time (--jobs), 1 MPI rank each; other work may have run " \
-           "on the machine (times are indicative)" % (
-               cpu, os.cpu_count() or 0, mem, osname, platform.release(),
-               platform.python_version(), jobs)
-
-
-BEGIN = "<!-- BEGIN GENERATED by stability_sweep.py -->"
-END = "<!-- END GENERATED -->"
-
-
-def write_markdown(path, body):
-    text = ""
-    if os.path.exists(path):
-        with open(path) as f:
-            text = f.read()
-    block = BEGIN + "\n\n" + body + "\n\n" + END
-    if BEGIN in text and END in text:
-        pre = text.split(BEGIN)[0]
-        post = text.split(END, 1)[1]
-        text = pre + block + post
-    else:
-        text = "# Contact solver stability sweep\n\n" + block + "\n"
-    with open(path, "w") as f:
-        f.write(text)
+    return "%s; %d run(s) at a time (--jobs), 1 MPI rank each; other work " \
+           "may have run on the machine (times are indicative)" % (
+               common.machine_info(), jobs)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--binary", default=os.path.join(ROOT, "build",
+    ap.add_argument("--binary", default=os.path.join(common.ROOT, "build",
                                                      "coulomb-adapt"))
     ap.add_argument("--workdir", default="/tmp/coulomb-stability")
     ap.add_argument("--outdir", default=HERE)
@@ -1029,6 +453,11 @@ def main():
                     help="comma-separated groups to run (default: all)")
     ap.add_argument("--keep-vtu", action="store_true")
     ap.add_argument("--no-markdown", action="store_true")
+    ap.add_argument("--cases", default="",
+                    help="comma-separated case ids to run (default: all)")
+    ap.add_argument("--smoke", action="store_true",
+                    help="the base case and the first input that must stop "
+                    "with a diagnosis, one pass (ctest)")
     ap.add_argument("--list", action="store_true", help="list cases, run none")
     args = ap.parse_args()
 
@@ -1036,6 +465,13 @@ def main():
     if args.groups:
         want = set(g.strip() for g in args.groups.split(","))
         cases = [c for c in cases if want & set(c["groups"])]
+    if args.smoke:
+        args.passes = 1
+        cases = [cases[0], next(c for c in cases
+                                if c["expect"] == "diagnose")]
+    if args.cases:
+        want = set(x.strip() for x in args.cases.split(","))
+        cases = [c for c in cases if c["id"] in want]
     if args.list:
         for c in cases:
             print(c["id"], "|".join(c["groups"]), describe(c))
@@ -1068,18 +504,19 @@ def main():
     recs = sorted(done.values(), key=lambda r: r["id"])
     postprocess(recs)
     total = time.time() - t0
-    with open(os.path.join(args.outdir, "stability.csv"), "w",
-              newline="") as f:
-        w = csv.DictWriter(f, fieldnames=CSV_FIELDS)
-        w.writeheader()
-        for r in recs:
-            w.writerow(row_for_csv(r))
+    csv_path = os.path.join(args.outdir, "stability.csv")
+    common.write_csv(csv_path, [row_for_csv(r) for r in recs], CSV_FIELDS)
     info = dict(date=datetime.datetime.now().strftime("%Y-%m-%d %H:%M"),
-                total=total, binary=os.path.relpath(binary, ROOT),
+                total=round(total), binary=os.path.relpath(binary,
+                                                           common.ROOT),
                 machine=machine(args.jobs))
+    with open(report.run_info_path(csv_path), "w") as f:
+        json.dump(info, f, indent=2)
+        f.write("\n")
     if not args.no_markdown:
-        write_markdown(os.path.join(args.outdir, "stability.md"),
-                       markdown(recs, info))
+        report.write_markdown(os.path.join(args.outdir, "stability.md"),
+                              report.markdown(report.read_results(csv_path),
+                                              info))
     bugs = [r for r in recs if r["verdict"].startswith(("BUG", "SUSPECT"))]
     print("%d runs in %.0f s: %d ok, %d diagnosed, %d BUG or SUSPECT" % (
         len(recs), total, sum(r["verdict"].startswith("ok") for r in recs),
