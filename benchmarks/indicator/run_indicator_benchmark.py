@@ -140,7 +140,7 @@ def settings(series, r, recovery, exact, sub=None):
             "Adaptation/Strategy=uniform",
             "Adaptation/Minimum number of cycles=1",
             "Adaptation/Number of cycles=1",
-            "Error indicator/Recovery=" + recovery,
+            "Error indicator/Estimator=" + recovery,
             "Error indicator/Compute exact error=" + (
                 "true" if exact else "false")]
     if "cms" in series:
