@@ -25,6 +25,8 @@ namespace coulomb_adapt
       /** Per node k of the scalar base element: the global DoF index of its
        * x component (the node's name on every rank). */
       std::vector<types::global_dof_index> nodes;
+      /** The nodes' positions. */
+      std::vector<Point<2>> points;
       /** int_E sigma_c : eps(phi_k e_c) - f . phi_k e_c, [k][c]. */
       std::vector<std::array<double, 2>> residual;
       /** Local face index of each of the cell's faces. */
@@ -80,6 +82,7 @@ namespace coulomb_adapt
     {
     public:
       MonomialBasis(const unsigned int degree)
+        : degree(degree)
       {
         for (unsigned int total = 0; total <= degree; ++total)
           for (unsigned int b = 0; b <= total; ++b)
@@ -106,20 +109,25 @@ namespace coulomb_adapt
                std::vector<Tensor<1, 2>> &  gradients) const
       {
         const double xi[2] = {(x[0] - centre[0]) / h, (x[1] - centre[1]) / h};
+        // Powers xi_d^0 ... xi_d^degree, by products (no std::pow).
+        std::array<std::vector<double>, 2> power;
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            power[d].resize(degree + 1);
+            power[d][0] = 1;
+            for (unsigned int e = 1; e <= degree; ++e)
+              power[d][e] = power[d][e - 1] * xi[d];
+          }
         values.resize(size());
         gradients.resize(size());
         for (unsigned int m = 0; m < size(); ++m)
           {
             const auto &e = exponents[m];
-            values[m]     = std::pow(xi[0], e[0]) * std::pow(xi[1], e[1]);
+            values[m]     = power[0][e[0]] * power[1][e[1]];
             gradients[m][0] =
-              e[0] == 0 ? 0. :
-                          e[0] * std::pow(xi[0], e[0] - 1) *
-                            std::pow(xi[1], e[1]) / h;
+              e[0] == 0 ? 0. : e[0] * power[0][e[0] - 1] * power[1][e[1]] / h;
             gradients[m][1] =
-              e[1] == 0 ? 0. :
-                          e[1] * std::pow(xi[0], e[0]) *
-                            std::pow(xi[1], e[1] - 1) / h;
+              e[1] == 0 ? 0. : e[1] * power[0][e[0]] * power[1][e[1] - 1] / h;
           }
       }
 
@@ -141,6 +149,7 @@ namespace coulomb_adapt
       }
 
     private:
+      unsigned int                             degree;
       std::vector<std::array<unsigned int, 2>> exponents;
       Point<2>                                 centre;
       double                                   h = 1;
@@ -198,6 +207,12 @@ namespace coulomb_adapt
                             body.cell_quadrature(),
                             update_values | update_gradients |
                               update_quadrature_points | update_JxW_values);
+      // The nodes' positions from one FEValues per cell (mapping the
+      // support points point by point costs more than the rest).
+      FEValues<2> support_values(body.mapping(),
+                                 fe,
+                                 Quadrature<2>(base.get_unit_support_points()),
+                                 update_quadrature_points);
       std::vector<SymmetricTensor<2, 2>>   strains(fe_values.n_quadrature_points);
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
       for (const auto &cell : dof_handler.active_cell_iterators())
@@ -221,6 +236,8 @@ namespace coulomb_adapt
             data.nodes.resize(n_nodes);
             data.residual.assign(n_nodes, {{0., 0.}});
             cell->get_dof_indices(dofs);
+            support_values.reinit(cell);
+            data.points = support_values.get_quadrature_points();
             fe_values.reinit(cell);
             fe_values[displacement].get_function_symmetric_gradients(u,
                                                                      strains);
@@ -303,9 +320,8 @@ namespace coulomb_adapt
             // precise for every element).
             for (unsigned int k = 0; k < n_nodes; ++k)
               {
-                const Point<2> x = body.mapping().transform_unit_to_real_cell(
-                  cell, base.get_unit_support_points()[k]);
-                const double s = face_parameter(face, x);
+                const Point<2> &x = cells[slot].points[k];
+                const double    s = face_parameter(face, x);
                 const double distance =
                   x.distance(face.v0 + s * (face.v1 - face.v0));
                 if (s > -1e-8 && s < 1 + 1e-8 &&

@@ -1,0 +1,99 @@
+#!/usr/bin/python3
+"""Effectivity of the three estimators (zz, spr, cre) on the built-in
+scenes, on uniform and adapted sequences, and the cost of each estimator as
+a fraction of the contact solve. Every run computes all three on the same
+solution (`Error indicator/Compare estimators = true`) and the exact error
+(`Compute exact error = true`: the exact solution for `manufactured`, a
+reference solution otherwise, whose refinements are in the CSV).
+
+    benchmarks/effectivity/run_effectivity.py [--exe build/coulomb-adapt]
+        [--smoke] [--csv results.csv]
+
+Writes results.csv (one row per case, cycle and estimator), cost.csv and
+effectivity.png; report_effectivity.py re-tabulates them.
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+import common  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+# (name, prm, settings): uniform sequences and adapted ones (remesh).
+CASES = [
+    ("manufactured Q1 uniform", "prm/two_body_demo.prm",
+     ["Mesh/Global refinements=1", "Adaptation/Number of cycles=3"]),
+    ("manufactured P1 uniform", "prm/two_body_demo.prm",
+     ["Mesh/Cell type=triangle", "Mesh/Global refinements=1",
+      "Adaptation/Number of cycles=3"]),
+    ("blocks mu=0 P1 uniform", "prm/blocks.prm",
+     ["Adaptation/Strategy=uniform", "Adaptation/Number of cycles=2",
+      "Adaptation/Minimum number of cycles=1",
+      "Contact/Friction coefficient=0", "Scene/Blocks/Hold centre line=true",
+      "Scene/Blocks/Upper body subdivisions=2, 2",
+      "Scene/Blocks/Lower body subdivisions=4, 4",
+      "Error indicator/Reference refinements=3"]),
+    ("blocks mu=0.3 P1 uniform", "prm/blocks.prm",
+     ["Adaptation/Strategy=uniform", "Adaptation/Number of cycles=2",
+      "Adaptation/Minimum number of cycles=1",
+      "Scene/Blocks/Upper body subdivisions=2, 2",
+      "Scene/Blocks/Lower body subdivisions=4, 4",
+      "Error indicator/Reference refinements=3"]),
+    ("punch mu=0.3 Q1 uniform", "prm/punch.prm",
+     ["Adaptation/Strategy=uniform", "Adaptation/Number of cycles=2",
+      "Adaptation/Minimum number of cycles=1",
+      "Error indicator/Reference refinements=3"]),
+    ("blocks mu=0 P1 remesh 5%", "prm/blocks.prm",
+     ["Contact/Friction coefficient=0", "Scene/Blocks/Hold centre line=true",
+      "Error indicator/Estimator=cre",
+      "Error indicator/Reference refinements=4"]),
+]
+SMOKE = [("manufactured Q1 uniform", "prm/two_body_demo.prm",
+          ["Mesh/Global refinements=0", "Adaptation/Number of cycles=1"])]
+FIELDS = ["case", "cycle", "n_dofs", "estimator", "epsilon", "epsilon_exact",
+          "effectivity", "element_effectivity_min", "element_effectivity_max",
+          "reference"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--exe", default="build/coulomb-adapt")
+    parser.add_argument("--smoke", action="store_true")
+    parser.add_argument("--csv", default=os.path.join(HERE, "results.csv"))
+    parser.add_argument("--timeout", type=float, default=1800)
+    args = parser.parse_args()
+    common.check_executable(args.exe)
+    rows = []
+    for name, prm, settings in (SMOKE if args.smoke else CASES):
+        print("  " + name, flush=True)
+        result, summary = common.run_program(
+            args.exe, settings + ["Error indicator/Compare estimators=true",
+                                  "Error indicator/Compute exact error=true"],
+            args.timeout, prm=prm)
+        if result.rc != 0 or not summary:
+            print("    failed: " + common.error_message(result.stderr,
+                                                      result.stdout))
+            continue
+        for cycle in summary["cycles"]:
+            for estimator, values in cycle.get("estimators", {}).items():
+                rows.append({
+                    "case": name, "cycle": cycle["cycle"],
+                    "n_dofs": cycle["n_dofs"], "estimator": estimator,
+                    "epsilon": values.get("epsilon"),
+                    "epsilon_exact": values.get("epsilon_exact"),
+                    "effectivity": values.get("effectivity"),
+                    "element_effectivity_min":
+                        values.get("element_effectivity", {}).get("min"),
+                    "element_effectivity_max":
+                        values.get("element_effectivity", {}).get("max"),
+                    "reference": cycle.get("exact_error_reference", "")})
+                print("    cycle %d, %s: theta %.3f" % (
+                    cycle["cycle"], estimator, values.get("effectivity", 0)))
+    common.write_csv(args.csv, rows, FIELDS)
+    print("wrote " + args.csv)
+
+
+if __name__ == "__main__":
+    main()
