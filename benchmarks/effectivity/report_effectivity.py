@@ -1,0 +1,65 @@
+#!/usr/bin/python3
+"""Table and plot of benchmarks/effectivity/results.csv (no runs):
+theta = epsilon / epsilon_exact of zz, spr and cre per case and mesh.
+
+    benchmarks/effectivity/report_effectivity.py [--csv results.csv] [--png effectivity.png]
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+import common  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--csv", default=os.path.join(HERE, "results.csv"))
+    parser.add_argument("--png", default=os.path.join(HERE, "effectivity.png"))
+    args = parser.parse_args()
+    rows = common.read_csv(args.csv, text=("case", "estimator", "reference"),
+                           ints=("cycle", "n_dofs"))
+    if not rows:
+        sys.exit("report_effectivity: no rows in " + args.csv)
+    print("| case | DoFs | exact ε | θ zz | θ spr | θ cre | reference |")
+    print("|---|---|---|---|---|---|---|")
+    keys = []
+    for r in rows:
+        if (r["case"], r["cycle"]) not in keys:
+            keys.append((r["case"], r["cycle"]))
+    for case, cycle in keys:
+        by = {r["estimator"]: r for r in rows
+              if r["case"] == case and r["cycle"] == cycle}
+        any_row = next(iter(by.values()))
+        print("| %s | %d | %.3f %% | %s | %s | %s | %s |" % (
+            case, any_row["n_dofs"], 100 * any_row["epsilon_exact"],
+            *["%.2f" % by[e]["effectivity"] if e in by else "" for e in
+              ("zz", "spr", "cre")], any_row["reference"]))
+
+    plt = common.pyplot()
+    cases = []
+    for case, _ in keys:
+        if case not in cases:
+            cases.append(case)
+    figure, axes = plt.subplots(1, 3, figsize=(13, 4), sharey=True)
+    for axis, estimator in zip(axes, ("zz", "spr", "cre")):
+        for case in cases:
+            points = [(r["n_dofs"], r["effectivity"]) for r in rows
+                      if r["case"] == case and r["estimator"] == estimator]
+            if points:
+                axis.semilogx(*zip(*points), "o-", label=case)
+        axis.axhline(1, color="grey", linewidth=0.8)
+        axis.axhline(2, color="grey", linewidth=0.8, linestyle=":")
+        axis.set_title(estimator)
+        axis.set_xlabel("DoFs")
+    axes[0].set_ylabel("θ = ε / ε_exact")
+    axes[2].legend(fontsize=7)
+    figure.tight_layout()
+    figure.savefig(args.png, dpi=110)
+    print("wrote " + args.png)
+
+
+if __name__ == "__main__":
+    main()
