@@ -2,10 +2,15 @@
 # and its standard error matches the regular expression EXPECTED.
 # MAKE_DIRECTORY (optional): a directory created first, to stand in the
 # way of an output file.
+# MPIEXEC and RANKS (optional): run on RANKS MPI processes.
 if(DEFINED MAKE_DIRECTORY)
   file(MAKE_DIRECTORY ${MAKE_DIRECTORY})
 endif()
-execute_process(COMMAND ${EXE} ${ARGS}
+set(launcher)
+if(DEFINED RANKS)
+  set(launcher ${MPIEXEC} -np ${RANKS})
+endif()
+execute_process(COMMAND ${launcher} ${EXE} ${ARGS}
   RESULT_VARIABLE result
   OUTPUT_VARIABLE out
   ERROR_VARIABLE err)
