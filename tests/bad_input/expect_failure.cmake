@@ -6,6 +6,7 @@
 # FULL_FILE (optional): a fresh directory with FULL_FILE in it a symbolic
 # link to /dev/full, where every write fails with "No space left on
 # device": a full disk for exactly one file.
+# MAKE_FIFO (optional): a named pipe created first (removed if there).
 # ABSENT (optional): a ;-list of glob patterns that must match no file
 # afterwards (nothing half-written left behind).
 if(DEFINED MAKE_DIRECTORY)
@@ -16,6 +17,10 @@ if(DEFINED FULL_FILE)
   file(REMOVE_RECURSE ${full_directory})
   file(MAKE_DIRECTORY ${full_directory})
   file(CREATE_LINK /dev/full ${FULL_FILE} SYMBOLIC)
+endif()
+if(DEFINED MAKE_FIFO)
+  file(REMOVE ${MAKE_FIFO})
+  execute_process(COMMAND mkfifo ${MAKE_FIFO})
 endif()
 set(launcher)
 if(DEFINED RANKS)
