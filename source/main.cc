@@ -35,14 +35,15 @@ main(int argc, char *argv[])
             std::cout << usage();
           return 0;
         }
+      // With a file or -s, --print-parameters prints the values they give
+      // (and stops on an error in them, like a run would).
+      read_parameters(command_line, prm);
       if (command_line.print_parameters)
         {
           if (is_root)
             prm.print_parameters(std::cout, ParameterHandler::PRM);
           return 0;
         }
-
-      read_parameters(command_line, prm);
 
       // Errors in values (and in the files the values name) are reported
       // with where the values came from.

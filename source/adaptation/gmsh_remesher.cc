@@ -485,11 +485,13 @@ namespace coulomb_adapt
           {
             error = e.what();
           }
+        catch (const std::string &thrown)
+          {
+            error = "gmsh: " + gmsh_error_message(thrown);
+          }
         catch (...)
           {
-            std::string message;
-            gmsh::logger::getLastError(message);
-            error = "gmsh: " + message;
+            error = "gmsh: " + gmsh_error_message("");
           }
         gmsh::finalize();
       }

@@ -1,8 +1,11 @@
 #include <coulomb_adapt/app/command_line.h>
 #include <coulomb_adapt/core/parameter_error.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -14,14 +17,16 @@ namespace coulomb_adapt
   usage()
   {
     return "Usage: coulomb-adapt [FILE.prm] [-s \"Section/Entry=value\"]...\n"
-           "       coulomb-adapt --print-parameters\n"
+           "       coulomb-adapt [FILE.prm] [-s ...]... --print-parameters\n"
            "\n"
            "  FILE.prm              parameter file (defaults apply without "
            "one)\n"
            "  -s \"Path/Entry=value\" override one entry; repeatable, applied "
            "after the file\n"
-           "  --print-parameters    print every parameter with its default "
-           "and documentation\n";
+           "  --print-parameters    print every parameter with its "
+           "documentation and value\n"
+           "                        (the default, or as FILE.prm and -s set "
+           "it) and stop\n";
   }
 
 
@@ -71,11 +76,39 @@ namespace coulomb_adapt
     const std::string &file = command_line.parameter_file;
     if (!file.empty())
       {
-        if (!std::filesystem::is_regular_file(file))
+        // What stands at the path, if not a file: a directory, a FIFO or
+        // a device (/dev/null) would otherwise be reported as "not found"
+        // or read as an empty file.
+        std::error_code error;
+        const auto      status = std::filesystem::status(file, error);
+        if (!std::filesystem::exists(status))
           throw ParameterError("parameter file '" + file + "' not found");
+        if (!std::filesystem::is_regular_file(status))
+          throw ParameterError(
+            "parameter file '" + file + "' is " +
+            (std::filesystem::is_directory(status) ? "a directory" :
+             std::filesystem::is_fifo(status)      ? "a FIFO (named pipe)" :
+             std::filesystem::is_character_file(status) ||
+                 std::filesystem::is_block_file(status) ?
+                                                     "a device" :
+                                                     "not a regular file") +
+            ", not a parameter file (give a .prm file)");
+        std::ifstream in(file);
+        if (!in)
+          throw ParameterError("parameter file '" + file +
+                               "' cannot be read (" +
+                               std::strerror(errno) + ")");
+        std::string text((std::istreambuf_iterator<char>(in)),
+                         std::istreambuf_iterator<char>());
+        // Editors on some systems start UTF-8 files with a byte-order mark,
+        // which deal.II's parser would report as an unknown character on
+        // the first line.
+        if (text.compare(0, 3, "\xEF\xBB\xBF") == 0)
+          text.erase(0, 3);
         try
           {
-            prm.parse_input(file);
+            std::istringstream input(text);
+            prm.parse_input(input, file);
           }
         catch (const std::exception &e)
           {

@@ -4,6 +4,7 @@
 #include <coulomb_adapt/bodies/elasticity_errors.h>
 #include <coulomb_adapt/contact/contact_diagnosis.h>
 #include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/core/finiteness.h>
 #include <coulomb_adapt/contact/nested_iteration.h>
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/indicator/exact_error.h>
@@ -91,6 +92,7 @@ namespace coulomb_adapt
       solve_contact();
     else
       solve_separately();
+    check_finite_solution(bodies, contact_solver.get());
   }
 
 
@@ -400,6 +402,7 @@ namespace coulomb_adapt
                                     indicator,
                                     parameters.linear_solver,
                                     &computing_timer));
+    check_finite_estimate(bodies, *error_estimate);
     compared_estimates.clear();
     if (indicator.compare_estimators)
       for (const ErrorEstimator other : all_error_estimators())

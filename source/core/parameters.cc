@@ -232,7 +232,9 @@ namespace coulomb_adapt
                           "Newton has converged when the active, stick and "
                           "slip sets no longer change and the residual of "
                           "the complementarity conditions, relative to the "
-                          "largest contact pressure, is below this.");
+                          "largest contact pressure, is below this "
+                          "(0 ... 1e-6; 0 accepts the round-off floor "
+                          "only).");
         prm.declare_entry("Nested iteration levels",
                           "3",
                           Patterns::Integer(0),
@@ -274,6 +276,15 @@ namespace coulomb_adapt
                           "Contact/Complementarity scale",
                           complementarity_scale,
                           "the scale must be > 0");
+        // A looser tolerance lets an unconverged iterate pass as converged
+        // (1: one Newton step, the sets still changing in the next).
+        require_parameter(tolerance >= 0 && tolerance <= 1e-6,
+                          "Contact/Tolerance",
+                          tolerance,
+                          "the relative residual tolerance of the contact "
+                          "conditions must be in [0, 1e-6] (default 1e-10); "
+                          "a larger one reports an unconverged Newton "
+                          "iterate as converged");
         require_parameter(friction_coefficient >= 0,
                           "Contact/Friction coefficient",
                           friction_coefficient,

@@ -67,8 +67,8 @@ namespace coulomb_adapt
                            body.dof_handler().get_fe().degree,
                            DataOut<2>::curved_inner_cells);
 
-    const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-      directory + "/", base_name, cycle, comm, 3, 0);
+    const std::string pvtu = write_vtu_with_pvtu_record(
+      comm, data_out, directory, base_name, cycle);
 
     pvd_records.emplace_back(cycle, pvtu);
     write_file(comm,

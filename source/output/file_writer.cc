@@ -1,6 +1,8 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
+#include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/output/file_writer.h>
 
 #include <cerrno>
@@ -12,43 +14,155 @@ namespace coulomb_adapt
 {
   using namespace dealii;
 
+  namespace
+  {
+    // The system's reason for the last failed call, as " (reason)".
+    std::string
+    system_reason(const int error_number)
+    {
+      return error_number == 0 ?
+               std::string() :
+               std::string(" (") + std::strerror(error_number) + ")";
+    }
+
+
+
+    // Write @p path + ".tmp" on this rank; an empty string, or what went
+    // wrong, naming @p path. The temporary file is removed on failure.
+    std::string
+    write_temporary(const std::string &                        path,
+                    const std::function<void(std::ostream &)> &write)
+    {
+      const std::string temporary = path + ".tmp";
+      std::string       error;
+      errno = 0;
+      std::ofstream out(temporary);
+      if (!out)
+        error = "cannot open it for writing" + system_reason(errno);
+      else
+        {
+          try
+            {
+              write(out);
+            }
+          catch (const std::exception &e)
+            {
+              // deal.II's writers report a failed stream as a generic
+              // ExcIO: the system's reason is more useful.
+              const int error_number = errno;
+              error = "writing it failed" +
+                      (error_number != 0 ? system_reason(error_number) :
+                                           ": " + user_message(e));
+            }
+          // A full disk shows at the latest when the buffer is flushed and
+          // the file closed.
+          if (error.empty())
+            {
+              errno = 0;
+              out.flush();
+              if (out)
+                out.close();
+              if (!out)
+                error = "writing it failed" + system_reason(errno);
+            }
+        }
+      if (!error.empty())
+        {
+          std::remove(temporary.c_str());
+          return "output file '" + path + "': " + error;
+        }
+      return "";
+    }
+
+
+
+    std::string
+    rename_temporary(const std::string &path)
+    {
+      const std::string temporary = path + ".tmp";
+      errno                       = 0;
+      if (std::rename(temporary.c_str(), path.c_str()) != 0)
+        {
+          const int error_number = errno;
+          std::remove(temporary.c_str());
+          return "output file '" + path + "': cannot replace it" +
+                 system_reason(error_number);
+        }
+      return "";
+    }
+
+
+
+    // Collective: the first rank's error, the same on every rank.
+    std::string
+    first_error(const MPI_Comm comm, const std::string &error)
+    {
+      for (const std::string &e : Utilities::MPI::all_gather(comm, error))
+        if (!e.empty())
+          return e;
+      return "";
+    }
+  } // namespace
+
+
+
   void
-  write_file(const MPI_Comm                            comm,
-             const std::string &                       path,
+  write_file(const MPI_Comm                             comm,
+             const std::string &                        path,
              const std::function<void(std::ostream &)> &write)
   {
     std::string error;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
-        const std::string temporary = path + ".tmp";
-        errno                       = 0;
-        {
-          std::ofstream out(temporary);
-          if (!out)
-            error = "cannot open it for writing";
-          else
-            {
-              write(out);
-              out.flush();
-              if (!out)
-                error = "writing failed";
-            }
-        }
-        if (!error.empty())
-          {
-            if (errno != 0)
-              error += std::string(" (") + std::strerror(errno) + ")";
-            std::remove(temporary.c_str());
-          }
-        else if (std::rename(temporary.c_str(), path.c_str()) != 0)
-          {
-            error = std::string("cannot replace it (") +
-                    std::strerror(errno) + ")";
-            std::remove(temporary.c_str());
-          }
+        error = write_temporary(path, write);
+        if (error.empty())
+          error = rename_temporary(path);
       }
     error = Utilities::MPI::broadcast(comm, error, 0);
-    AssertThrow(error.empty(),
-                ExcMessage("output file '" + path + "': " + error));
+    AssertThrow(error.empty(), ExcMessage(error));
+  }
+
+
+
+  std::string
+  write_vtu_with_pvtu_record(const MPI_Comm                 comm,
+                             const DataOutInterface<2, 2> &data_out,
+                             const std::string &           directory,
+                             const std::string &           base_name,
+                             const unsigned int            cycle)
+  {
+    // deal.II's file names (DataOutInterface::write_vtu_with_pvtu_record
+    // with one file per rank), so that a run looks the same as before.
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    const unsigned int n_digits =
+      Utilities::needed_digits(n_ranks > 1 ? n_ranks - 1 : 0);
+    const std::string stem =
+      base_name + "_" + Utilities::int_to_string(cycle, 3);
+    std::vector<std::string> pieces;
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      pieces.push_back(stem + "." + Utilities::int_to_string(r, n_digits) +
+                       ".vtu");
+
+    // Every rank writes its piece to a temporary file; only when all have
+    // succeeded are they renamed, and only then the record that lists them
+    // is written. Every rank learns of any rank's failure.
+    const std::string piece =
+      directory + "/" + pieces[Utilities::MPI::this_mpi_process(comm)];
+    std::string error = first_error(
+      comm, write_temporary(piece, [&](std::ostream &out) {
+        data_out.write_vtu(out);
+      }));
+    if (!error.empty())
+      {
+        std::remove((piece + ".tmp").c_str());
+        AssertThrow(false, ExcMessage(error));
+      }
+    error = first_error(comm, rename_temporary(piece));
+    AssertThrow(error.empty(), ExcMessage(error));
+
+    write_file(comm, directory + "/" + stem + ".pvtu", [&](std::ostream &out) {
+      data_out.write_pvtu_record(out, pieces);
+    });
+    return stem + ".pvtu";
   }
 } // namespace coulomb_adapt

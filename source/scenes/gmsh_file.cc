@@ -50,9 +50,11 @@ namespace coulomb_adapt
           throw ParameterError(path + "/Mesh file",
                                file,
                                "the gmsh scene needs a .geo or .msh file");
+        // The program runs on MPI_COMM_WORLD: rank 0 reads the file.
         meshes = read_two_body_gmsh_file(file,
                                          requested_cell_type,
-                                         prm.get_double("Mesh size factor"));
+                                         prm.get_double("Mesh size factor"),
+                                         MPI_COMM_WORLD);
       }
       prm.leave_subsection();
     }

@@ -48,20 +48,31 @@ namespace coulomb_adapt
 
 
 
-    // Tags of the physical group of dimension dim called name, or -1.
+    // Tag of the physical group of dimension dim called name, or -1. Two
+    // groups of one name are an error: one of them would be dropped.
     int
-    find_physical_group(const int dim, const std::string &name)
+    find_physical_group(const int          dim,
+                        const std::string &name,
+                        const std::string &file_name)
     {
       gmsh::vectorpair groups;
       gmsh::model::getPhysicalGroups(groups, dim);
+      int found = -1;
       for (const auto &[d, tag] : groups)
         {
           std::string group_name;
           gmsh::model::getPhysicalName(d, tag, group_name);
-          if (group_name == name)
-            return tag;
+          if (group_name != name)
+            continue;
+          if (found >= 0)
+            throw ParameterError(
+              "gmsh file '" + file_name + "' has two physical " +
+              (dim == 2 ? "surfaces" : "curves") + " named '" + name +
+              "' (tags " + std::to_string(found) + " and " +
+              std::to_string(tag) + "); give each name to one group");
+          found = tag;
         }
-      return -1;
+      return found;
     }
 
 
@@ -201,10 +212,118 @@ namespace coulomb_adapt
     }
 
 
+  namespace
+  {
+    // Read and check the file with gmsh (on one rank).
+    std::array<CoarseMeshData, 2>
+    read_with_gmsh(const std::string &file_name,
+                   const CellType     requested_cell_type,
+                   const double       mesh_size_factor)
+    {
+      std::array<CoarseMeshData, 2> meshes;
+      gmsh::open(file_name);
+      if (std::filesystem::path(file_name).extension() == ".geo")
+        {
+          gmsh::option::setNumber("Mesh.MeshSizeFactor", mesh_size_factor);
+          if (requested_cell_type == CellType::quadrilateral)
+            {
+              gmsh::option::setNumber("Mesh.RecombineAll", 1);
+              // Subdivide so that every cell is a quadrangle.
+              gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 1);
+            }
+          gmsh::model::mesh::generate(2);
+        }
+
+      std::vector<std::size_t> node_tags;
+      std::vector<double>      coordinates, parametric;
+      gmsh::model::mesh::getNodes(
+        node_tags, coordinates, parametric, -1, -1, false, false);
+      std::map<std::size_t, Point<2>> nodes;
+      for (std::size_t i = 0; i < node_tags.size(); ++i)
+        nodes[node_tags[i]] =
+          Point<2>(coordinates[3 * i], coordinates[3 * i + 1]);
+
+      auto require_group = [&](const int dim, const std::string &name) {
+        const int tag = find_physical_group(dim, name, file_name);
+        if (tag < 0)
+          throw ParameterError(
+            "gmsh file '" + file_name + "' has no physical " +
+            (dim == 2 ? "surface" : "curve") + " named '" + name +
+            "'; required: surfaces 'body 1', 'body 2' and curves "
+            "'dirichlet', 'traction', 'contact'");
+        return tag;
+      };
+
+      std::map<types::boundary_id, std::vector<std::vector<std::size_t>>>
+        lines;
+      lines[boundary_ids::dirichlet] =
+        elements_of_group(1, require_group(1, "dirichlet"), file_name);
+      lines[boundary_ids::traction] =
+        elements_of_group(1, require_group(1, "traction"), file_name);
+      lines[boundary_ids::contact] =
+        elements_of_group(1, require_group(1, "contact"), file_name);
+
+      // An element may name a node that the file does not define (a
+      // hand-edited or truncated file); gmsh does not check it.
+      for (const auto &[id, group_lines] : lines)
+        for (const auto &line : group_lines)
+          for (const std::size_t node : line)
+            if (nodes.count(node) == 0)
+              throw ParameterError("gmsh file '" + file_name +
+                                   "': a line element refers to node " +
+                                   std::to_string(node) +
+                                   ", which is not in $Nodes");
+
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          const std::string name = "body " + std::to_string(b + 1);
+          const auto        elements =
+            elements_of_group(2, require_group(2, name), file_name);
+          if (elements.empty())
+            throw ParameterError("gmsh file '" + file_name +
+                                 "': physical surface '" + name +
+                                 "' has no elements");
+          for (const auto &element : elements)
+            for (const std::size_t node : element)
+              if (nodes.count(node) == 0)
+                throw ParameterError("gmsh file '" + file_name +
+                                     "': an element of '" + name +
+                                     "' refers to node " +
+                                     std::to_string(node) +
+                                     ", which is not in $Nodes");
+          meshes[b] = build_body_mesh(elements, nodes, lines, b, file_name);
+        }
+      return meshes;
+    }
+  } // namespace
+
+
+
+  std::string
+  gmsh_error_message(const std::string &thrown)
+  {
+    // gmsh's API throws its error message as a std::string (or, for some
+    // errors, an int); its logger holds the last error in either case.
+    std::string last_error;
+    try
+      {
+        gmsh::logger::getLastError(last_error);
+      }
+    catch (...)
+      {}
+    std::string message = last_error.empty() ? thrown : last_error;
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+      message.pop_back();
+    return message.empty() ? "an error without a message" : message;
+  }
+
+
+
   std::array<CoarseMeshData, 2>
   read_two_body_gmsh_file(const std::string &file_name,
                           const CellType     requested_cell_type,
-                          const double       mesh_size_factor)
+                          const double       mesh_size_factor,
+                          const MPI_Comm     comm)
   {
     if (!std::filesystem::is_regular_file(file_name))
       throw ParameterError("Scene/Gmsh/Mesh file",
@@ -213,72 +332,50 @@ namespace coulomb_adapt
                            "relative paths are taken from the directory "
                            "the program runs in)");
 
-    gmsh::initialize();
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 0);
+    // One rank reads (gmsh is serial, and meshing a .geo on every rank
+    // would only repeat the work); every rank then either gets the meshes
+    // or throws the same error, so none waits for another that gave up.
     std::array<CoarseMeshData, 2> meshes;
-    try
+    std::string                   error;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
-        gmsh::open(file_name);
-        if (std::filesystem::path(file_name).extension() == ".geo")
+        gmsh::initialize();
+        gmsh::option::setNumber("General.Terminal", 0);
+        gmsh::option::setNumber("General.Verbosity", 0);
+        try
           {
-            gmsh::option::setNumber("Mesh.MeshSizeFactor", mesh_size_factor);
-            if (requested_cell_type == CellType::quadrilateral)
-              {
-                gmsh::option::setNumber("Mesh.RecombineAll", 1);
-                // Subdivide so that every cell is a quadrangle.
-                gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 1);
-              }
-            gmsh::model::mesh::generate(2);
+            meshes = read_with_gmsh(file_name,
+                                    requested_cell_type,
+                                    mesh_size_factor);
           }
-
-        std::vector<std::size_t> node_tags;
-        std::vector<double>      coordinates, parametric;
-        gmsh::model::mesh::getNodes(
-          node_tags, coordinates, parametric, -1, -1, false, false);
-        std::map<std::size_t, Point<2>> nodes;
-        for (std::size_t i = 0; i < node_tags.size(); ++i)
-          nodes[node_tags[i]] =
-            Point<2>(coordinates[3 * i], coordinates[3 * i + 1]);
-
-        auto require_group = [&](const int dim, const std::string &name) {
-          const int tag = find_physical_group(dim, name);
-          if (tag < 0)
-            throw ParameterError(
-              "gmsh file '" + file_name + "' has no physical " +
-              (dim == 2 ? "surface" : "curve") + " named '" + name +
-              "'; required: surfaces 'body 1', 'body 2' and curves "
-              "'dirichlet', 'traction', 'contact'");
-          return tag;
-        };
-
-        std::map<types::boundary_id, std::vector<std::vector<std::size_t>>>
-          lines;
-        lines[boundary_ids::dirichlet] =
-          elements_of_group(1, require_group(1, "dirichlet"), file_name);
-        lines[boundary_ids::traction] =
-          elements_of_group(1, require_group(1, "traction"), file_name);
-        lines[boundary_ids::contact] =
-          elements_of_group(1, require_group(1, "contact"), file_name);
-
-        for (unsigned int b = 0; b < 2; ++b)
+        catch (const ParameterError &e)
           {
-            const std::string name = "body " + std::to_string(b + 1);
-            const auto        elements =
-              elements_of_group(2, require_group(2, name), file_name);
-            if (elements.empty())
-              throw ParameterError("gmsh file '" + file_name +
-                                   "': physical surface '" + name +
-                                   "' has no elements");
-            meshes[b] = build_body_mesh(elements, nodes, lines, b, file_name);
+            error = e.what();
           }
-      }
-    catch (...)
-      {
+        catch (const std::exception &e)
+          {
+            error = "gmsh file '" + file_name + "': " + user_message(e);
+          }
+        catch (const std::string &e)
+          {
+            error = "gmsh file '" + file_name +
+                    "': gmsh cannot read it: " + gmsh_error_message(e);
+          }
+        catch (...)
+          {
+            error = "gmsh file '" + file_name +
+                    "': gmsh cannot read it: " + gmsh_error_message("");
+          }
         gmsh::finalize();
-        throw;
       }
-    gmsh::finalize();
+    if (Utilities::MPI::n_mpi_processes(comm) > 1)
+      {
+        error = Utilities::MPI::broadcast(comm, error, 0);
+        if (error.empty())
+          meshes = Utilities::MPI::broadcast(comm, meshes, 0);
+      }
+    if (!error.empty())
+      throw ParameterError(error);
     return meshes;
   }
 } // namespace coulomb_adapt

@@ -1,6 +1,7 @@
 #ifndef coulomb_adapt_output_file_writer_h
 #define coulomb_adapt_output_file_writer_h
 
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 
 #include <functional>
@@ -19,12 +20,29 @@ namespace coulomb_adapt
    * Collective: every rank calls it, @p write runs on rank 0 only, and a
    * failure (the file cannot be opened, written or renamed: a full disk,
    * a directory in the way) throws on every rank with a message naming
-   * the file, so that no rank waits for another that has given up.
+   * the file and the system's reason ("No space left on device"), so
+   * that no rank waits for another that has given up.
    */
   void
   write_file(const MPI_Comm                            comm,
              const std::string &                       path,
              const std::function<void(std::ostream &)> &write);
+
+  /**
+   * DataOutInterface::write_vtu_with_pvtu_record with one piece per rank
+   * (`BASE_CCC.R.vtu`, and `BASE_CCC.pvtu` listing them), made atomic and
+   * collective: each piece is written to NAME.tmp and renamed only when
+   * every rank has written its own, then the record through write_file.
+   * A failure on any rank throws the same error, naming the file and the
+   * system's reason, on every rank. Returns the record's name (relative
+   * to @p directory, for a .pvd).
+   */
+  std::string
+  write_vtu_with_pvtu_record(const MPI_Comm                comm,
+                             const dealii::DataOutInterface<2, 2> &data_out,
+                             const std::string &           directory,
+                             const std::string &           base_name,
+                             const unsigned int            cycle);
 } // namespace coulomb_adapt
 
 #endif

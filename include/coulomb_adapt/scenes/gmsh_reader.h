@@ -1,6 +1,8 @@
 #ifndef coulomb_adapt_scenes_gmsh_reader_h
 #define coulomb_adapt_scenes_gmsh_reader_h
 
+#include <deal.II/base/mpi.h>
+
 #include <deal.II/grid/tria.h>
 #include <deal.II/grid/tria_description.h>
 
@@ -25,6 +27,14 @@ namespace coulomb_adapt
 
     void
     create_triangulation(Triangulation<2> &tria) const;
+
+    /** For the broadcast from the rank that read the file. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &vertices &cells &boundary_lines.boundary_lines;
+    }
   };
 
   /**
@@ -55,10 +65,25 @@ namespace coulomb_adapt
     const types::material_id material_id,
     const std::string &      file_name);
 
+  /**
+   * Read the file on rank 0 of @p comm and give the meshes to every rank.
+   * Errors, gmsh's own (a syntax error in a .geo file, a truncated or
+   * inconsistent .msh file) included, throw a ParameterError on every
+   * rank that names the file and says what is wrong.
+   */
   std::array<CoarseMeshData, 2>
   read_two_body_gmsh_file(const std::string &file_name,
                           const CellType     requested_cell_type,
-                          const double       mesh_size_factor);
+                          const double       mesh_size_factor,
+                          const MPI_Comm     comm = MPI_COMM_SELF);
+
+  /**
+   * gmsh's message for an error that its API threw (as the std::string
+   * @p thrown, or as anything else with @p thrown empty): the last error
+   * from gmsh's logger, else @p thrown. Call it before gmsh::finalize().
+   */
+  std::string
+  gmsh_error_message(const std::string &thrown);
 } // namespace coulomb_adapt
 
 #endif
