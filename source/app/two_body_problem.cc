@@ -497,43 +497,39 @@ namespace coulomb_adapt
 
 
   // For verification: the exact error of the corrected solution against
-  // the scene's exact solution, or else a reference solution on a mesh
-  // refined `Reference refinements` more times.
+  // the scene's exact solution, or else a reference solution: this cycle's
+  // meshes refined `Reference refinements` more times (theory.md section
+  // 8), with its own error and the energy check.
   void
-  TwoBodyProblem::compare_with_exact_error(const unsigned int cycle)
+  TwoBodyProblem::compare_with_exact_error(const unsigned int)
   {
     TimerOutput::Scope t(computing_timer, "exact error");
     const std::array<const ElasticBody *, 2> body_pointers = {
       {bodies[0].get(), bodies[1].get()}};
-    std::unique_ptr<ReferenceStress> exact;
-    // Uniform refinement: a reference `Reference refinements` finer than
-    // each cycle. Adaptive meshes: one reference, that much finer than the
-    // initial mesh, kept for all cycles (it should stay finer than the
-    // adapted meshes where they are finest).
-    const bool adaptive = parameters.adaptation.strategy != "uniform";
+    std::unique_ptr<ReferenceStress>         exact;
+    const ReferenceSolutionStress *          reference_solution = nullptr;
     if (bodies[0]->description().exact_displacement &&
         bodies[1]->description().exact_displacement)
       exact = std::make_unique<ExactSolutionStress>(body_pointers);
-    else if (!adaptive || !reference_solution)
+    else
       {
-        pcout << "  exact error: solving the reference problem ("
-              << parameters.error_indicator.reference_refinements
-              << " more uniform refinements than "
-              << (adaptive ? "the initial mesh" : "this cycle's mesh") << ")"
+        const unsigned int r = parameters.error_indicator.reference_refinements;
+        pcout << "  exact error: solving the reference problem (this cycle's "
+                 "meshes refined "
+              << r << " times) and, for its own error, "
+              << (r > 1 ? "the same refined " + std::to_string(r - 1) +
+                            " times" :
+                          std::string("comparing it with this cycle's "
+                                      "solution"))
               << std::endl;
-        reference_solution = std::make_unique<ReferenceSolutionStress>(
-          mpi_communicator,
-          *scene,
-          parameters,
-          parameters.mesh.global_refinements + (adaptive ? 0 : cycle),
-          parameters.error_indicator.reference_refinements,
-          adaptive);
+        auto solution = std::make_unique<ReferenceSolutionStress>(
+          *scene, parameters, body_pointers, r);
+        reference_solution = solution.get();
+        exact              = std::move(solution);
       }
-    const ReferenceStress &reference =
-      exact ? *exact : *reference_solution;
     const ExactErrorComparison c = coulomb_adapt::compare_with_exact_error(
-      body_pointers, *error_estimate, reference);
-    pcout << "  exact error (" << reference.description()
+      body_pointers, *error_estimate, *exact);
+    pcout << "  exact error (" << exact->description()
           << "): epsilon_exact = " << std::fixed << std::setprecision(3)
           << 100 * c.epsilon_exact << " %, effectivity " << c.effectivity
           << " (elements: mean " << c.element_effectivity_mean << ", std "
@@ -549,7 +545,7 @@ namespace coulomb_adapt
       {"min", c.element_effectivity_min},
       {"max", c.element_effectivity_max},
       {"n_elements", c.n_elements}};
-    cycle_record["exact_error_reference"] = reference.description();
+    cycle_record["exact_error_reference"] = exact->description();
     // Compared estimators: each against the exact error of its own
     // corrected solution (the field it estimates).
     if (!compared_estimates.empty())
@@ -576,8 +572,42 @@ namespace coulomb_adapt
           add_effectivity(*other,
                           coulomb_adapt::compare_with_exact_error(body_pointers,
                                                                   *other,
-                                                                  reference));
+                                                                  *exact));
       }
+    if (reference_solution == nullptr)
+      return;
+
+    // The energy check: e^2 = 2 (U_ref - U_h) for the FE solution of a
+    // linear, load-driven problem (with frictionless contact nearly: the
+    // contact work vanishes at the solution); with the seed's
+    // normalisation D^2 ~ 8 U that is epsilon ~ sqrt((U_ref - U_h) /
+    // (4 U_ref)).
+    double energy = 0, reference_energy = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        energy += strain_energy(*bodies[b], bodies[b]->solution());
+        reference_energy += reference_solution->strain_energy(b);
+      }
+    const double epsilon_energy =
+      std::sqrt(std::max(0., reference_energy - energy) /
+                std::max(4 * reference_energy, 1e-300));
+    pcout << "  exact error: reference's own error " << std::fixed
+          << std::setprecision(3) << 100 * reference_solution->own_error()
+          << " % (from the energies "
+          << 100 * reference_solution->own_error_from_energy()
+          << " %); energy check: epsilon_energy = " << 100 * epsilon_energy
+          << " % (strain energy " << std::scientific << energy
+          << ", reference " << reference_energy << ")" << std::defaultfloat
+          << std::endl;
+    cycle_record["exact_error_reference_error"] =
+      reference_solution->own_error();
+    cycle_record["exact_error_reference_error_energy"] =
+      reference_solution->own_error_from_energy();
+    cycle_record["exact_error_reference_dofs"] = reference_solution->n_dofs();
+    cycle_record["reference_strain_energy"] = {
+      reference_solution->strain_energy(0),
+      reference_solution->strain_energy(1)};
+    cycle_record["epsilon_energy"] = epsilon_energy;
   }
 
 
@@ -803,6 +833,9 @@ namespace coulomb_adapt
                 {"energy", e.energy},
                 {"relative_energy", e.energy / e.energy_of_exact}};
             }
+        for (unsigned int b = 0; b < 2; ++b)
+          body_records[b]["strain_energy"] =
+            strain_energy(*bodies[b], bodies[b]->solution());
         output_results(cycle);
 
         cycle_timer.stop();

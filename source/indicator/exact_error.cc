@@ -5,15 +5,15 @@
 
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
-#include <deal.II/hp/fe_collection.h>
-#include <deal.II/hp/fe_values.h>
-#include <deal.II/hp/mapping_collection.h>
-#include <deal.II/hp/q_collection.h>
+#include <deal.II/grid/cell_id.h>
 
 #include <coulomb_adapt/indicator/exact_error.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
+#include <set>
 
 namespace coulomb_adapt
 {
@@ -48,10 +48,9 @@ namespace coulomb_adapt
 
 
   // The exact stress is smooth: one subdivision with a higher-order rule
-  // (see compare_with_exact_error) suffices.
+  // (see compare_stresses) suffices.
   unsigned int
-  ExactSolutionStress::quadrature_subdivisions(const unsigned int,
-                                               const double) const
+  ExactSolutionStress::quadrature_subdivisions() const
   {
     return 1;
   }
@@ -66,44 +65,364 @@ namespace coulomb_adapt
 
 
 
-  ReferenceSolutionStress::ReferenceSolutionStress(
-    const MPI_Comm     mpi_communicator,
-    const Scene &      scene,
-    const Parameters & parameters,
-    const unsigned int global_refinements,
-    const unsigned int reference_refinements,
-    const bool         for_adapted_meshes)
-    : quiet(std::cout, false)
-    , reference_refinements(reference_refinements)
-    , for_adapted_meshes(for_adapted_meshes)
+  namespace
   {
+    // The active mesh of a triangle body, gathered from all ranks, as a
+    // coarse mesh: cells with their material and manifold ids, boundary
+    // edges with their boundary and manifold ids (the scene's manifolds
+    // are attached again by ElasticBody::replace_mesh). A vertex shared by
+    // the cells of several ranks has the same coordinates on each: they
+    // come from the same serial mesh.
+    CoarseMeshData
+    gather_triangle_mesh(const ElasticBody &body)
+    {
+      // Per cell: material id, manifold id, 3 x (x, y); per boundary
+      // edge: a negative marker, boundary id, manifold id, 2 x (x, y).
+      std::vector<double> packed;
+      for (const auto &cell : body.triangulation().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            AssertThrow(cell->n_vertices() == 3,
+                        ExcMessage("gather_triangle_mesh: body '" +
+                                   body.name() + "' is not a triangle mesh"));
+            packed.push_back(cell->material_id());
+            packed.push_back(cell->manifold_id());
+            for (const unsigned int v : cell->vertex_indices())
+              packed.insert(packed.end(),
+                            {cell->vertex(v)[0], cell->vertex(v)[1]});
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary())
+                {
+                  packed.insert(packed.end(),
+                                {-1.,
+                                 double(face->boundary_id()),
+                                 double(face->manifold_id())});
+                  for (unsigned int v = 0; v < 2; ++v)
+                    packed.insert(packed.end(),
+                                  {face->vertex(v)[0], face->vertex(v)[1]});
+                }
+          }
+
+      CoarseMeshData                              mesh;
+      std::map<std::pair<double, double>, unsigned int> vertex_number;
+      const auto vertex = [&](const double x, const double y) {
+        const auto [it, inserted] =
+          vertex_number.emplace(std::make_pair(x, y), mesh.vertices.size());
+        if (inserted)
+          mesh.vertices.emplace_back(x, y);
+        return it->second;
+      };
+      for (const auto &part : Utilities::MPI::all_gather(
+             body.triangulation().get_communicator(), packed))
+        for (std::size_t i = 0; i < part.size();)
+          if (part[i] >= 0)
+            {
+              CellData<2> cell(3);
+              cell.material_id = static_cast<types::material_id>(part[i]);
+              cell.manifold_id = static_cast<types::manifold_id>(part[i + 1]);
+              for (unsigned int v = 0; v < 3; ++v)
+                cell.vertices[v] =
+                  vertex(part[i + 2 + 2 * v], part[i + 3 + 2 * v]);
+              mesh.cells.push_back(cell);
+              i += 8;
+            }
+          else
+            {
+              CellData<1> line;
+              line.boundary_id = static_cast<types::boundary_id>(part[i + 1]);
+              line.manifold_id = static_cast<types::manifold_id>(part[i + 2]);
+              for (unsigned int v = 0; v < 2; ++v)
+                line.vertices[v] =
+                  vertex(part[i + 3 + 2 * v], part[i + 4 + 2 * v]);
+              mesh.boundary_lines.boundary_lines.push_back(line);
+              i += 7;
+            }
+      return mesh;
+    }
+
+
+
+    // Make @p body's quadrilateral mesh the judged one: refine every cell
+    // that is an ancestor of a judged cell, coarsen every cell that is a
+    // descendant of one, until the active cells are the judged cells. Both
+    // start from the scene's coarse mesh, so a CellId names the same cell
+    // in both; p4est keeps the judged mesh's 2:1 balance, which it made.
+    void
+    replay_refinement(const ElasticBody &judged, ElasticBody &body)
+    {
+      std::vector<CellId::binary_type> owned;
+      for (const auto &cell : judged.triangulation().active_cell_iterators())
+        if (cell->is_locally_owned())
+          owned.push_back(cell->id().template to_binary<2>());
+      std::set<CellId> active, ancestors;
+      for (const auto &part : Utilities::MPI::all_gather(
+             judged.triangulation().get_communicator(), owned))
+        for (const auto &binary : part)
+          {
+            const CellId id(binary);
+            active.insert(id);
+            const auto children = id.get_child_indices();
+            for (unsigned int level = 0; level < children.size(); ++level)
+              ancestors.insert(CellId(id.get_coarse_cell_id(),
+                                      level,
+                                      children.data()));
+          }
+
+      const unsigned int max_rounds = 2 * judged.triangulation().n_global_levels() + 4;
+      for (unsigned int round = 0;; ++round)
+        {
+          std::vector<signed char> decisions(
+            body.triangulation().n_active_cells(), 0);
+          bool changes = false;
+          for (const auto &cell : body.triangulation().active_cell_iterators())
+            if (cell->is_locally_owned() && active.count(cell->id()) == 0)
+              {
+                decisions[cell->active_cell_index()] =
+                  ancestors.count(cell->id()) > 0 ? 1 : -1;
+                changes = true;
+              }
+          if (!Utilities::MPI::logical_or(
+                changes, body.triangulation().get_communicator()))
+            break;
+          AssertThrow(round < max_rounds,
+                      ExcMessage("make_refined_body: the mesh of body '" +
+                                 judged.name() +
+                                 "' could not be rebuilt from the scene's "
+                                 "coarse mesh by refinement and coarsening"));
+          body.refine_and_coarsen(decisions);
+        }
+    }
+  } // namespace
+
+
+
+  std::unique_ptr<ElasticBody>
+  make_refined_body(const ElasticBody &judged,
+                    const Scene &      scene,
+                    const unsigned int body_index,
+                    const Parameters & parameters,
+                    const unsigned int refinements)
+  {
+    const MPI_Comm comm = judged.triangulation().get_communicator();
+    const CellType cell_type =
+      judged.is_simplex_mesh() ? CellType::triangle : CellType::quadrilateral;
+    auto body = std::make_unique<ElasticBody>(
+      comm, scene, body_index, cell_type, 0, parameters.finite_elements);
+    if (judged.is_simplex_mesh())
+      body->replace_mesh(gather_triangle_mesh(judged));
+    else
+      replay_refinement(judged, *body);
+    AssertThrow(body->triangulation().n_global_active_cells() ==
+                  judged.triangulation().n_global_active_cells(),
+                ExcInternalError());
+    for (unsigned int r = 0; r < refinements; ++r)
+      body->refine_uniformly();
+    body->setup_system();
+    body->assemble_system();
+    return body;
+  }
+
+
+
+  double
+  strain_energy(const ElasticBody &                  body,
+                const TrilinosWrappers::MPI::Vector &displacement)
+  {
+    FEValues<2> fe_values(body.mapping(),
+                          body.dof_handler().get_fe(),
+                          body.cell_quadrature(),
+                          update_gradients | update_JxW_values);
+    const FEValuesExtractors::Vector   u(0);
+    std::vector<SymmetricTensor<2, 2>> strains(
+      body.cell_quadrature().size());
+    double energy = 0;
+    for (const auto &cell : body.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[u].get_function_symmetric_gradients(displacement, strains);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            energy += 0.5 * body.material().stress(strains[q]) * strains[q] *
+                      fe_values.JxW(q);
+        }
+    return Utilities::MPI::sum(energy,
+                               body.triangulation().get_communicator());
+  }
+
+
+
+  namespace
+  {
+    // Both bodies solved: with contact if both have a contact boundary,
+    // otherwise each on its own.
+    unsigned int
+    solve_quietly(std::array<std::unique_ptr<ElasticBody>, 2> &bodies,
+                  const Parameters &                           parameters,
+                  const ConditionalOStream &                   quiet)
+    {
+      if (bodies[0]->description().contact_boundary_id ==
+            numbers::invalid_boundary_id ||
+          bodies[1]->description().contact_boundary_id ==
+            numbers::invalid_boundary_id)
+        {
+          for (auto &body : bodies)
+            body->solve(parameters.linear_solver);
+          return 0;
+        }
+      ContactSolver solver(*bodies[0],
+                           *bodies[1],
+                           parameters.contact,
+                           parameters.linear_solver,
+                           quiet);
+      return solver.solve().newton_iterations;
+    }
+
+
+
+    std::array<const ElasticBody *, 2>
+    pointers(const std::array<std::unique_ptr<ElasticBody>, 2> &bodies)
+    {
+      return {{bodies[0].get(), bodies[1].get()}};
+    }
+  } // namespace
+
+
+
+  namespace
+  {
+    // deal.II 9.4's point search (RemotePointEvaluation) misses a few
+    // points inside locally owned cells of remeshed triangle meshes on
+    // several ranks (it starts from the closest vertex and looks at the
+    // cells around it). Those points are looked for cell by cell: every
+    // rank tries each missing point of every rank in its locally owned
+    // cells. The missing points are few: the cost is theirs times the
+    // cells.
+    std::vector<std::optional<Tensor<1, 2, Tensor<1, 2>>>>
+    gradients_by_search(const ElasticBody &              body,
+                        const std::vector<Point<2>> &    points,
+                        const std::vector<unsigned int> &missing)
+    {
+      const MPI_Comm comm = body.triangulation().get_communicator();
+      std::vector<Point<2>> wanted;
+      for (const unsigned int i : missing)
+        wanted.push_back(points[i]);
+      const auto all_wanted = Utilities::MPI::all_gather(comm, wanted);
+      std::size_t n_wanted = 0;
+      for (const auto &part : all_wanted)
+        n_wanted += part.size();
+      if (n_wanted == 0)
+        return {};
+
+      // Per wanted point of every rank: found here (1 or 0), gradient.
+      std::vector<std::vector<double>> answers(all_wanted.size());
+      const FEValuesExtractors::Vector u(0);
+      for (unsigned int rank = 0; rank < all_wanted.size(); ++rank)
+        for (const Point<2> &p : all_wanted[rank])
+          {
+            std::vector<double> answer(5, 0.);
+            for (const auto &cell : body.dof_handler().active_cell_iterators())
+              if (cell->is_locally_owned() &&
+                  cell->bounding_box().point_inside(p, 1e-10))
+                {
+                  Point<2> unit;
+                  try
+                    {
+                      unit =
+                        body.mapping().transform_real_to_unit_cell(cell, p);
+                    }
+                  catch (const Mapping<2>::ExcTransformationFailed &)
+                    {
+                      continue;
+                    }
+                  if (!cell->reference_cell().contains_point(unit, 1e-10))
+                    continue;
+                  FEValues<2> fe_values(body.mapping(),
+                                        body.dof_handler().get_fe(),
+                                        Quadrature<2>(unit),
+                                        update_gradients);
+                  fe_values.reinit(cell);
+                  std::vector<Tensor<2, 2>> gradient(1);
+                  fe_values[u].get_function_gradients(body.solution(),
+                                                      gradient);
+                  answer = {1.,
+                            gradient[0][0][0],
+                            gradient[0][0][1],
+                            gradient[0][1][0],
+                            gradient[0][1][1]};
+                  break;
+                }
+            answers[rank].insert(answers[rank].end(),
+                                 answer.begin(),
+                                 answer.end());
+          }
+
+      const unsigned int my_rank = Utilities::MPI::this_mpi_process(comm);
+      std::vector<std::optional<Tensor<1, 2, Tensor<1, 2>>>> result(
+        missing.size());
+      for (const auto &from : Utilities::MPI::all_gather(comm, answers))
+        for (unsigned int k = 0; k < missing.size(); ++k)
+          if (!result[k] && from[my_rank][5 * k] == 1.)
+            {
+              Tensor<1, 2, Tensor<1, 2>> g;
+              for (unsigned int c = 0; c < 2; ++c)
+                for (unsigned int d = 0; d < 2; ++d)
+                  g[c][d] = from[my_rank][5 * k + 1 + 2 * c + d];
+              result[k] = g;
+            }
+      return result;
+    }
+  } // namespace
+
+
+
+  ReferenceSolutionStress::ReferenceSolutionStress(
+    const Scene &                             scene,
+    const Parameters &                        parameters,
+    const std::array<const ElasticBody *, 2> &judged,
+    const unsigned int                        refinements,
+    const bool                                estimate_own_error)
+    : quiet(std::cout, false)
+    , refinements(refinements)
+  {
+    AssertThrow(refinements >= 1,
+                ExcMessage("a reference needs at least one refinement"));
     for (unsigned int b = 0; b < 2; ++b)
-      {
-        bodies[b] = std::make_unique<ElasticBody>(mpi_communicator,
-                                                  scene,
-                                                  b,
-                                                  parameters.mesh.cell_type,
-                                                  global_refinements +
-                                                    reference_refinements,
-                                                  parameters.finite_elements);
-        bodies[b]->setup_system();
-        bodies[b]->assemble_system();
-      }
-    contact_solver = std::make_unique<ContactSolver>(*bodies[0],
-                                                     *bodies[1],
-                                                     parameters.contact,
-                                                     parameters.linear_solver,
-                                                     quiet);
-    n_newton_iterations = contact_solver->solve().newton_iterations;
+      bodies[b] =
+        make_refined_body(*judged[b], scene, b, parameters, refinements);
+    n_newton_iterations = solve_quietly(bodies, parameters, quiet);
     for (unsigned int b = 0; b < 2; ++b)
+      energies[b] =
+        coulomb_adapt::strain_energy(*bodies[b], bodies[b]->solution());
+    if (!estimate_own_error)
+      return;
+
+    // One level coarser: the judged FE solution, or a body of its own.
+    std::array<std::unique_ptr<ElasticBody>, 2> coarser;
+    std::array<const ElasticBody *, 2>          coarser_bodies = judged;
+    if (refinements > 1)
       {
-        double largest = 0;
-        for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
-          if (cell->is_locally_owned())
-            largest = std::max(largest, cell->diameter());
-        largest_cell_diameter[b] =
-          Utilities::MPI::max(largest, mpi_communicator);
+        for (unsigned int b = 0; b < 2; ++b)
+          coarser[b] =
+            make_refined_body(*judged[b], scene, b, parameters, refinements - 1);
+        solve_quietly(coarser, parameters, quiet);
+        coarser_bodies = pointers(coarser);
       }
+    const StressDifference d =
+      compare_stresses(coarser_bodies,
+                       {{&coarser_bodies[0]->solution(),
+                         &coarser_bodies[1]->solution()}},
+                       *this,
+                       2);
+    epsilon_own =
+      std::sqrt(d.difference_squared / std::max(d.sum_squared, 1e-300));
+    double coarser_energy = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      coarser_energy += coulomb_adapt::strain_energy(
+        *coarser_bodies[b], coarser_bodies[b]->solution());
+    const double energy = energies[0] + energies[1];
+    epsilon_own_energy =
+      std::sqrt(std::abs(energy - coarser_energy) /
+                std::max(4 * energy, 1e-300));
   }
 
 
@@ -116,13 +435,22 @@ namespace coulomb_adapt
   ReferenceSolutionStress::stresses(const unsigned int           b,
                                     const std::vector<Point<2>> &points) const
   {
-    const ElasticBody &                   body = *bodies[b];
+    const ElasticBody &                      body = *bodies[b];
     Utilities::MPI::RemotePointEvaluation<2> evaluation(1e-10);
-    const auto gradients = VectorTools::point_gradients<2>(
+    auto gradients = VectorTools::point_gradients<2>(
       body.mapping(), body.dof_handler(), body.solution(), points, evaluation);
-    AssertThrow(evaluation.all_points_found(),
-                ExcMessage("Some evaluation points of body '" + body.name() +
-                           "' lie outside the reference mesh."));
+    std::vector<unsigned int> missing;
+    for (unsigned int i = 0; i < points.size(); ++i)
+      if (!evaluation.point_found(i))
+        missing.push_back(i);
+    const auto found = gradients_by_search(body, points, missing);
+    for (unsigned int k = 0; k < missing.size(); ++k)
+      {
+        AssertThrow(found[k],
+                    ExcMessage("An evaluation point of body '" + body.name() +
+                               "' lies outside the reference mesh."));
+        gradients[missing[k]] = *found[k];
+      }
     std::vector<SymmetricTensor<2, 2>> sigma(points.size());
     for (unsigned int i = 0; i < points.size(); ++i)
       {
@@ -137,15 +465,9 @@ namespace coulomb_adapt
 
 
   unsigned int
-  ReferenceSolutionStress::quadrature_subdivisions(
-    const unsigned int b,
-    const double       cell_diameter) const
+  ReferenceSolutionStress::quadrature_subdivisions() const
   {
-    const unsigned int uniform = 1u << reference_refinements;
-    if (!for_adapted_meshes)
-      return uniform;
-    const double fit = std::ceil(cell_diameter / largest_cell_diameter[b] - 1e-8);
-    return std::clamp(static_cast<unsigned int>(std::max(fit, 1.)), 1u, uniform);
+    return 1u << refinements;
   }
 
 
@@ -153,10 +475,9 @@ namespace coulomb_adapt
   std::string
   ReferenceSolutionStress::description() const
   {
-    return "reference solution (" +
-           std::to_string(bodies[0]->dof_handler().n_dofs() +
-                          bodies[1]->dof_handler().n_dofs()) +
-           " DoFs)";
+    return "reference solution (the judged meshes refined " +
+           std::to_string(refinements) + " times, " +
+           std::to_string(n_dofs()) + " DoFs)";
   }
 
 
@@ -169,88 +490,132 @@ namespace coulomb_adapt
 
 
 
-  ExactErrorComparison
-  compare_with_exact_error(const std::array<const ElasticBody *, 2> &bodies,
-                           const ErrorEstimate &                     estimate,
-                           const ReferenceStress &                   reference)
+  types::global_dof_index
+  ReferenceSolutionStress::n_dofs() const
   {
-    const MPI_Comm comm = bodies[0]->triangulation().get_communicator();
-    std::array<Vector<double>, 2> exact_squared;
-    double                        sum_minus = 0, sum_plus = 0;
+    return bodies[0]->dof_handler().n_dofs() +
+           bodies[1]->dof_handler().n_dofs();
+  }
+
+
+
+  const ElasticBody &
+  ReferenceSolutionStress::body(const unsigned int b) const
+  {
+    return *bodies[b];
+  }
+
+
+
+  double
+  ReferenceSolutionStress::strain_energy(const unsigned int b) const
+  {
+    return energies[b];
+  }
+
+
+
+  double
+  ReferenceSolutionStress::own_error() const
+  {
+    return epsilon_own;
+  }
+
+
+
+  double
+  ReferenceSolutionStress::own_error_from_energy() const
+  {
+    return epsilon_own_energy;
+  }
+
+
+
+  StressDifference
+  compare_stresses(
+    const std::array<const ElasticBody *, 2> &                  bodies,
+    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
+    const ReferenceStress &                                     reference,
+    const unsigned int                                          subdivisions)
+  {
+    StressDifference result;
     for (unsigned int b = 0; b < 2; ++b)
       {
         const ElasticBody &body   = *bodies[b];
         const unsigned int degree = body.dof_handler().get_fe().degree;
         // A piecewise reference field on n x n sub-cells: the iterated
-        // rule integrates each piece on its own. n varies from cell to
-        // cell on adapted meshes: hp::FEValues selects the rule (entry
-        // n - 1 of the collection) per cell.
-        std::vector<unsigned int> subdivisions;
-        for (const auto &cell : body.dof_handler().active_cell_iterators())
-          if (cell->is_locally_owned())
-            subdivisions.push_back(
-              reference.quadrature_subdivisions(b, cell->diameter()));
-        const unsigned int max_subdivisions =
-          subdivisions.empty() ?
-            1 :
-            *std::max_element(subdivisions.begin(), subdivisions.end());
-        hp::QCollection<2> quadratures;
-        for (unsigned int n = 1; n <= max_subdivisions; ++n)
-          if (body.is_simplex_mesh())
-            quadratures.push_back(QIteratedSimplex<2>(
-              QGaussSimplex<2>(std::min(degree + 2, 4u)), n));
-          else
-            quadratures.push_back(QIterated<2>(QGauss<1>(degree + 2), n));
-        const hp::MappingCollection<2> mappings(body.mapping());
-        const hp::FECollection<2>      elements(body.dof_handler().get_fe());
-        hp::FEValues<2>                hp_fe_values(mappings,
-                                     elements,
-                                     quadratures,
-                                     update_gradients |
-                                       update_quadrature_points |
-                                       update_JxW_values);
-        const FEValuesExtractors::Vector u(0);
-        std::vector<SymmetricTensor<2, 2>> strains;
+        // rule integrates each piece on its own.
+        const Quadrature<2> quadrature =
+          body.is_simplex_mesh() ?
+            Quadrature<2>(QIteratedSimplex<2>(
+              QGaussSimplex<2>(std::min(degree + 2, 4u)), subdivisions)) :
+            Quadrature<2>(QIterated<2>(QGauss<1>(degree + 2), subdivisions));
+        FEValues<2> fe_values(body.mapping(),
+                              body.dof_handler().get_fe(),
+                              quadrature,
+                              update_gradients | update_quadrature_points |
+                                update_JxW_values);
+        const FEValuesExtractors::Vector   u(0);
+        std::vector<SymmetricTensor<2, 2>> strains(quadrature.size());
 
         // All points of the locally owned cells, then one collective
         // evaluation of the reference.
         std::vector<Point<2>>              points;
-        std::vector<SymmetricTensor<2, 2>> sigma_c;
+        std::vector<SymmetricTensor<2, 2>> sigma_h;
         std::vector<double>                JxW;
         std::vector<unsigned int>          cell_of_point;
-        unsigned int owned_cell = 0;
         for (const auto &cell : body.dof_handler().active_cell_iterators())
           if (cell->is_locally_owned())
             {
-              hp_fe_values.reinit(cell, subdivisions[owned_cell++] - 1);
-              const FEValues<2> &fe_values =
-                hp_fe_values.get_present_fe_values();
-              strains.resize(fe_values.n_quadrature_points);
-              fe_values[u].get_function_symmetric_gradients(
-                estimate.correction.displacement(b), strains);
+              fe_values.reinit(cell);
+              fe_values[u].get_function_symmetric_gradients(*displacements[b],
+                                                            strains);
               for (const unsigned int q : fe_values.quadrature_point_indices())
                 {
                   points.push_back(fe_values.quadrature_point(q));
-                  sigma_c.push_back(body.material().stress(strains[q]));
+                  sigma_h.push_back(body.material().stress(strains[q]));
                   JxW.push_back(fe_values.JxW(q));
                   cell_of_point.push_back(cell->active_cell_index());
                 }
             }
         const auto sigma = reference.stresses(b, points);
 
-        exact_squared[b].reinit(body.triangulation().n_active_cells());
+        result.cell_squared[b].reinit(body.triangulation().n_active_cells());
         for (unsigned int i = 0; i < points.size(); ++i)
           {
-            const SymmetricTensor<2, 2> minus = sigma[i] - sigma_c[i];
-            const SymmetricTensor<2, 2> plus  = sigma[i] + sigma_c[i];
-            exact_squared[b](cell_of_point[i]) +=
+            const SymmetricTensor<2, 2> minus = sigma[i] - sigma_h[i];
+            const SymmetricTensor<2, 2> plus  = sigma[i] + sigma_h[i];
+            const double minus_squared =
               minus * body.material().strain(minus) * JxW[i];
-            sum_minus += minus * body.material().strain(minus) * JxW[i];
-            sum_plus += plus * body.material().strain(plus) * JxW[i];
+            result.cell_squared[b](cell_of_point[i]) += minus_squared;
+            result.difference_squared += minus_squared;
+            result.sum_squared += plus * body.material().strain(plus) * JxW[i];
           }
       }
-    sum_minus = Utilities::MPI::sum(sum_minus, comm);
-    sum_plus  = Utilities::MPI::sum(sum_plus, comm);
+    const MPI_Comm comm = bodies[0]->triangulation().get_communicator();
+    result.difference_squared =
+      Utilities::MPI::sum(result.difference_squared, comm);
+    result.sum_squared = Utilities::MPI::sum(result.sum_squared, comm);
+    return result;
+  }
+
+
+
+  ExactErrorComparison
+  compare_with_exact_error(const std::array<const ElasticBody *, 2> &bodies,
+                           const ErrorEstimate &                     estimate,
+                           const ReferenceStress &                   reference)
+  {
+    const MPI_Comm   comm = bodies[0]->triangulation().get_communicator();
+    StressDifference d    = compare_stresses(
+      bodies,
+      {{&estimate.correction.displacement(0),
+        &estimate.correction.displacement(1)}},
+      reference,
+      reference.quadrature_subdivisions());
+    std::array<Vector<double>, 2> &exact_squared = d.cell_squared;
+    const double sum_minus = d.difference_squared;
+    const double sum_plus  = d.sum_squared;
 
     // The contact term is computable: the same as in the estimate.
     const double contact = 2 * estimate.contact.integral;

@@ -107,9 +107,6 @@ namespace coulomb_adapt
     std::vector<ContactNodeState>             previous_contact_states;
     /** The adaptation that made the current meshes (none on cycle 0). */
     std::optional<MeshAdaptationReport>       last_adaptation;
-    /** The reference solution of the exact error, kept over the cycles
-     * of an adaptive run. */
-    std::unique_ptr<ReferenceStress>          reference_solution;
     /** One row per cycle, printed at the end. */
     TableHandler                              cycle_table;
   };

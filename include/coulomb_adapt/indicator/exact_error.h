@@ -24,12 +24,11 @@ namespace coulomb_adapt
     virtual std::vector<SymmetricTensor<2, 2>>
     stresses(const unsigned int b, const std::vector<Point<2>> &points) const = 0;
 
-    /** Subdivisions per direction of the quadrature of a cell of body
-     * @p b with diameter @p cell_diameter, so that a piecewise reference
-     * field is integrated on its own pieces. */
+    /** Subdivisions per direction of the quadrature of a cell of the
+     * judged meshes, so that a piecewise reference field is integrated on
+     * its own pieces. */
     virtual unsigned int
-    quadrature_subdivisions(const unsigned int b,
-                            const double       cell_diameter) const = 0;
+    quadrature_subdivisions() const = 0;
 
     /** "exact solution" or "reference solution (N DoFs)". */
     virtual std::string
@@ -44,8 +43,7 @@ namespace coulomb_adapt
     std::vector<SymmetricTensor<2, 2>>
     stresses(const unsigned int b, const std::vector<Point<2>> &points) const override;
     unsigned int
-    quadrature_subdivisions(const unsigned int b,
-                            const double       cell_diameter) const override;
+    quadrature_subdivisions() const override;
     std::string
     description() const override;
 
@@ -54,48 +52,112 @@ namespace coulomb_adapt
   };
 
   /**
-   * A reference solution of the same scene on a finer mesh: both bodies
-   * built with @p reference_refinements more uniform refinements and solved
-   * with contact (quietly); its stress is evaluated at arbitrary points
-   * across ranks (Utilities::MPI::RemotePointEvaluation). With
-   * @p for_adapted_meshes, the meshes compared with it are not its
-   * uniform ancestors: a cell gets as many quadrature subdivisions as
-   * reference cells fit across it (diameter over the reference's largest
-   * cell diameter, at most 2^reference_refinements), instead of
-   * 2^reference_refinements everywhere (which on fine adapted meshes costs
-   * cells x 4^R points for nothing).
+   * A body on the current mesh of @p judged (body @p body_index of
+   * @p scene) refined @p refinements times uniformly, set up and
+   * assembled: every cell of the judged mesh is split into 4^refinements
+   * cells of the new one. Triangles: the judged mesh, gathered from all
+   * ranks, becomes the coarse mesh (ElasticBody::replace_mesh, the
+   * remesher's path). Quadrilaterals: the judged mesh's refinement history
+   * (hanging nodes included) is replayed on the scene's coarse mesh, cell
+   * by CellId.
+   */
+  std::unique_ptr<ElasticBody>
+  make_refined_body(const ElasticBody &judged,
+                    const Scene &      scene,
+                    const unsigned int body_index,
+                    const Parameters & parameters,
+                    const unsigned int refinements);
+
+  /** The strain energy U = 1/2 int sigma : epsilon of the displacement
+   * @p displacement (with ghost entries) of @p body. */
+  double
+  strain_energy(const ElasticBody &                  body,
+                const TrilinosWrappers::MPI::Vector &displacement);
+
+  /**
+   * A reference solution of the same scene: the judged meshes themselves
+   * (both bodies, as they are in this cycle) refined @p refinements times
+   * uniformly and solved with contact (quietly), so that the reference is
+   * finer than the judged meshes everywhere (theory.md section 8). Its
+   * stress is evaluated at arbitrary points across ranks
+   * (Utilities::MPI::RemotePointEvaluation).
+   *
+   * Its own error is estimated from the solution one refinement coarser
+   * (refinements - 1; the judged FE solution itself when refinements = 1):
+   * the change from that level to this one. Since the spaces are nested,
+   * the change from level R - 1 to R bounds the error of level R from
+   * above when the error falls by at least sqrt(2) per refinement (and
+   * from below it bounds the error of level R - 1).
    */
   class ReferenceSolutionStress : public ReferenceStress
   {
   public:
-    ReferenceSolutionStress(const MPI_Comm                    mpi_communicator,
-                            const Scene &                     scene,
-                            const Parameters &                parameters,
-                            const unsigned int                global_refinements,
-                            const unsigned int                reference_refinements,
-                            const bool for_adapted_meshes = false);
+    ReferenceSolutionStress(const Scene &                             scene,
+                            const Parameters &                        parameters,
+                            const std::array<const ElasticBody *, 2> &judged,
+                            const unsigned int refinements,
+                            const bool         estimate_own_error = true);
     ~ReferenceSolutionStress() override;
     std::vector<SymmetricTensor<2, 2>>
     stresses(const unsigned int b, const std::vector<Point<2>> &points) const override;
+    /** 2^refinements: the judged cells' pieces. */
     unsigned int
-    quadrature_subdivisions(const unsigned int b,
-                            const double       cell_diameter) const override;
+    quadrature_subdivisions() const override;
     std::string
     description() const override;
     /** Newton iterations of the reference contact solve. */
     unsigned int
     newton_iterations() const;
+    types::global_dof_index
+    n_dofs() const;
+    /** Reference body @p b, solved. */
+    const ElasticBody &
+    body(const unsigned int b) const;
+    /** The reference's strain energy of body @p b. */
+    double
+    strain_energy(const unsigned int b) const;
+    /** The reference's own error, normalised like epsilon:
+     * ||sigma_R - sigma_{R-1}|| / ||sigma_R + sigma_{R-1}|| over both
+     * bodies (0 unless estimated). */
+    double
+    own_error() const;
+    /** The same from the strain energies:
+     * sqrt(|U_R - U_{R-1}| / (4 U_R)). */
+    double
+    own_error_from_energy() const;
 
   private:
     ConditionalOStream                          quiet;
-    unsigned int                                reference_refinements;
-    bool                                        for_adapted_meshes;
-    /** Largest cell diameter of each reference body. */
-    std::array<double, 2>                       largest_cell_diameter;
+    unsigned int                                refinements;
     std::array<std::unique_ptr<ElasticBody>, 2> bodies;
-    std::unique_ptr<ContactSolver>              contact_solver;
     unsigned int                                n_newton_iterations = 0;
+    std::array<double, 2>                       energies = {{0, 0}};
+    double                                      epsilon_own = 0;
+    double                                      epsilon_own_energy = 0;
   };
+
+  /** The stress difference of displacement fields on the judged meshes and
+   * a reference, integrated with the quadrature of the pieces. */
+  struct StressDifference
+  {
+    /** ||sigma_ref - sigma_h||^2_{sigma,E} per active cell of each body
+     * (entries of locally owned cells). */
+    std::array<Vector<double>, 2> cell_squared;
+    /** sum of ||sigma_ref - sigma_h||^2 over both bodies. */
+    double difference_squared = 0;
+    /** sum of ||sigma_ref + sigma_h||^2 over both bodies. */
+    double sum_squared = 0;
+  };
+
+  /** Compare the stresses of @p displacements (with ghost entries) on
+   * @p bodies with @p reference, each cell integrated on @p subdivisions x
+   * @p subdivisions pieces. Collective. */
+  StressDifference
+  compare_stresses(
+    const std::array<const ElasticBody *, 2> &                  bodies,
+    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
+    const ReferenceStress &                                     reference,
+    const unsigned int                                          subdivisions);
 
   /** The exact error of a solution and the effectivity of its estimate. */
   struct ExactErrorComparison
