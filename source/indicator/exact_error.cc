@@ -10,6 +10,7 @@
 #include <deal.II/hp/mapping_collection.h>
 #include <deal.II/hp/q_collection.h>
 
+#include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/indicator/exact_error.h>
 
 #include <algorithm>
