@@ -61,87 +61,22 @@ namespace coulomb_adapt
          ++k)
       {
         control.begin_step(k);
-        newton_diagnostics::check_support(support, states, mu, k, slave.name());
-        // A free rotation makes the system singular. With a balanced load
-        // it still has solutions (a disc on its first contact node), and
-        // the next step's sets decide; otherwise the solve goes astray,
-        // which the diagnosis then names.
-        const bool turning = support.rotation_free(states);
-        if (turning)
-          {
-            ++n_turning_steps;
-            pcout << "    body 1 can turn about its active node(s) in these "
-                     "sets: the system is singular"
-                  << std::endl;
-          }
+        const bool turning = check_sets(k);
+        n_turning_steps += turning;
         const auto [assembly_time, solve_time] =
           newton_step(k, turning, report.n_active);
 
         const auto   update = control.update_sets(k);
         const double residual =
           complementarity_residual(rule, previous_weighted_slip, states);
-        report.residual_history.push_back(residual);
-        report.newton_iterations = k;
-        last_changed             = update.changed;
-        report.n_active = report.n_stick = report.n_slip = 0;
-        for (const auto &s : states)
-          if (s.status != ContactStatus::open)
-            {
-              ++report.n_active;
-              (s.status == ContactStatus::stick ? report.n_stick :
-                                                  report.n_slip)++;
-            }
+        last_changed = update.changed;
+        record_step(k, residual, report);
         newton_diagnostics::log_newton_step(
           pcout, k, report, mu, update, residual, assembly_time, solve_time,
           iterative ? &last_linear_solve : nullptr);
-
-        // The residual cannot drop below the round-off of the multipliers,
-        // which are differences of nodal forces: with a stiff, nearly
-        // incompressible body 1 that floor lies above the tolerance.
-        const double floor              = residual_round_off_floor();
-        report.residual_round_off_floor = floor;
-        if (update.n_changed == 0 &&
-            residual <= std::max(contact_parameters.tolerance, floor))
-          {
-            report.converged           = true;
-            report.slave_rotation_free = turning;
-            newton_diagnostics::log_convergence(
-              pcout, turning, residual, contact_parameters.tolerance, floor);
-            break;
-          }
-        // Unchanged sets above the tolerance after a Krylov solve: its
-        // tolerance on |b| does not bound the multipliers node by node.
-        // The same system is solved again from this solution with a
-        // tighter tolerance (once: near what GMRES reaches in double
-        // precision); few iterations, and the AMG hierarchy is reused.
-        if (update.n_changed == 0 && iterative &&
-            report.n_tighter_linear_solves == 0)
-          {
-            report.n_tighter_linear_solves = 1;
-            linear_tolerance_factor        = 1e-2;
-            pcout << "    sets unchanged, residual above the tolerance: "
-                  << "the linear solve is repeated with its tolerance "
-                  << "reduced to " << linear_tolerance_factor << " times"
-                  << std::endl;
-            continue;
-          }
-        // Same sets again: the next step would solve the same system.
-        if (update.n_changed == 0)
-          throw newton_diagnostics::residual_above_tolerance(
-            k, residual, contact_parameters.tolerance, floor);
-        if (const auto repeated = control.repeated_step())
-          {
-            if (control.damp(k, *repeated))
-              continue;
-            throw newton_diagnostics::cycling(k,
-                                              *repeated,
-                                              report.residual_history,
-                                              states,
-                                              update.changed,
-                                              control.n_damping_steps(),
-                                              solver_parameters.type == "amg");
-          }
-        control.record(update, residual);
+        if (next_step(k, update, residual, turning, control, report) ==
+            NextStep::converged)
+          break;
       }
 
     if (!report.converged)
@@ -153,6 +88,104 @@ namespace coulomb_adapt
         n_turning_steps);
     finish_load_step(report);
     return report;
+  }
+
+
+
+  // Body 1 must be held by the sets of step k (or the diagnosis stops the
+  // solve). A free rotation makes the system singular too, but with a
+  // balanced load it still has solutions (a disc on its first contact
+  // node), and the next step's sets decide; otherwise the solve goes
+  // astray, which the diagnoses then name.
+  bool
+  ContactSolver::check_sets(const unsigned int k) const
+  {
+    newton_diagnostics::check_support(support, states, mu, k, slave.name());
+    const bool turning = support.rotation_free(states);
+    if (turning)
+      pcout << "    body 1 can turn about its active node(s) in these "
+               "sets: the system is singular"
+            << std::endl;
+    return turning;
+  }
+
+
+
+  void
+  ContactSolver::record_step(const unsigned int   k,
+                             const double         residual,
+                             ContactSolverReport &report) const
+  {
+    report.residual_history.push_back(residual);
+    report.newton_iterations = k;
+    report.n_active = report.n_stick = report.n_slip = 0;
+    for (const auto &s : states)
+      if (s.status != ContactStatus::open)
+        {
+          ++report.n_active;
+          (s.status == ContactStatus::stick ? report.n_stick :
+                                              report.n_slip)++;
+        }
+  }
+
+
+
+  // Converged: the full rule changes no set and the residual is below the
+  // tolerance, or below the round-off of the multipliers, which are
+  // differences of nodal forces (with a stiff, nearly incompressible body
+  // 1 that floor lies above the tolerance). Unchanged sets above both stop
+  // the solve, unless the linear solve was a Krylov solve: its tolerance
+  // on |b| does not bound the multipliers node by node, and the same
+  // system is solved again from this solution with a tighter tolerance
+  // (once: near what GMRES reaches in double precision; few iterations,
+  // and the AMG hierarchy is reused). Changed sets go to SetChangeControl.
+  ContactSolver::NextStep
+  ContactSolver::next_step(const unsigned int                 k,
+                           const SetChangeControl::SetUpdate &update,
+                           const double                       residual,
+                           const bool                         turning,
+                           SetChangeControl &                 control,
+                           ContactSolverReport &              report)
+  {
+    const double floor              = residual_round_off_floor();
+    report.residual_round_off_floor = floor;
+    if (update.n_changed == 0 &&
+        residual <= std::max(contact_parameters.tolerance, floor))
+      {
+        report.converged           = true;
+        report.slave_rotation_free = turning;
+        newton_diagnostics::log_convergence(
+          pcout, turning, residual, contact_parameters.tolerance, floor);
+        return NextStep::converged;
+      }
+    if (update.n_changed == 0 && iterative &&
+        report.n_tighter_linear_solves == 0)
+      {
+        report.n_tighter_linear_solves = 1;
+        linear_tolerance_factor        = 1e-2;
+        pcout << "    sets unchanged, residual above the tolerance: "
+              << "the linear solve is repeated with its tolerance "
+              << "reduced to " << linear_tolerance_factor << " times"
+              << std::endl;
+        return NextStep::iterate;
+      }
+    if (update.n_changed == 0)
+      throw newton_diagnostics::residual_above_tolerance(
+        k, residual, contact_parameters.tolerance, floor);
+    if (const auto repeated = control.repeated_step())
+      {
+        if (control.damp(k, *repeated))
+          return NextStep::iterate;
+        throw newton_diagnostics::cycling(k,
+                                          *repeated,
+                                          report.residual_history,
+                                          states,
+                                          update.changed,
+                                          control.n_damping_steps(),
+                                          solver_parameters.type == "amg");
+      }
+    control.record(update, residual);
+    return NextStep::iterate;
   }
 
 

@@ -10,6 +10,7 @@
 #include <coulomb_adapt/contact/condensed_newton_system.h>
 #include <coulomb_adapt/contact/contact_state.h>
 #include <coulomb_adapt/contact/mortar_interface.h>
+#include <coulomb_adapt/contact/set_change_control.h>
 #include <coulomb_adapt/contact/slave_support.h>
 #include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
@@ -48,22 +49,26 @@ namespace coulomb_adapt
    * interface with Wohlmuth's dual multiplier basis, and the semismooth
    * Newton method of Hüeber, Stadler and Wohlmuth in its primal-dual active
    * set form. In 2D, with the sets (open / stick / slip, and the slip
-   * direction) fixed, the conditions are linear:
+   * direction) fixed, the conditions are linear, and the dual basis makes
+   * the multipliers explicit, lambda_j = (f^1 - K^1 u^1)_j / D_jj: each
+   * Newton step solves for the displacements of both bodies only.
    *
-   *   open:  lambda_j = 0
-   *   stick: g~_j = 0,  (D u^1 - M u^2)_j . t_j = (its previous value)
-   *   slip:  g~_j = 0,  lambda_t,j = mu s_j lambda_n,j
+   * solve() is the Newton driver; the parts live in their own files:
+   * - MortarInterface: D, M and the weighted gaps;
+   * - SlaveCondensation and CondensedNewtonSystem: the condensed system of
+   *   one step, row-replacing for direct solvers or with the conditions
+   *   eliminated for Krylov + AMG (RowReplacingContactSystem,
+   *   EliminatedContactSystem);
+   * - active_set.h: the rule that reads the next sets off the
+   *   complementarity functions (c_n = c_t = scale E_c / D_jj,
+   *   E_c = E1 E2 / (E1 + E2)), and the residual;
+   * - SetChangeControl: damping, restriction, cycle and stagnation
+   *   detection;
+   * - SlaveSupport: whether the sets hold body 1;
+   * - newton_diagnostics.h: the log lines and the diagnoses.
    *
-   * and the multipliers are condensed: the dual basis makes D diagonal, so
-   * lambda_j = (f^1 - K^1 u^1)_j / D_jj. The unknowns are the displacements
-   * of both bodies only; the slave node rows of body 1 are replaced by the
-   * conditions of their set and the master rows receive
-   * M^T D^-1 (f^1 - K^1 u^1). The system is not symmetric.
-   *
-   * The sets are updated from the complementarity functions (c_n = c_t =
-   * scale E_c / D_jj, E_c = E1 E2 / (E1 + E2)) until they no longer change. mu = 0 takes the
-   * frictionless path: active nodes carry no tangential traction, there are
-   * no stick or slip sets.
+   * mu = 0 takes the frictionless path: active nodes carry no tangential
+   * traction, there are no stick or slip sets.
    */
   class ContactSolver : public ContactSolution
   {
@@ -120,6 +125,10 @@ namespace coulomb_adapt
      * only for a body 1 that friction alone holds tangentially. */
     bool
     restriction_allowed() const;
+    /** The support test of Newton step @p k (throws if body 1 is not
+     * held); returns whether its rotation is free. */
+    bool
+    check_sets(const unsigned int k) const;
     /** Assemble and solve the Newton system of step @p k for the current
      * sets, and evaluate the contact state of its solution. Returns the
      * wall times of assembly and solve. */
@@ -129,6 +138,26 @@ namespace coulomb_adapt
                 const unsigned int n_active);
     void
     solve_newton_system();
+    /** The residual and the sets of step @p k in the report. */
+    void
+    record_step(const unsigned int   k,
+                const double         residual,
+                ContactSolverReport &report) const;
+    enum class NextStep
+    {
+      converged,
+      iterate
+    };
+    /** Convergence test, repeated Krylov solve, cycles and stagnation
+     * after the set update of step @p k; throws the diagnosis when the
+     * iteration cannot go on. */
+    NextStep
+    next_step(const unsigned int                 k,
+              const SetChangeControl::SetUpdate &update,
+              const double                       residual,
+              const bool                         turning,
+              SetChangeControl &                 control,
+              ContactSolverReport &              report);
     void
     evaluate_contact_state();
     /** After convergence: the slip of this load step, the slip history
