@@ -262,9 +262,8 @@ namespace coulomb_adapt
     const auto solve_fresh = [&]() {
       // The modes are zero at the eliminated components: their rows are
       // decoupled (K's diagonal, zero right hand side), so a mode with an
-      // entry there is no near null vector of the reduced operator. With
-      // the entries kept, CG needed 36 instead of 22 iterations (blocks,
-      // mu = 0, 6.6e5 DoFs), GMRES 31 instead of 27 (mu = 0.3).
+      // entry there is no near null vector of the reduced operator, and
+      // the Krylov solves need more iterations (doc/contact.md section 2).
       std::vector<std::vector<double>> modes = near_null_space;
       for (auto &mode : modes)
         for (const auto i : eliminated_dofs)

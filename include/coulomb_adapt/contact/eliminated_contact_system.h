@@ -111,9 +111,8 @@ namespace coulomb_adapt
     std::vector<std::array<double, 2>> node_data;
     std::vector<std::array<int, 3>> states_at_build;
     /** A stale hierarchy costs GMRES iterations roughly in proportion to
-     * the nodes that changed: at 5.6e5 DoFs (hertz, mu = 0.3) 3 changed
-     * nodes cost 30 instead of 25 iterations (its setup costs as much as
-     * 15), 24 changed nodes 159 instead of 36. */
+     * the nodes that changed, a new one its setup: reuse pays for a few
+     * changed nodes only (measurements in doc/contact.md section 2). */
     static constexpr unsigned int max_changed_nodes_for_reuse = 4;
 
     std::shared_ptr<const TrilinosWrappers::SparseMatrix> amg_matrix;
