@@ -162,11 +162,8 @@ main(int argc, char **argv)
       std::array<double, 2> exact;
       for (const unsigned int R : {2u, 3u})
         {
-          const ReferenceSolutionStress reference(MPI_COMM_WORLD,
-                                                  *p->scene,
-                                                  p->parameters,
-                                                  0,
-                                                  R);
+          const ReferenceSolutionStress reference(
+            *p->scene, p->parameters, bodies, R, false);
           exact[R - 2] =
             compare_with_exact_error(bodies, e, reference).epsilon_exact;
         }

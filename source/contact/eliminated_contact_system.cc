@@ -12,14 +12,19 @@
 namespace coulomb_adapt
 {
   void
-  EliminatedContactSystem::reinit(const TrilinosWrappers::SparseMatrix &K1,
-                                  const TrilinosWrappers::SparseMatrix &K2,
-                                  const TrilinosWrappers::MPI::Vector & f1,
-                                  const TrilinosWrappers::MPI::Vector & f2,
-                                  const IndexSet &                      owned,
-                                  const types::global_dof_index         offset,
-                                  const MPI_Comm communicator)
+  EliminatedContactSystem::reinit(const MortarInterface &,
+                                  const ElasticBody &      slave,
+                                  const ElasticBody &      master,
+                                  const SlaveCondensation &condensation)
   {
+    const auto &   K1           = slave.system_matrix();
+    const auto &   K2           = master.system_matrix();
+    const auto &   f1           = slave.system_rhs();
+    const auto &   f2           = master.system_rhs();
+    const IndexSet &owned       = condensation.owned;
+    const auto     offset       = condensation.offset;
+    const MPI_Comm communicator = condensation.communicator;
+
     // A new load step or mesh: K may have changed, so the hierarchy is
     // rebuilt; u of the last solve stays the initial guess on the same
     // index space (the previous load step's solution).
@@ -75,7 +80,7 @@ namespace coulomb_adapt
 
 
   void
-  EliminatedContactSystem::assemble(const std::vector<SlaveNode> &nodes)
+  EliminatedContactSystem::assemble(const std::vector<SlaveNodeConditions> &nodes)
   {
     // The rows of Z and Z~ that differ from the identity: an eliminated
     // component is a combination of other DoFs, with no entry of its own.
@@ -88,7 +93,7 @@ namespace coulomb_adapt
     // converged sets, ContactSolver::solve): the system is built already.
     std::vector<std::array<int, 3>> states;
     std::vector<std::array<double, 2>> data;
-    for (const SlaveNode &node : nodes)
+    for (const SlaveNodeConditions &node : nodes)
       {
         states.push_back({{node.active,
                            node.stick,
@@ -105,7 +110,7 @@ namespace coulomb_adapt
     std::map<types::global_dof_index, Row> eliminated;
     symmetric = true;
 
-    for (const SlaveNode &node : nodes)
+    for (const SlaveNodeConditions &node : nodes)
       {
         if (!node.active)
           continue;
@@ -257,9 +262,8 @@ namespace coulomb_adapt
     const auto solve_fresh = [&]() {
       // The modes are zero at the eliminated components: their rows are
       // decoupled (K's diagonal, zero right hand side), so a mode with an
-      // entry there is no near null vector of the reduced operator. With
-      // the entries kept, CG needed 36 instead of 22 iterations (blocks,
-      // mu = 0, 6.6e5 DoFs), GMRES 31 instead of 27 (mu = 0.3).
+      // entry there is no near null vector of the reduced operator, and
+      // the Krylov solves need more iterations (doc/contact.md section 2).
       std::vector<std::vector<double>> modes = near_null_space;
       for (auto &mode : modes)
         for (const auto i : eliminated_dofs)

@@ -2,6 +2,7 @@
 #include <deal.II/base/timer.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/contact/nested_iteration.h>
 
 #include <iostream>

@@ -287,15 +287,15 @@ namespace coulomb_adapt
   CorrectedContactSolution
   correct_contact_solution(const ElasticBody &              slave,
                            const ElasticBody &              master,
-                           const ContactSolver &            contact_solver,
+                           const ContactSolution &          contact,
                            const double                     mu,
                            const parameters::LinearSolver & solver_parameters,
                            const ContactLoadForm            load_form)
   {
     return correct_contact_solution(slave,
                                     master,
-                                    contact_solver.mortar_interface(),
-                                    contact_solver.node_states(),
+                                    contact.mortar_interface(),
+                                    contact.node_states(),
                                     mu,
                                     solver_parameters,
                                     load_form);

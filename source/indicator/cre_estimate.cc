@@ -37,7 +37,7 @@ namespace coulomb_adapt
 
   ErrorEstimate
   estimate_error_cre(const std::array<const ElasticBody *, 2> &bodies,
-                     const ContactSolver *                     contact_solver,
+                     const ContactSolution *                   contact_solver,
                      const double                              mu,
                      const unsigned int                        degree_increase,
                      const parameters::LinearSolver &          solver_parameters,

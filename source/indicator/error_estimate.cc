@@ -126,7 +126,7 @@ namespace coulomb_adapt
 
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
-                 const ContactSolver *                     contact_solver,
+                 const ContactSolution *                   contact_solver,
                  const double                              mu,
                  const ErrorEstimator                      estimator,
                  const parameters::ErrorIndicator &        indicator_parameters,
@@ -157,7 +157,7 @@ namespace coulomb_adapt
 
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
-                 const ContactSolver *                     contact_solver,
+                 const ContactSolution *                   contact,
                  const double                              mu,
                  const StressRecoveryMethod                recovery,
                  const parameters::LinearSolver &          solver_parameters,
@@ -168,7 +168,7 @@ namespace coulomb_adapt
     estimate.estimator   = recovery == StressRecoveryMethod::spr ?
                              ErrorEstimator::spr :
                              ErrorEstimator::zz;
-    estimate.has_contact = (contact_solver != nullptr);
+    estimate.has_contact = (contact != nullptr);
     if (estimate.has_contact)
       {
         {
@@ -176,14 +176,14 @@ namespace coulomb_adapt
                                              "error indicator: correction");
           estimate.correction = correct_contact_solution(*bodies[0],
                                                          *bodies[1],
-                                                         *contact_solver,
+                                                         *contact,
                                                          mu,
                                                          solver_parameters);
         }
         const OptionalTimerSection section(timer,
                                            "error indicator: contributions");
         estimate.contact =
-          integrate_contact_error(contact_solver->mortar_interface(),
+          integrate_contact_error(contact->mortar_interface(),
                                   estimate.correction.fields,
                                   mu);
       }

@@ -7,6 +7,7 @@
 
 #include <deal.II/grid/cell_id.h>
 
+#include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/indicator/exact_error.h>
 
 #include <algorithm>

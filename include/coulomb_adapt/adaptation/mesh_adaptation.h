@@ -2,7 +2,7 @@
 #define coulomb_adapt_adaptation_mesh_adaptation_h
 
 #include <coulomb_adapt/bodies/elastic_body.h>
-#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/contact/contact_state.h>
 #include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 

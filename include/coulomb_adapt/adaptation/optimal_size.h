@@ -6,7 +6,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
-#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/contact/contact_state.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 
 #include <array>

@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <coulomb_adapt/contact/condensed_newton_system.h>
 #include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
 
@@ -48,54 +49,18 @@ namespace coulomb_adapt
    * before. Eliminated rows get K's diagonal entry and a zero right hand
    * side.
    */
-  class EliminatedContactSystem
+  class EliminatedContactSystem : public CondensedNewtonSystem
   {
   public:
-    /** One slave node, as the current sets see it. */
-    struct SlaveNode
-    {
-      /** Combined indices of the node's x and y displacement. */
-      std::array<types::global_dof_index, 2> dofs;
-      Tensor<1, 2>                           normal;
-      Tensor<1, 2>                           tangent;
-      /** D_jj (mm). */
-      double weight;
-      /** Combined indices of the master DoFs of the coupled master nodes
-       * (x and y), with M_jl, and whether that DoF is constrained in body
-       * 2 (its row stays K^2's and receives no contact force). */
-      struct Coupling
-      {
-        std::array<types::global_dof_index, 2> dofs;
-        std::array<bool, 2>                    constrained;
-        double                                 value;
-      };
-      std::vector<Coupling> couplings;
-      /** Normal condition active (the node touches: stick or slip). */
-      bool active;
-      /** Tangential condition active too (stick). */
-      bool stick;
-      /** g~_j (mm^2) and, at stick nodes, the weighted slip it keeps. */
-      double weighted_gap;
-      double weighted_slip;
-      /** Direction of the tangential traction at a slip node (+1, -1),
-       * and the friction coefficient: the traction lies along
-       * n + mu s t. */
-      int    slip_sign;
-      double friction_coefficient;
-    };
-
     /**
-     * Copy K^1, K^2 and f^1, f^2 into the combined index space (body 2
-     * shifted by @p offset); once per mesh and load step.
+     * Copy K^1, K^2 and f^1, f^2 into the combined index space of
+     * @p condensation (body 2 shifted); once per mesh and load step.
      */
     void
-    reinit(const TrilinosWrappers::SparseMatrix &K1,
-           const TrilinosWrappers::SparseMatrix &K2,
-           const TrilinosWrappers::MPI::Vector & f1,
-           const TrilinosWrappers::MPI::Vector & f2,
-           const IndexSet &                      owned,
-           const types::global_dof_index         offset,
-           const MPI_Comm                        communicator);
+    reinit(const MortarInterface &  mortar,
+           const ElasticBody &      slave,
+           const ElasticBody &      master,
+           const SlaveCondensation &condensation) override;
 
     /**
      * Build Z, Z~, u_g and the reduced system for the sets given by
@@ -104,7 +69,7 @@ namespace coulomb_adapt
      * call.
      */
     void
-    assemble(const std::vector<SlaveNode> &nodes);
+    assemble(const std::vector<SlaveNodeConditions> &nodes) override;
 
     /**
      * Solve the reduced system; @p solution receives u (combined index
@@ -121,7 +86,7 @@ namespace coulomb_adapt
     LinearSolverReport
     solve(const std::vector<std::vector<double>> &near_null_space,
           const parameters::LinearSolver &        settings,
-          TrilinosWrappers::MPI::Vector &         solution);
+          TrilinosWrappers::MPI::Vector &         solution) override;
 
   private:
     IndexSet                       owned;
@@ -146,9 +111,8 @@ namespace coulomb_adapt
     std::vector<std::array<double, 2>> node_data;
     std::vector<std::array<int, 3>> states_at_build;
     /** A stale hierarchy costs GMRES iterations roughly in proportion to
-     * the nodes that changed: at 5.6e5 DoFs (hertz, mu = 0.3) 3 changed
-     * nodes cost 30 instead of 25 iterations (its setup costs as much as
-     * 15), 24 changed nodes 159 instead of 36. */
+     * the nodes that changed, a new one its setup: reuse pays for a few
+     * changed nodes only (measurements in doc/contact.md section 2). */
     static constexpr unsigned int max_changed_nodes_for_reuse = 4;
 
     std::shared_ptr<const TrilinosWrappers::SparseMatrix> amg_matrix;

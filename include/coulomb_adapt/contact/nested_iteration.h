@@ -4,7 +4,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/types.h>
 
-#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/contact/contact_state.h>
 #include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/scenes/scene.h>
 

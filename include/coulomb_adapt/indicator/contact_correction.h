@@ -4,7 +4,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
-#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/contact/contact_state.h>
 #include <coulomb_adapt/indicator/contact_error.h>
 
 #include <array>
@@ -75,7 +75,7 @@ namespace coulomb_adapt
   CorrectedContactSolution
   correct_contact_solution(const ElasticBody &               slave,
                            const ElasticBody &               master,
-                           const ContactSolver &             contact_solver,
+                           const ContactSolution &           contact,
                            const double                      friction_coefficient,
                            const parameters::LinearSolver &  solver_parameters,
                            const ContactLoadForm load_form = ContactLoadForm::mortar);

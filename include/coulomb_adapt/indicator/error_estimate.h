@@ -6,7 +6,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
-#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/contact/contact_state.h>
 #include <coulomb_adapt/indicator/contact_correction.h>
 #include <coulomb_adapt/indicator/contact_error.h>
 #include <coulomb_adapt/core/error_estimator.h>
@@ -56,8 +56,8 @@ namespace coulomb_adapt
    *   e_E^2 = int_E (sigma~ - sigma_c)^T K^-1 (sigma~ - sigma_c)
    *           + int_{Gamma_c cap dE} c(W_c, R_c)
    *
-   * into epsilon_E = e_E / D and epsilon (theory.md 3.4, 3.5). @p contact_solver
-   * may be null (no contact zone).
+   * into epsilon_E = e_E / D and epsilon (theory.md 3.4, 3.5). @p contact
+   * (the solved contact interface) may be null (no contact zone).
    *
    * With a @p timer, the three phases are timed in its sections
    * "error indicator: correction" (the corrected contact fields),
@@ -67,7 +67,7 @@ namespace coulomb_adapt
    */
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
-                 const ContactSolver *                     contact_solver,
+                 const ContactSolution *                   contact,
                  const double                              friction_coefficient,
                  const StressRecoveryMethod                recovery,
                  const parameters::LinearSolver &          solver_parameters,
@@ -80,7 +80,7 @@ namespace coulomb_adapt
    */
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
-                 const ContactSolver *                     contact_solver,
+                 const ContactSolution *                   contact_solver,
                  const double                              friction_coefficient,
                  const ErrorEstimator                      estimator,
                  const parameters::ErrorIndicator &        indicator_parameters,
@@ -101,7 +101,7 @@ namespace coulomb_adapt
    */
   ErrorEstimate
   estimate_error_cre(const std::array<const ElasticBody *, 2> &bodies,
-                     const ContactSolver *                     contact_solver,
+                     const ContactSolution *                   contact_solver,
                      const double                              friction_coefficient,
                      const unsigned int                        degree_increase,
                      const parameters::LinearSolver &          solver_parameters,

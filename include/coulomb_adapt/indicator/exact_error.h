@@ -4,7 +4,6 @@
 #include <deal.II/base/conditional_ostream.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
-#include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 
 #include <array>
@@ -13,6 +12,8 @@
 
 namespace coulomb_adapt
 {
+  class ContactSolver;
+
   /** The stress the exact error (3-8) compares sigma_c with. */
   class ReferenceStress
   {

@@ -1,7 +1,7 @@
 #ifndef coulomb_adapt_output_contact_output_h
 #define coulomb_adapt_output_contact_output_h
 
-#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/contact/contact_state.h>
 
 #include <string>
 #include <utility>

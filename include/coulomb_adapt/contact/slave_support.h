@@ -1,0 +1,54 @@
+#ifndef coulomb_adapt_contact_slave_support_h
+#define coulomb_adapt_contact_slave_support_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/full_matrix.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/contact_state.h>
+
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * Which rigid motions of body 1 (the slave body) are held, by its own
+   * Dirichlet data and by the contact sets. A body 1 without Dirichlet
+   * data floats: the contact conditions alone hold it, and sets that do
+   * not (no active node, no stick node against a slide along the
+   * interface, or active nodes that leave a rotation free) make the Newton
+   * system singular.
+   *
+   * The Gram matrix of body 1's supported rigid motions
+   * (ElasticBody::support_gram) is computed once per load step, about the
+   * mean slave node position; every test of the Newton steps reads it.
+   */
+  class SlaveSupport
+  {
+  public:
+    void
+    reinit(const ElasticBody &slave, const std::vector<ContactNodeState> &states);
+
+    /** Whether body 1's Dirichlet data alone hold all its rigid motions. */
+    bool
+    holds_all_rigid_motions() const;
+
+    /** Whether its Dirichlet data hold its translation along @p direction
+     * (a unit vector). */
+    bool
+    holds_translation_along(const Tensor<1, 2> &direction) const;
+
+    /** Whether the sets of @p states and the Dirichlet data leave a rigid
+     * rotation of body 1 free (the Newton system is then singular). */
+    bool
+    rotation_free(const std::vector<ContactNodeState> &states) const;
+
+  private:
+    FullMatrix<double> gram;
+    Point<2>           centre;
+  };
+} // namespace coulomb_adapt
+
+#endif

@@ -1,0 +1,278 @@
+#include <deal.II/base/utilities.h>
+
+#include <coulomb_adapt/contact/newton_diagnostics.h>
+#include <coulomb_adapt/core/parameter_error.h>
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+namespace coulomb_adapt
+{
+  namespace newton_diagnostics
+  {
+    namespace
+    {
+      std::string
+      newton_step(const unsigned int step)
+      {
+        return "Newton step " + std::to_string(step);
+      }
+
+
+
+      // The hint of the "would slide" diagnosis: at the first step the
+      // load itself is suspect; later also the iteration.
+      std::string
+      sliding_message(const double friction_coefficient, const unsigned int step)
+      {
+        if (friction_coefficient == 0)
+          return "can slide freely along the frictionless interface: nothing "
+                 "holds it tangentially. Hold it with the scene's hold option "
+                 "(blocks, punch: 'Hold centre line'; hertz: 'Hold axis'; "
+                 "patch: 'Hold upper body') or use friction.";
+        return "would slide: in the contact sets of this step every active "
+               "node slips and no Dirichlet data hold it tangentially, so "
+               "the linear system is singular. " +
+               (step == 1 ?
+                  std::string("") :
+                  std::string("If the tangential load exceeds mu times "
+                              "the normal load the static problem has no "
+                              "equilibrium; otherwise the active set "
+                              "iteration went astray (try another "
+                              "'Contact/Complementarity scale').")) +
+               (step == 1 ? std::string("The tangential load exceeds mu "
+                                        "times the normal load?") :
+                            std::string());
+      }
+
+
+
+      // Up to ten positions of the nodes in @p changed.
+      std::string
+      node_positions(const std::vector<ContactNodeState> &states,
+                     const std::vector<unsigned int> &    changed,
+                     const std::string &                  before,
+                     const std::string &                  after)
+      {
+        std::ostringstream s;
+        for (unsigned int i = 0; i < std::min<std::size_t>(changed.size(), 10);
+             ++i)
+          s << before << states[changed[i]].position[0] << ", "
+            << states[changed[i]].position[1] << after;
+        return s.str();
+      }
+    } // namespace
+
+
+
+    void
+    check_support(const SlaveSupport &                 support,
+                  const std::vector<ContactNodeState> &states,
+                  const double                         friction_coefficient,
+                  const unsigned int                   step,
+                  const std::string &                  body_name)
+    {
+      unsigned int n_active = 0, n_stick = 0;
+      for (const auto &s : states)
+        if (s.status != ContactStatus::open)
+          {
+            ++n_active;
+            n_stick += (s.status == ContactStatus::stick);
+          }
+      const std::string where =
+        newton_step(step) + ": body 1 (" + body_name + ") ";
+      if (n_active == 0 && !support.holds_all_rigid_motions())
+        throw ContactDiagnosis(where + "has no active contact node and no "
+                                       "Dirichlet support: nothing holds it "
+                                       "(is it loaded towards body 2?).",
+                               step - 1);
+      if (n_stick == 0 && n_active > 0)
+        {
+          Tensor<1, 2> tangent;
+          for (const auto &s : states)
+            if (s.status != ContactStatus::open)
+              tangent += s.tangent;
+          tangent /= tangent.norm();
+          if (!support.holds_translation_along(tangent))
+            throw ContactDiagnosis(where + sliding_message(friction_coefficient,
+                                                           step),
+                                   step - 1);
+        }
+    }
+
+
+
+    ContactDiagnosis
+    krylov_failure(const unsigned int step, const SolverControl::NoConvergence &e)
+    {
+      return ContactDiagnosis(
+        newton_step(step) +
+          ": the iterative linear solver did not converge (" +
+          std::to_string(e.last_step) + " iterations, residual " +
+          Utilities::to_string(e.last_residual) +
+          "). Use 'Linear solver/Type = direct' for the contact system.",
+        step);
+    }
+
+
+
+    ContactDiagnosis
+    linear_solve_failure(const unsigned int    step,
+                         const unsigned int    n_active,
+                         const bool            rotation_free,
+                         const std::exception &e)
+    {
+      return ContactDiagnosis(
+        newton_step(step) +
+          ": the linear solve failed with these contact sets (" +
+          std::to_string(n_active) + " active nodes). " +
+          (rotation_free ?
+             std::string("These sets and the Dirichlet data leave body "
+                         "1's rotation free (a singular system): hold "
+                         "the body or refine the mesh where the bodies "
+                         "touch.") :
+             std::string(
+               "The most likely cause is that body 1 is not held: all "
+               "its contact nodes are open or slipping in the same "
+               "direction, and no Dirichlet data holds it (a load "
+               "beyond the friction limit, or mu = 0 without a "
+               "lateral support).")) +
+          " Solver message: " + user_message(e),
+        step);
+    }
+
+
+
+    ContactDiagnosis
+    residual_above_tolerance(const unsigned int step,
+                             const double       residual,
+                             const double       tolerance,
+                             const double       floor)
+    {
+      return ContactDiagnosis(
+        "The contact sets have converged after " + std::to_string(step) +
+          " Newton steps, but the complementarity residual " +
+          Utilities::to_string(residual) + " stays above the tolerance " +
+          Utilities::to_string(tolerance) +
+          " and above the round-off of the multipliers (" +
+          Utilities::to_string(floor) +
+          "): the linear solver is not accurate enough for it "
+          "(ill-conditioned system?). Relax 'Contact/Tolerance' or check "
+          "the data.",
+        step);
+    }
+
+
+
+    ContactDiagnosis
+    cycling(const unsigned int                   step,
+            const unsigned int                   repeated,
+            const std::vector<double> &          residual_history,
+            const std::vector<ContactNodeState> &states,
+            const std::vector<unsigned int> &    changed,
+            const unsigned int                   n_damping_steps,
+            const bool                           iterative_solver_chosen)
+    {
+      std::ostringstream residuals;
+      for (const double r : residual_history)
+        residuals << r << ' ';
+      return ContactDiagnosis(
+        "The semismooth Newton iteration cycles: after step " +
+          std::to_string(step) + " the contact sets repeat those of step " +
+          std::to_string(repeated) + ". Last residuals: " + residuals.str() +
+          "; nodes that flipped in the last step: " +
+          node_positions(states, changed, "(", ") ") + ". c_n, c_t were "
+          "reduced " + std::to_string(n_damping_steps) +
+          " times ten-fold before. Try another 'Contact/Complementarity "
+          "scale'" +
+          (iterative_solver_chosen ?
+             ", or 'Linear solver/Type = direct' (an inexact iterative "
+             "solve can make the sets cycle)" :
+             std::string()) +
+          ".",
+        step);
+    }
+
+
+
+    ContactDiagnosis
+    iteration_limit(const unsigned int                   max_steps,
+                    const std::vector<double> &          residual_history,
+                    const std::vector<ContactNodeState> &states,
+                    const std::vector<unsigned int> &    changed,
+                    const unsigned int                   n_turning_steps)
+    {
+      std::ostringstream s;
+      s << "The semismooth Newton iteration did not converge in " << max_steps
+        << " steps. Residual history:";
+      for (const double r : residual_history)
+        s << ' ' << r;
+      s << ". Nodes that changed set in the last step:"
+        << node_positions(states, changed, " (", ")");
+      if (n_turning_steps > 0)
+        s << ". In " << n_turning_steps
+          << " of the steps the sets and the Dirichlet data left body 1's "
+             "rotation free (a single active node, or normals meeting in "
+             "one point): a singular system, which the linear solver may "
+             "answer with a wild iterate. Hold the body or refine the mesh "
+             "where the bodies touch";
+      return ContactDiagnosis(s.str(), max_steps);
+    }
+
+
+
+    void
+    log_newton_step(const ConditionalOStream &         pcout,
+                    const unsigned int                 step,
+                    const ContactSolverReport &        report,
+                    const double                       friction_coefficient,
+                    const SetChangeControl::SetUpdate &update,
+                    const double                       residual,
+                    const double                       assembly_time,
+                    const double                       solve_time,
+                    const LinearSolverReport *         linear_solve)
+    {
+      pcout << "    Newton " << std::setw(2) << step << ": " << std::setw(4)
+            << report.n_active << " active";
+      if (friction_coefficient > 0)
+        pcout << " (" << report.n_stick << " stick, " << report.n_slip
+              << " slip)";
+      pcout << ", " << update.n_changed << " changed";
+      if (update.n_moved != update.n_changed)
+        pcout << " (" << update.n_moved << " moved)";
+      pcout << ", residual " << std::scientific << std::setprecision(2)
+            << residual << std::defaultfloat << " (assembly "
+            << std::setprecision(2) << assembly_time << " s, solve "
+            << solve_time << " s";
+      if (linear_solve != nullptr)
+        pcout << ", " << linear_solve->method << " "
+              << linear_solve->n_iterations << " its"
+              << (linear_solve->preconditioner_reused ? ", AMG reused" : "");
+      pcout << ")" << std::endl;
+    }
+
+
+
+    void
+    log_convergence(const ConditionalOStream &pcout,
+                    const bool                rotation_free,
+                    const double              residual,
+                    const double              tolerance,
+                    const double              floor)
+    {
+      if (rotation_free)
+        pcout << "    warning: the converged sets leave body 1's "
+                 "rotation free, so its displacement is determined "
+                 "only up to a small rigid rotation (stresses and "
+                 "tractions do not depend on it); refine the mesh "
+                 "where the bodies touch, or hold the body"
+              << std::endl;
+      if (residual > tolerance)
+        pcout << "    residual " << residual << " is above the "
+              << "tolerance " << tolerance
+              << " but within the round-off of the multipliers (" << floor
+              << "): converged" << std::endl;
+    }
+  } // namespace newton_diagnostics
+} // namespace coulomb_adapt
