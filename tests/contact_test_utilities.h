@@ -8,6 +8,8 @@
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 
+#include <coulomb_adapt/indicator/error_estimate.h>
+
 #include "test_utilities.h"
 
 #include <algorithm>
@@ -224,6 +226,29 @@ namespace coulomb_adapt
                                ", slip of stick nodes " +
                                std::to_string(stuck / max_slip) +
                                " (of the largest slip increment)"));
+    }
+
+    /** epsilon_E of every cell of both bodies, gathered on every rank in
+     * CellId order (so that it does not depend on the partition). */
+    inline std::vector<double>
+    gathered_indicators(const std::array<const ElasticBody *, 2> &bodies,
+                        const ErrorEstimate &                     e)
+    {
+      std::vector<std::pair<std::string, double>> local;
+      for (unsigned int b = 0; b < 2; ++b)
+        for (const auto &cell :
+             bodies[b]->triangulation().active_cell_iterators())
+          if (cell->is_locally_owned())
+            local.emplace_back(std::to_string(b) + cell->id().to_string(),
+                               e.indicator[b](cell->active_cell_index()));
+      std::vector<std::pair<std::string, double>> all;
+      for (const auto &v : Utilities::MPI::all_gather(MPI_COMM_WORLD, local))
+        all.insert(all.end(), v.begin(), v.end());
+      std::sort(all.begin(), all.end());
+      std::vector<double> values;
+      for (const auto &[id, value] : all)
+        values.push_back(value);
+      return values;
     }
   } // namespace testing
 } // namespace coulomb_adapt

@@ -45,26 +45,6 @@ namespace
     return {{bodies[0].get(), bodies[1].get()}};
   }
 
-  // epsilon_E of every cell of both bodies, gathered by CellId.
-  std::vector<double>
-  all_indicators(const std::array<const ElasticBody *, 2> &bodies,
-                 const ErrorEstimate &                     e)
-  {
-    std::vector<std::pair<std::string, double>> local;
-    for (unsigned int b = 0; b < 2; ++b)
-      for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
-        if (cell->is_locally_owned())
-          local.emplace_back(std::to_string(b) + cell->id().to_string(),
-                             e.indicator[b](cell->active_cell_index()));
-    std::vector<std::pair<std::string, double>> all;
-    for (const auto &v : Utilities::MPI::all_gather(MPI_COMM_WORLD, local))
-      all.insert(all.end(), v.begin(), v.end());
-    std::sort(all.begin(), all.end());
-    std::vector<double> values;
-    for (const auto &[id, value] : all)
-      values.push_back(value);
-    return values;
-  }
 } // namespace
 
 int
@@ -200,8 +180,8 @@ main(int argc, char **argv)
     sum = Utilities::MPI::sum(sum, MPI_COMM_WORLD) / e1.normalisation_squared;
     const double sum_mismatch =
       std::abs(sum - e1.epsilon * e1.epsilon) / (e1.epsilon * e1.epsilon);
-    const auto   i1 = all_indicators(b1, e1);
-    const auto   i2 = all_indicators(b2, e2);
+    const auto   i1 = testing::gathered_indicators(b1, e1);
+    const auto   i2 = testing::gathered_indicators(b2, e2);
     double       largest_change = std::abs(e1.epsilon - e2.epsilon) / e1.epsilon;
     for (unsigned int i = 0; i < i1.size(); ++i)
       largest_change =

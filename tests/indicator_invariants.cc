@@ -40,26 +40,6 @@ namespace
     return Utilities::MPI::sum(sum, MPI_COMM_WORLD) / e.normalisation_squared;
   }
 
-  // epsilon_E of every cell of both bodies on rank 0, in a fixed order
-  // (gathered by CellId so that it does not depend on the partition).
-  std::vector<double>
-  all_indicators(const testing::SolvedContactProblem &p, const ErrorEstimate &e)
-  {
-    std::vector<std::pair<std::string, double>> local;
-    for (unsigned int b = 0; b < 2; ++b)
-      for (const auto &cell : p.bodies[b]->triangulation().active_cell_iterators())
-        if (cell->is_locally_owned())
-          local.emplace_back(std::to_string(b) + cell->id().to_string(),
-                             e.indicator[b](cell->active_cell_index()));
-    std::vector<std::pair<std::string, double>> all;
-    for (const auto &v : Utilities::MPI::all_gather(MPI_COMM_WORLD, local))
-      all.insert(all.end(), v.begin(), v.end());
-    std::sort(all.begin(), all.end());
-    std::vector<double> values;
-    for (const auto &[id, value] : all)
-      values.push_back(value);
-    return values;
-  }
 } // namespace
 
 int
@@ -143,12 +123,12 @@ main(int argc, char **argv)
       };
       const auto          p0 = testing::solve_contact(with_load(1));
       const ErrorEstimate e0 = estimate(*p0);
-      const auto          reference = all_indicators(*p0, e0);
+      const auto          reference = testing::gathered_indicators({{p0->bodies[0].get(), p0->bodies[1].get()}}, e0);
       for (const double factor : {1e-3, 1e3})
         {
           const auto          p = testing::solve_contact(with_load(factor));
           const ErrorEstimate e = estimate(*p);
-          const auto          indicators = all_indicators(*p, e);
+          const auto          indicators = testing::gathered_indicators({{p->bodies[0].get(), p->bodies[1].get()}}, e);
           double largest = 0, difference = 0;
           for (unsigned int i = 0; i < indicators.size(); ++i)
             {

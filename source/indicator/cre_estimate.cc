@@ -1,3 +1,4 @@
+#include <coulomb_adapt/core/optional_timer_section.h>
 #include <coulomb_adapt/indicator/equilibrated_stress.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 
@@ -57,9 +58,7 @@ namespace coulomb_adapt
     if (estimate.has_contact)
       {
         {
-          std::optional<TimerOutput::Scope> section;
-          if (timer)
-            section.emplace(*timer, "error indicator: correction");
+          const OptionalTimerSection section(timer, "error indicator: correction");
           estimate.correction = correct_contact_solution(*bodies[0],
                                                          *bodies[1],
                                                          *contact_solver,
@@ -73,9 +72,7 @@ namespace coulomb_adapt
                                      solver_parameters,
                                      ContactLoadForm::consistent);
         }
-        std::optional<TimerOutput::Scope> section;
-        if (timer)
-          section.emplace(*timer, "error indicator: contributions");
+        const OptionalTimerSection section(timer, "error indicator: contributions");
         estimate.contact =
           integrate_contact_error(contact_solver->mortar_interface(),
                                   estimate.correction.fields,
@@ -94,9 +91,7 @@ namespace coulomb_adapt
     double                normalisation_squared = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
-        std::optional<TimerOutput::Scope> section;
-        if (timer)
-          section.emplace(*timer, "error indicator: equilibration");
+        const OptionalTimerSection section(timer, "error indicator: equilibration");
         EquilibratedStressErrors errors =
           equilibrated_stress_errors(*bodies[b],
                                      equilibrium.displacement(b),
@@ -114,9 +109,7 @@ namespace coulomb_adapt
           std::max(estimate.local_problem_defect, errors.local_problem_defect);
       }
 
-    std::optional<TimerOutput::Scope> section;
-    if (timer)
-      section.emplace(*timer, "error indicator: contributions");
+    const OptionalTimerSection section(timer, "error indicator: contributions");
     finish_error_estimate(bodies, volume_squared, normalisation_squared, estimate);
     return estimate;
   }

@@ -1,3 +1,4 @@
+#include <coulomb_adapt/core/optional_timer_section.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 
 #include <cmath>
@@ -19,22 +20,6 @@ namespace coulomb_adapt
 
   namespace
   {
-    // While it lives, the section @p name of a timer, if there is one.
-    class OptionalTimerSection
-    {
-    public:
-      OptionalTimerSection(TimerOutput *timer, const std::string &name)
-      {
-        if (timer != nullptr)
-          scope.emplace(*timer, name);
-      }
-
-    private:
-      std::optional<TimerOutput::Scope> scope;
-    };
-
-
-
     // Per cell: int (sigma~ - sigma_c) K^-1 (sigma~ - sigma_c) into
     // @p difference, and the global int (sigma~ + sigma_c) K^-1 (...)
     // returned. The quadrature of the body integrates these exactly on
