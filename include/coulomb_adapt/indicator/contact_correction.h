@@ -39,9 +39,11 @@ namespace coulomb_adapt
     /** Largest nodal penetration of W_c (mm), clipped by the contact term;
      * 0 if none. */
     double max_penetration = 0;
-    /** U_c of body b (0: body 1, 1: body 2), with ghost entries: the
-     * corrected displacement if a corrected solve was done, else the
-     * body's FE solution (not copied). */
+    /** U_c of body b (0: body 1, 1: body 2): the corrected displacement
+     * if a corrected solve was done (locally owned entries only: whoever
+     * reads ghost cells must make a ghosted copy, as the cre estimator
+     * does), else the body's FE solution (with ghost entries, not
+     * copied). */
     const TrilinosWrappers::MPI::Vector &
     displacement(const unsigned int b) const
     {
