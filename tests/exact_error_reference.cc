@@ -92,7 +92,8 @@ namespace
                    estimate,
                    states,
                    parameters.adaptation,
-                   parameters.finite_elements.degree);
+                   parameters.finite_elements.degree,
+                   parameters.adaptation.target_error);
       solve();
     }
   };

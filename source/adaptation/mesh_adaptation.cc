@@ -12,7 +12,8 @@ namespace coulomb_adapt
                ErrorEstimate &                      estimate,
                const std::vector<ContactNodeState> &contact_states,
                const parameters::Adaptation &       parameters,
-               const unsigned int                   degree)
+               const unsigned int                   degree,
+               const double                         aimed_error)
   {
     MeshAdaptationReport report;
     report.strategy = parameters.strategy;
@@ -48,12 +49,13 @@ namespace coulomb_adapt
                                      estimate,
                                      find_singular_points(const_bodies,
                                                           contact_states),
-                                     parameters.target_error,
+                                     aimed_error,
                                      degree,
                                      parameters.singular_rate,
                                      parameters.min_size_ratio,
                                      parameters.max_size_ratio,
                                      max_n_cells);
+        report.aimed_epsilon     = aimed_error;
         report.predicted_n_cells = ratios.predicted_n_cells;
         report.predicted_epsilon = ratios.predicted_epsilon;
         report.n_singular_cells  = ratios.n_singular_cells;
@@ -85,7 +87,7 @@ namespace coulomb_adapt
         decisions_from_size_ratios(const_bodies,
                                    estimate,
                                    ratios,
-                                   parameters.target_error) :
+                                   aimed_error) :
         decisions_from_indicator(const_bodies,
                                  estimate,
                                  parameters.refinement_criterion,

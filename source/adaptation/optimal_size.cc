@@ -156,6 +156,21 @@ namespace coulomb_adapt
     // refining every other cell more, which overshot the cell count of the
     // first cycle several times over (blocks, 4.6 % -> 1 %: 19,806 DoFs
     // instead of 8,548).
+    //
+    // The lower bound is r_E >= min_ratio where q_E = p, and
+    // min_ratio^{3/2} at singular points, where the error falls more
+    // slowly with h. With min_ratio there too, the singular cells, which
+    // hold most of the error of a coarse mesh, could reduce it by only
+    // min_ratio^{1/2} per cycle, and a small epsilon_0 would take three or
+    // four cycles for them alone. Bounding the error reduction instead
+    // (r_E^{q_E} >= min_ratio^p, so min_ratio^2 for q = 1/2) lets the
+    // asymptotic model plan from a coarse mesh far beyond where it holds,
+    // and it over-refines the corners. benchmarks/adaptive_run measures
+    // the choice: at most two steps, final meshes somewhat larger than
+    // those of the slower loop.
+    auto lowest_ratio = [&](const CellData &c) {
+      return c.rate < degree ? std::pow(min_ratio, 1.5) : min_ratio;
+    };
     auto ratio = [&](const CellData &c, const double L, const bool lower_bound) {
       if (c.epsilon_squared <= 0)
         return max_ratio;
@@ -163,7 +178,7 @@ namespace coulomb_adapt
         (std::log(dimension / (2 * c.rate * c.epsilon_squared)) - L) /
         (2 * c.rate + dimension);
       return std::clamp(std::exp(std::clamp(log_r, -300., 300.)),
-                        lower_bound ? min_ratio : 0.,
+                        lower_bound ? lowest_ratio(c) : 0.,
                         max_ratio);
     };
     auto predicted_error_squared = [&](const double L, const bool lower_bound) {
@@ -214,7 +229,7 @@ namespace coulomb_adapt
         const double r              = ratio(c, L, true);
         result.ratio[c.body](c.index) = r;
         n_cells += std::pow(r, -dimension);
-        result.n_at_min_ratio += (r <= min_ratio * (1 + 1e-12));
+        result.n_at_min_ratio += (r <= lowest_ratio(c) * (1 + 1e-12));
         result.n_at_max_ratio += (r >= max_ratio * (1 - 1e-12));
       }
     result.predicted_n_cells = Utilities::MPI::sum(n_cells, comm);

@@ -29,6 +29,7 @@ namespace coulomb_adapt
     , computing_timer(pcout,
                       TimerOutput::never,
                       TimerOutput::wall_times)
+    , target_calibration(parameters.adaptation.target_safety_factor)
   {
     scene   = scenes::create_scene(parameters, prm);
     summary = std::make_unique<RunSummary>(
@@ -656,7 +657,10 @@ namespace coulomb_adapt
                    *error_estimate,
                    previous_contact_states,
                    a,
-                   parameters.finite_elements.degree);
+                   parameters.finite_elements.degree,
+                   target_calibration.aim(a.target_error));
+    if (last_adaptation->predicted_epsilon > 0)
+      target_calibration.record_plan(last_adaptation->predicted_epsilon);
     error_estimate.reset();
     const MeshAdaptationReport &r = *last_adaptation;
     pcout << "  adapt (" << r.strategy;
@@ -665,7 +669,11 @@ namespace coulomb_adapt
     pcout << "): ";
     if (r.predicted_n_cells >= 0)
       pcout << "optimal mesh for epsilon_0 = " << 100 * a.target_error
-            << " %: N* = " << std::llround(r.predicted_n_cells)
+            << " %, planned for " << std::setprecision(3)
+            << 100 * r.aimed_epsilon << " % (safety factor "
+            << a.target_safety_factor << ", measured/predicted "
+            << target_calibration.correction()
+            << "): N* = " << std::llround(r.predicted_n_cells)
             << " cells, predicted epsilon " << std::setprecision(3)
             << 100 * r.predicted_epsilon << " % (r_E bounded to ["
             << a.min_size_ratio << ", " << a.max_size_ratio << "]: "
@@ -797,6 +805,8 @@ namespace coulomb_adapt
             cycle_record["adaptation"] = {
               {"predicted_n_cells", last_adaptation->predicted_n_cells},
               {"predicted_epsilon", last_adaptation->predicted_epsilon},
+              {"aimed_epsilon", last_adaptation->aimed_epsilon},
+              {"calibration", target_calibration.correction()},
               {"obtained_n_cells", obtained},
               {"singular_cells", last_adaptation->n_singular_cells},
               {"limited_by_max_dofs", last_adaptation->limited_by_max_dofs}};
@@ -813,6 +823,7 @@ namespace coulomb_adapt
         assemble_system();
         solve();
         estimate_error();
+        target_calibration.record_achieved(error_estimate->epsilon);
         // Timed on its own: a verification cost, not the indicator's.
         if (parameters.error_indicator.compute_exact_error)
           compare_with_exact_error(cycle);

@@ -20,6 +20,9 @@ namespace coulomb_adapt
      * mesh, when the size ratios were used; -1 otherwise. */
     double       predicted_n_cells = -1;
     double       predicted_epsilon = -1;
+    /** The epsilon the mesh was planned for (TargetCalibration::aim);
+     * -1 when no plan was made. */
+    double       aimed_epsilon = -1;
     unsigned int n_singular_cells  = 0;
     unsigned int n_at_min_ratio = 0, n_at_max_ratio = 0;
     /** Whether the optimal mesh for epsilon_0 exceeded 'Maximum number of
@@ -35,14 +38,17 @@ namespace coulomb_adapt
    * quadrilaterals, or gmsh remeshing of each body with the optimal size
    * field. @p estimate and @p contact_states are those of the current
    * meshes; the estimate's recovered stresses, which live on these meshes,
-   * are released. @p degree is the polynomial degree p.
+   * are released. @p degree is the polynomial degree p. The size-ratio
+   * strategies plan the mesh for @p aimed_error, epsilon_0 corrected by
+   * what the previous plans achieved (TargetCalibration).
    */
   MeshAdaptationReport
   adapt_meshes(const std::array<ElasticBody *, 2> & bodies,
                ErrorEstimate &                      estimate,
                const std::vector<ContactNodeState> &contact_states,
                const parameters::Adaptation &       parameters,
-               const unsigned int                   degree);
+               const unsigned int                   degree,
+               const double                         aimed_error);
 } // namespace coulomb_adapt
 
 #endif

@@ -52,9 +52,10 @@ namespace coulomb_adapt
   /**
    * Minimise the cell count sum_E r_E^-d subject to the predicted error
    * sum_E r_E^{2 q_E} epsilon_E^2 = epsilon_0^2 (d = 2), with r_E <=
-   * @p max_ratio in the optimisation and r_E >= @p min_ratio imposed
-   * afterwards (the predicted epsilon is then above epsilon_0 and the next
-   * cycle goes on). q_E = p (@p degree) except in cells
+   * @p max_ratio in the optimisation and a lower bound imposed afterwards
+   * (the predicted epsilon is then above epsilon_0 and the next cycle goes
+   * on): r_E >= @p min_ratio where q_E = p and r_E >= @p min_ratio^{3/2}
+   * at singular points, where the error falls more slowly with h. q_E = p (@p degree) except in cells
    * touching a point of @p singular_points, where q_E = min(p,
    * @p singular_rate). With one q for all cells this is the closed form of
    * theory.md section 4; with several, the Lagrange condition

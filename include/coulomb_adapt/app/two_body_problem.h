@@ -6,6 +6,7 @@
 #include <deal.II/base/timer.h>
 
 #include <coulomb_adapt/adaptation/mesh_adaptation.h>
+#include <coulomb_adapt/adaptation/target_calibration.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/contact_solver.h>
@@ -107,6 +108,8 @@ namespace coulomb_adapt
     std::vector<ContactNodeState>             previous_contact_states;
     /** The adaptation that made the current meshes (none on cycle 0). */
     std::optional<MeshAdaptationReport>       last_adaptation;
+    /** epsilon_0 corrected by what the previous plans achieved. */
+    TargetCalibration                         target_calibration;
     /** One row per cycle, printed at the end. */
     TableHandler                              cycle_table;
   };

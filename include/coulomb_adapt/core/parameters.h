@@ -145,6 +145,9 @@ namespace coulomb_adapt
       unsigned int min_cycles;
       /** epsilon_0 as a fraction (the file gives percent); 0: no target. */
       double       target_error;
+      /** The optimal mesh is planned for this fraction of epsilon_0
+       * (times the correction measured on the previous plans). */
+      double       target_safety_factor;
       /** No further cycle once a cycle has at least this many DoFs. */
       double       max_dofs;
       /** For "refine": "size ratio", "fixed fraction", "fixed number" or
