@@ -75,7 +75,7 @@ def report(path):
                    for r in rows},
                   key=lambda k: (SCENES.index(k[0]), k[1], -float(k[2])))
     head = "| scene | strategy | ε₀ % |" + "".join(
-        " %s: steps | DoFs | ε % |" % l for l in labels)
+        " %s: steps | DoFs | ε %% |" % l for l in labels)
     print(head)
     print("|---|---|---|" + "---|---|---|" * len(labels))
     for k in keys:

@@ -676,7 +676,8 @@ namespace coulomb_adapt
             << "): N* = " << std::llround(r.predicted_n_cells)
             << " cells, predicted epsilon " << std::setprecision(3)
             << 100 * r.predicted_epsilon << " % (r_E bounded to ["
-            << a.min_size_ratio << ", " << a.max_size_ratio << "]: "
+            << a.min_size_ratio << " (" << std::pow(a.min_size_ratio, 1.5)
+            << " at singular points), " << a.max_size_ratio << "]: "
             << r.n_at_min_ratio << " cells at the lower, "
             << r.n_at_max_ratio << " at the upper bound; q reduced to "
             << std::min<double>(parameters.finite_elements.degree,
