@@ -39,19 +39,6 @@ namespace coulomb_adapt
   };
 
   /**
-   * Read a two-body geometry through the gmsh API. A `.msh` file is read
-   * as it is; a `.geo` file is meshed first (triangles, or quadrilaterals
-   * by recombination when @p requested_cell_type asks for them), with
-   * element sizes scaled by @p mesh_size_factor.
-   *
-   * The file must name, as physical groups, the surfaces `body 1` (upper,
-   * slave) and `body 2` (lower, master) and the curves `dirichlet`
-   * (clamped), `traction` and `contact`; they get the boundary ids of
-   * scene_meshes.h. Any other boundary is free. Only the corner nodes of
-   * higher-order gmsh elements are used. Errors (missing file, missing
-   * group, unsupported elements) name the file and what is missing.
-   */
-  /**
    * One body's mesh from gmsh elements (corner node tags, triangles or
    * quadrangles, either orientation) and the boundary lines of each
    * boundary id; only lines that are boundary edges of these elements are
@@ -136,8 +123,15 @@ namespace coulomb_adapt
   };
 
   /**
-   * Read the file on rank 0 of @p comm and give the meshes to every rank,
-   * with the groups of @p use. Errors, gmsh's own (a syntax error in a .geo
+   * Read a two-body geometry through the gmsh API. A `.msh` file is read
+   * as it is; a `.geo` file is meshed first (triangles, or quadrilaterals
+   * by recombination when @p requested_cell_type asks for them), with
+   * element sizes scaled by @p mesh_size_factor. Only the corner nodes of
+   * higher-order gmsh elements are used; any boundary that no group of
+   * @p use names is free (boundary id 0).
+   *
+   * The file is read on rank 0 of @p comm and the meshes given to every
+   * rank, with the groups of @p use. Errors, gmsh's own (a syntax error in a .geo
    * file, a truncated or inconsistent .msh file) included, throw a
    * ParameterError on every rank that names the file and says what is
    * wrong: a group that the file lacks or that has the wrong dimension,
