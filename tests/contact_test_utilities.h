@@ -39,10 +39,11 @@ namespace coulomb_adapt
      * not run. */
     inline std::unique_ptr<SolvedContactProblem>
     solve_contact_setup(
-      const std::vector<std::pair<std::string, std::string>> &settings)
+      const std::vector<std::pair<std::string, std::string>> &settings,
+      const std::string &parameter_file = "")
     {
       auto p        = std::make_unique<SolvedContactProblem>();
-      p->parameters = make_parameters(p->prm, settings);
+      p->parameters = make_parameters(p->prm, settings, parameter_file);
       p->scene      = scenes::create_scene(p->parameters, p->prm);
       for (unsigned int b = 0; b < 2; ++b)
         {
@@ -68,9 +69,10 @@ namespace coulomb_adapt
     /** The same, solved from the initial gap. */
     inline std::unique_ptr<SolvedContactProblem>
     solve_contact(
-      const std::vector<std::pair<std::string, std::string>> &settings)
+      const std::vector<std::pair<std::string, std::string>> &settings,
+      const std::string &parameter_file = "")
     {
-      auto p    = solve_contact_setup(settings);
+      auto p    = solve_contact_setup(settings, parameter_file);
       p->report = p->solver->solve();
       return p;
     }

@@ -24,11 +24,13 @@ namespace coulomb_adapt
     inline Parameters
     make_parameters(
       ParameterHandler &                                      prm,
-      const std::vector<std::pair<std::string, std::string>> &settings)
+      const std::vector<std::pair<std::string, std::string>> &settings,
+      const std::string &parameter_file = "")
     {
       Parameters::declare_parameters(prm);
       CommandLine command_line;
-      command_line.overrides = settings;
+      command_line.parameter_file = parameter_file;
+      command_line.overrides      = settings;
       read_parameters(command_line, prm);
       Parameters parameters;
       parameters.parse_parameters(prm);

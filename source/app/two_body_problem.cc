@@ -248,6 +248,27 @@ namespace coulomb_adapt
       }
     report.newton_iterations = total_newton_iterations;
     cycle_record["load_steps"] = n_steps;
+
+    // The initial gap where the bodies face each other: an interference
+    // (press) fit starts with an overlap (negative gap), a clearance fit
+    // with a positive one. (The solver builds the mortar interface when
+    // it solves.)
+    {
+      const MortarInterface &mortar = contact_solver->mortar_interface();
+      double overlap = 0, clearance = 0;
+      for (unsigned int j = 0; j < mortar.slave_nodes().size(); ++j)
+        if (mortar.is_covered(j))
+          {
+            const double g = mortar.weighted_initial_gaps()[j] /
+                             mortar.slave_weights()[j];
+            overlap   = std::max(overlap, -g);
+            clearance = std::max(clearance, g);
+          }
+      pcout << "  contact: initial gap: largest overlap " << overlap
+            << " mm, largest clearance " << clearance << " mm" << std::endl;
+      cycle_record["initial_overlap"]   = overlap;
+      cycle_record["initial_clearance"] = clearance;
+    }
     cycle_record["linear_solver"] = {
       {{"method", contact_solver->last_linear_solver_report().method},
        {"iterations",

@@ -1,11 +1,141 @@
+#include <deal.II/base/function.h>
+
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/scenes/gmsh_file.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
+
+#include <sstream>
 
 namespace coulomb_adapt
 {
   namespace scenes
   {
+    namespace
+    {
+      const std::string scene_path = "Scene/Gmsh";
+
+      // The "group: value" pairs of a Patterns::Map entry, in their order;
+      // a group named twice is an error (one value would be dropped).
+      std::vector<std::pair<std::string, std::string>>
+      group_map(ParameterHandler &prm, const std::string &entry)
+      {
+        std::vector<std::pair<std::string, std::string>> pairs;
+        for (const auto &item :
+             Utilities::split_string_list(prm.get(entry), ','))
+          {
+            const auto key_value = Utilities::split_string_list(item, ':');
+            if (key_value.size() != 2 || key_value[0].empty())
+              throw ParameterError(scene_path + "/" + entry,
+                                   item,
+                                   "entries of the form 'group: value'");
+            for (const auto &[group, value] : pairs)
+              if (group == key_value[0])
+                throw ParameterError(scene_path + "/" + entry,
+                                     prm.get(entry),
+                                     "each group once (group '" + group +
+                                       "' appears twice)");
+            pairs.emplace_back(key_value[0], key_value[1]);
+          }
+        return pairs;
+      }
+
+
+
+      double
+      parse_number(const std::string &text,
+                   const std::string &entry,
+                   const std::string &group,
+                   const std::string &allowed)
+      {
+        std::istringstream in(text);
+        double             value;
+        std::string        rest;
+        if (!(in >> value) || (in >> rest) || !std::isfinite(value))
+          throw ParameterError(scene_path + "/" + entry,
+                               group + ": " + text,
+                               "for group '" + group + "' " + allowed);
+        return value;
+      }
+
+
+
+      // "x", "y", "x y", each optionally "=value" (mm).
+      std::array<std::optional<double>, 2>
+      parse_fixed_components(const std::string &text,
+                             const std::string &group)
+      {
+        const std::string allowed =
+          "the fixed components: 'x', 'y' or 'x y', each optionally with a "
+          "prescribed displacement in mm ('y=-0.1'); a wrong component "
+          "name or value is not allowed";
+        std::array<std::optional<double>, 2> fixed;
+        std::istringstream                   in(text);
+        std::string                          token;
+        unsigned int                         n_tokens = 0;
+        while (in >> token)
+          {
+            ++n_tokens;
+            const auto        equal     = token.find('=');
+            const std::string component = token.substr(0, equal);
+            if (component != "x" && component != "y")
+              throw ParameterError(scene_path + "/Fixed components",
+                                   group + ": " + text,
+                                   "for group '" + group +
+                                     "' (unknown component '" + component +
+                                     "') " + allowed);
+            const unsigned int c = component == "x" ? 0 : 1;
+            if (fixed[c])
+              throw ParameterError(scene_path + "/Fixed components",
+                                   group + ": " + text,
+                                   "for group '" + group + "' (component '" +
+                                     component + "' twice) " + allowed);
+            fixed[c] = equal == std::string::npos ?
+                         0. :
+                         parse_number(token.substr(equal + 1),
+                                      "Fixed components",
+                                      group,
+                                      allowed);
+          }
+        if (n_tokens == 0)
+          throw ParameterError(scene_path + "/Fixed components",
+                               group + ":",
+                               "for group '" + group + "' " + allowed);
+        return fixed;
+      }
+
+
+
+      // "tx; ty" (MPa).
+      Tensor<1, 2>
+      parse_vector(const std::string &text,
+                   const std::string &entry,
+                   const std::string &group,
+                   const std::string &unit)
+      {
+        const std::string allowed =
+          "a vector 'x; y' of two numbers (" + unit + ")";
+        const auto parts = Utilities::split_string_list(text, ';');
+        if (parts.size() != 2)
+          throw ParameterError(scene_path + "/" + entry,
+                               group + ": " + text,
+                               "for group '" + group + "' " + allowed);
+        return Tensor<1, 2>({parse_number(parts[0], entry, group, allowed),
+                             parse_number(parts[1], entry, group, allowed)});
+      }
+
+
+
+      Tensor<1, 2>
+      get_vector(ParameterHandler &prm, const std::string &entry)
+      {
+        const auto v = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get(entry)));
+        return Tensor<1, 2>({v[0], v[1]});
+      }
+    } // namespace
+
+
+
     void
     GmshFile::declare_parameters(ParameterHandler &prm)
     {
@@ -14,20 +144,89 @@ namespace coulomb_adapt
         prm.declare_entry("Mesh file",
                           "",
                           Patterns::FileName(),
-                          "A .geo or .msh file with physical surfaces "
-                          "'body 1' (upper, slave), 'body 2' and physical "
-                          "curves 'dirichlet', 'traction', 'contact'.");
+                          "A .geo or .msh file with the physical groups "
+                          "named below (by default surfaces 'body 1' "
+                          "(upper, slave), 'body 2' and curves 'dirichlet', "
+                          "'traction', 'contact').");
         prm.declare_entry("Mesh size factor",
                           "1",
                           Patterns::Double(0),
                           "Factor on the element sizes of a .geo file "
                           "(gmsh's Mesh.MeshSizeFactor); ignored for .msh.");
+        prm.declare_entry("Fixed components",
+                          "",
+                          Patterns::Map(Patterns::Anything(),
+                                        Patterns::Anything()),
+                          "Displacement conditions per physical curve: "
+                          "'group: components', the components 'x', 'y' or "
+                          "'x y' fixed (zero displacement) or prescribed "
+                          "('y=-0.1', mm), e.g. 'base: x y, axis: x, top: "
+                          "y=-0.05'. Rollers and symmetry lines fix one "
+                          "component.");
+        prm.declare_entry("Tractions",
+                          "",
+                          Patterns::Map(Patterns::Anything(),
+                                        Patterns::Anything()),
+                          "Uniform tractions per physical curve: 'group: "
+                          "tx; ty' (MPa), e.g. 'top: 0; -10'.");
+        prm.declare_entry("Normal pressures",
+                          "",
+                          Patterns::Map(Patterns::Anything(),
+                                        Patterns::Anything()),
+                          "Pressure per physical curve, following the "
+                          "boundary's outward normal n (traction -p n; p > 0 "
+                          "presses on the body): 'group: p' (MPa), e.g. "
+                          "'outer: 5'.");
+        prm.declare_entry("Contact pair",
+                          "contact, contact",
+                          Patterns::List(Patterns::Anything(), 2, 2),
+                          "The contact pair 'slave group, master group': "
+                          "physical curves on the boundary of body 1 (slave) "
+                          "and of body 2 (master). One group named twice "
+                          "serves both sides, split by the body it bounds.");
         prm.declare_entry("Traction",
                           "0, -10",
                           Patterns::List(Patterns::Double(), 2, 2),
-                          "Uniform traction (x, y) on the 'traction' "
-                          "curves (MPa).");
+                          "Old syntax, used only if 'Fixed components', "
+                          "'Tractions' and 'Normal pressures' are all "
+                          "empty: uniform traction (x, y) on the curves "
+                          "'traction' (MPa), with 'dirichlet' clamped.");
         declare_body_materials(prm, 130000., 0.3, 130000., 0.3);
+        for (const unsigned int b : {1, 2})
+          {
+            prm.enter_subsection("Body " + std::to_string(b));
+            {
+              prm.declare_entry("Physical surfaces",
+                                "body " + std::to_string(b),
+                                Patterns::List(Patterns::Anything(), 1),
+                                "The physical surfaces that form this body "
+                                "(comma-separated names).");
+              prm.declare_entry("Density",
+                                "0",
+                                Patterns::Double(),
+                                "Mass density (t/mm^3, e.g. 7.85e-9 for "
+                                "steel), >= 0: with 'Gravity' and 'Angular "
+                                "velocity' the body force density x "
+                                "(g + omega^2 (x - axis)) in N/mm^3.");
+              prm.declare_entry("Gravity",
+                                "0, 0",
+                                Patterns::List(Patterns::Double(), 2, 2),
+                                "Acceleration of gravity (x, y) (mm/s^2, "
+                                "e.g. 0, -9810).");
+              prm.declare_entry("Angular velocity",
+                                "0",
+                                Patterns::Double(),
+                                "Angular velocity omega (rad/s) of the body "
+                                "about 'Rotation axis': the centrifugal "
+                                "load of a rotating part.");
+              prm.declare_entry("Rotation axis",
+                                "0, 0",
+                                Patterns::List(Patterns::Double(), 2, 2),
+                                "Point (x, y) (mm) where the rotation axis, "
+                                "perpendicular to the plane, passes.");
+            }
+            prm.leave_subsection();
+          }
       }
       prm.leave_subsection();
     }
@@ -40,21 +239,153 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Gmsh");
       {
-        const std::string path = "Scene/Gmsh";
-        materials = parse_body_materials(prm, path);
-        const auto t = Utilities::string_to_double(
-          Utilities::split_string_list(prm.get("Traction")));
-        traction     = Tensor<1, 2>({t[0], t[1]});
+        materials = parse_body_materials(prm, scene_path);
+        GmshGroupUse use;
+        for (unsigned int b = 0; b < 2; ++b)
+          {
+            const std::string body = "Body " + std::to_string(b + 1);
+            const std::string path = scene_path + "/" + body;
+            prm.enter_subsection(body);
+            {
+              use.body_surfaces[b] =
+                Utilities::split_string_list(prm.get("Physical surfaces"));
+              use.body_entries[b] = path + "/Physical surfaces";
+              BodyForce &f        = body_forces[b];
+              f.density           = prm.get_double("Density");
+              f.gravity           = get_vector(prm, "Gravity");
+              f.angular_velocity  = prm.get_double("Angular velocity");
+              f.axis              = Point<2>(get_vector(prm, "Rotation axis"));
+              require_parameter(f.density >= 0,
+                                path + "/Density",
+                                f.density,
+                                "a mass density >= 0 (t/mm^3)");
+              if (f.density == 0 &&
+                  (f.gravity.norm() > 0 || f.angular_velocity != 0))
+                throw ParameterError(path + "/Density",
+                                     "0",
+                                     "a density > 0 where 'Gravity' or "
+                                     "'Angular velocity' is given (the body "
+                                     "force is density x acceleration)");
+            }
+            prm.leave_subsection();
+          }
+        const auto pair =
+          Utilities::split_string_list(prm.get("Contact pair"));
+        use.contact_pair  = {{pair[0], pair[1]}};
+        use.contact_entry = scene_path + "/Contact pair";
+
+        // Each group's conditions, from the three entries in turn; a group
+        // keeps the entry that named it first for messages.
+        use.condition_groups.clear();
+        use.clamped_groups.clear();
+        const auto add_group = [&](const std::string &group,
+                                   const std::string &entry) {
+          for (const auto &[name, first_entry] : use.condition_groups)
+            if (name == group)
+              return;
+          use.condition_groups.emplace_back(group, scene_path + "/" + entry);
+        };
+        for (const auto &[group, value] : group_map(prm, "Fixed components"))
+          {
+            conditions[group].fixed = parse_fixed_components(value, group);
+            add_group(group, "Fixed components");
+            use.point_groups_allowed.insert(group);
+          }
+        for (const auto &[group, value] : group_map(prm, "Tractions"))
+          {
+            conditions[group].traction =
+              parse_vector(value, "Tractions", group, "MPa");
+            conditions[group].loaded = true;
+            add_group(group, "Tractions");
+          }
+        for (const auto &[group, value] : group_map(prm, "Normal pressures"))
+          {
+            conditions[group].pressure =
+              parse_number(value,
+                           "Normal pressures",
+                           group,
+                           "a pressure p (MPa)");
+            conditions[group].loaded = true;
+            add_group(group, "Normal pressures");
+          }
+
+        if (conditions.empty())
+          {
+            // The old syntax: the fixed groups of GmshGroupUse's defaults.
+            use.condition_groups = GmshGroupUse().condition_groups;
+            conditions["dirichlet"].fixed = {{0., 0.}};
+            conditions["traction"].traction = get_vector(prm, "Traction");
+            conditions["traction"].loaded   = true;
+          }
+        else if (prm.get("Traction") != "0, -10")
+          throw ParameterError(scene_path + "/Traction",
+                               prm.get("Traction"),
+                               "the default: the old 'Traction' entry is not "
+                               "used with 'Fixed components', 'Tractions' or "
+                               "'Normal pressures' (give the traction in "
+                               "'Tractions = group: tx; ty')");
+        for (const auto &[group, c] : conditions)
+          {
+            if (c.fixed[0] && c.fixed[1] && c.loaded)
+              throw ParameterError(
+                scene_path + "/Fixed components",
+                group + ": x y",
+                "loads only on curves that are not fixed in both components "
+                "(group '" +
+                  group + "' also has a traction or pressure, which would "
+                          "have no effect)");
+            if (c.fixed[0] && c.fixed[1] && *c.fixed[0] == 0 &&
+                *c.fixed[1] == 0)
+              use.clamped_groups.insert(group);
+          }
+
         const std::string file = prm.get("Mesh file");
         if (file.empty())
-          throw ParameterError(path + "/Mesh file",
+          throw ParameterError(scene_path + "/Mesh file",
                                file,
                                "the gmsh scene needs a .geo or .msh file");
         // The program runs on MPI_COMM_WORLD: rank 0 reads the file.
-        meshes = read_two_body_gmsh_file(file,
-                                         requested_cell_type,
-                                         prm.get_double("Mesh size factor"),
-                                         MPI_COMM_WORLD);
+        geometry = read_two_body_gmsh_geometry(file,
+                                               requested_cell_type,
+                                               prm.get_double(
+                                                 "Mesh size factor"),
+                                               use,
+                                               MPI_COMM_WORLD);
+
+        // A point support holds its nodes in place (no prescribed value,
+        // no load: a point has no length to carry one).
+        for (const auto &support : geometry.point_supports)
+          {
+            const GroupConditions &c = conditions[support.group];
+            if (c.loaded)
+              throw ParameterError(
+                "gmsh file '" + file + "': '" + support.group +
+                "' is a physical point, not a physical curve: tractions and "
+                "normal pressures act on boundary curves");
+            for (unsigned int k = 0; k < 2; ++k)
+              if (c.fixed[k] && *c.fixed[k] != 0)
+                throw ParameterError(
+                  scene_path + "/Fixed components",
+                  support.group + ": ...",
+                  "zero displacement ('x', 'y' or 'x y') on physical points "
+                  "('" +
+                    support.group +
+                    "' is one); prescribed values on curves only");
+          }
+
+        // Groups that share lines must agree on what they prescribe.
+        for (const auto &[id, groups] : geometry.groups_of_boundary_id)
+          for (unsigned int c = 0; c < 2; ++c)
+            for (const auto &g : groups)
+              for (const auto &h : groups)
+                if (conditions[g].fixed[c] && conditions[h].fixed[c] &&
+                    *conditions[g].fixed[c] != *conditions[h].fixed[c])
+                  throw ParameterError(
+                    "gmsh file '" + file + "': groups '" + g + "' and '" + h +
+                    "' (" + scene_path +
+                    "/Fixed components) share curves and prescribe "
+                    "different " +
+                    (c == 0 ? "x" : "y") + " displacements there");
       }
       prm.leave_subsection();
     }
@@ -74,7 +405,7 @@ namespace coulomb_adapt
                                  const CellType,
                                  Triangulation<2> &tria) const
     {
-      meshes[body].create_triangulation(tria);
+      geometry.meshes[body].create_triangulation(tria);
     }
 
 
@@ -86,13 +417,78 @@ namespace coulomb_adapt
       d.name                = "body " + std::to_string(body + 1);
       d.material            = materials[body];
       d.contact_boundary_id = boundary_ids::contact;
-      const Tensor<1, 2> t  = traction;
-      d.tractions.push_back(
-        {boundary_ids::traction,
-         [t](const Point<2> &, const Tensor<1, 2> &) { return t; }});
-      d.dirichlet.push_back({boundary_ids::dirichlet,
-                             ComponentMask(2, true),
-                             std::make_shared<Functions::ZeroFunction<2>>(2)});
+
+      std::set<types::boundary_id> ids_of_body;
+      for (const auto &line :
+           geometry.meshes[body].boundary_lines.boundary_lines)
+        ids_of_body.insert(line.boundary_id);
+      for (const auto &[id, groups] : geometry.groups_of_boundary_id)
+        {
+          if (ids_of_body.count(id) == 0)
+            continue;
+          // The groups' conditions combined (the constructor checked that
+          // they agree).
+          std::array<std::optional<double>, 2> fixed;
+          Tensor<1, 2>                         traction;
+          double                               pressure = 0;
+          bool                                 loaded   = false;
+          for (const auto &g : groups)
+            {
+              const GroupConditions &c = conditions.at(g);
+              for (unsigned int k = 0; k < 2; ++k)
+                if (c.fixed[k])
+                  fixed[k] = c.fixed[k];
+              traction += c.traction;
+              pressure += c.pressure;
+              loaded = loaded || c.loaded;
+            }
+          if (fixed[0] || fixed[1])
+            {
+              const std::vector<bool> mask = {fixed[0].has_value(),
+                                              fixed[1].has_value()};
+              const std::vector<double> values = {fixed[0].value_or(0.),
+                                                  fixed[1].value_or(0.)};
+              std::shared_ptr<const Function<2>> displacement;
+              if (values[0] == 0 && values[1] == 0)
+                displacement = std::make_shared<Functions::ZeroFunction<2>>(2);
+              else
+                displacement =
+                  std::make_shared<Functions::ConstantFunction<2>>(values);
+              d.dirichlet.push_back({id, ComponentMask(mask), displacement});
+            }
+          if (loaded)
+            d.tractions.push_back(
+              {id,
+               [traction, pressure](const Point<2> &, const Tensor<1, 2> &n) {
+                 return traction - pressure * n;
+               }});
+        }
+
+      // Point supports select their vertex (refinement keeps it).
+      double extent = 0;
+      for (const auto &v : geometry.meshes[body].vertices)
+        extent = std::max({extent, std::abs(v[0]), std::abs(v[1])});
+      for (const auto &support : geometry.point_supports)
+        if (support.body == body)
+          {
+            const auto &   fixed     = conditions.at(support.group).fixed;
+            const Point<2> position  = support.position;
+            const double   tolerance = 1e-12 * extent;
+            d.point_constraints.push_back(
+              {[position, tolerance](const Point<2> &x) {
+                 return x.distance(position) <= tolerance;
+               },
+               ComponentMask(
+                 std::vector<bool>{fixed[0].has_value(), fixed[1].has_value()}),
+               std::nullopt});
+          }
+
+      const BodyForce &f = body_forces[body];
+      if (f.density > 0 && (f.gravity.norm() > 0 || f.angular_velocity != 0))
+        d.body_force = [f](const Point<2> &x) {
+          return f.density * (f.gravity + f.angular_velocity *
+                                            f.angular_velocity * (x - f.axis));
+        };
       return d;
     }
   } // namespace scenes

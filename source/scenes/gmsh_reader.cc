@@ -4,6 +4,10 @@
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
+#include <boost/serialization/map.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <gmsh.h>
 
 #include <algorithm>
@@ -44,80 +48,6 @@ namespace coulomb_adapt
           default:
             return 0;
         }
-    }
-
-
-
-    // Tag of the physical group of dimension dim called name, or -1. Two
-    // groups of one name are an error: one of them would be dropped.
-    int
-    find_physical_group(const int          dim,
-                        const std::string &name,
-                        const std::string &file_name)
-    {
-      gmsh::vectorpair groups;
-      gmsh::model::getPhysicalGroups(groups, dim);
-      int found = -1;
-      for (const auto &[d, tag] : groups)
-        {
-          std::string group_name;
-          gmsh::model::getPhysicalName(d, tag, group_name);
-          if (group_name != name)
-            continue;
-          if (found >= 0)
-            throw ParameterError(
-              "gmsh file '" + file_name + "' has two physical " +
-              (dim == 2 ? "surfaces" : "curves") + " named '" + name +
-              "' (tags " + std::to_string(found) + " and " +
-              std::to_string(tag) + "); give each name to one group");
-          found = tag;
-        }
-      return found;
-    }
-
-
-
-    // Node tags of all elements of the entities of a physical group,
-    // grouped by element (corner nodes only).
-    std::vector<std::vector<std::size_t>>
-    elements_of_group(const int          dim,
-                      const int          group_tag,
-                      const std::string &file_name)
-    {
-      std::vector<int> entities;
-      gmsh::model::getEntitiesForPhysicalGroup(dim, group_tag, entities);
-      std::vector<std::vector<std::size_t>> elements;
-      for (const int entity : entities)
-        {
-          std::vector<int>                      types;
-          std::vector<std::vector<std::size_t>> element_tags, node_tags;
-          gmsh::model::mesh::getElements(
-            types, element_tags, node_tags, dim, entity);
-          for (unsigned int t = 0; t < types.size(); ++t)
-            {
-              std::string type_name;
-              int         element_dim, order, n_nodes, n_primary;
-              std::vector<double> local_coordinates;
-              gmsh::model::mesh::getElementProperties(types[t],
-                                                      type_name,
-                                                      element_dim,
-                                                      order,
-                                                      n_nodes,
-                                                      local_coordinates,
-                                                      n_primary);
-              const unsigned int corners = n_corners(types[t]);
-              if (corners == 0)
-                throw ParameterError("gmsh file '" + file_name +
-                                     "': element type '" + type_name +
-                                     "' is not supported (allowed: lines, "
-                                     "triangles, quadrangles)");
-              for (std::size_t e = 0; e < element_tags[t].size(); ++e)
-                elements.emplace_back(
-                  node_tags[t].begin() + e * n_nodes,
-                  node_tags[t].begin() + e * n_nodes + corners);
-            }
-        }
-      return elements;
     }
 
 
@@ -214,13 +144,138 @@ namespace coulomb_adapt
 
   namespace
   {
-    // Read and check the file with gmsh (on one rank).
-    std::array<CoarseMeshData, 2>
-    read_with_gmsh(const std::string &file_name,
-                   const CellType     requested_cell_type,
-                   const double       mesh_size_factor)
+    const char *
+    dimension_name(const int dim)
     {
-      std::array<CoarseMeshData, 2> meshes;
+      static const char *names[] = {"point", "curve", "surface", "volume"};
+      return names[dim];
+    }
+
+
+
+    // Every physical group of the open model by name. Two groups of one
+    // name are an error: one of them would be dropped.
+    std::map<std::string, std::pair<int, int>>
+    physical_groups_by_name(const std::string &file_name)
+    {
+      gmsh::vectorpair groups;
+      gmsh::model::getPhysicalGroups(groups);
+      std::map<std::string, std::pair<int, int>> by_name;
+      for (const auto &[dim, tag] : groups)
+        {
+          std::string name;
+          gmsh::model::getPhysicalName(dim, tag, name);
+          const auto [it, inserted] = by_name.emplace(name, std::pair(dim, tag));
+          if (inserted)
+            continue;
+          const auto [other_dim, other_tag] = it->second;
+          if (other_dim == dim)
+            throw ParameterError("gmsh file '" + file_name +
+                                 "' has two physical " + dimension_name(dim) +
+                                 "s named '" + name + "' (tags " +
+                                 std::to_string(other_tag) + " and " +
+                                 std::to_string(tag) +
+                                 "); give each name to one group");
+          throw ParameterError("gmsh file '" + file_name + "' has a physical " +
+                               dimension_name(other_dim) + " and a physical " +
+                               dimension_name(dim) + " named '" + name +
+                               "'; give each name to one group");
+        }
+      return by_name;
+    }
+
+
+
+    std::string
+    list_of_groups(
+      const std::map<std::string, std::pair<int, int>> &groups)
+    {
+      std::string list;
+      for (const auto &[name, group] : groups)
+        list += std::string(list.empty() ? "" : ", ") +
+                dimension_name(group.first) + " '" + name + "'";
+      return list.empty() ? "none" : list;
+    }
+
+
+
+    // Corner node tags of the elements of the entities @p entities of
+    // dimension @p dim, each entity once.
+    std::vector<std::vector<std::size_t>>
+    elements_of_entities(const int               dim,
+                         const std::vector<int> &entities,
+                         const std::string &    file_name)
+    {
+      std::vector<std::vector<std::size_t>> elements;
+      for (const int entity : entities)
+        {
+          std::vector<int>                      types;
+          std::vector<std::vector<std::size_t>> element_tags, node_tags;
+          gmsh::model::mesh::getElements(
+            types, element_tags, node_tags, dim, entity);
+          for (unsigned int t = 0; t < types.size(); ++t)
+            {
+              std::string         type_name;
+              int                 element_dim, order, n_nodes, n_primary;
+              std::vector<double> local_coordinates;
+              gmsh::model::mesh::getElementProperties(types[t],
+                                                      type_name,
+                                                      element_dim,
+                                                      order,
+                                                      n_nodes,
+                                                      local_coordinates,
+                                                      n_primary);
+              const unsigned int corners = n_corners(types[t]);
+              if (corners == 0)
+                throw ParameterError("gmsh file '" + file_name +
+                                     "': element type '" + type_name +
+                                     "' is not supported (allowed: lines, "
+                                     "triangles, quadrangles)");
+              for (std::size_t e = 0; e < element_tags[t].size(); ++e)
+                elements.emplace_back(
+                  node_tags[t].begin() + e * n_nodes,
+                  node_tags[t].begin() + e * n_nodes + corners);
+            }
+        }
+      return elements;
+    }
+
+
+
+    using Edge = std::pair<std::size_t, std::size_t>;
+
+    Edge
+    edge_of(const std::size_t a, const std::size_t b)
+    {
+      return std::minmax(a, b);
+    }
+
+
+
+    // The edges that bound a body: those of one of its elements only.
+    std::set<Edge>
+    boundary_edges(const std::vector<std::vector<std::size_t>> &elements)
+    {
+      std::map<Edge, unsigned int> count;
+      for (const auto &element : elements)
+        for (unsigned int v = 0; v < element.size(); ++v)
+          ++count[edge_of(element[v], element[(v + 1) % element.size()])];
+      std::set<Edge> edges;
+      for (const auto &[edge, n] : count)
+        if (n == 1)
+          edges.insert(edge);
+      return edges;
+    }
+
+
+
+    // Read and check the file with gmsh (on one rank).
+    TwoBodyGmshMeshes
+    read_with_gmsh(const std::string & file_name,
+                   const CellType      requested_cell_type,
+                   const double        mesh_size_factor,
+                   const GmshGroupUse &use)
+    {
       gmsh::open(file_name);
       if (std::filesystem::path(file_name).extension() == ".geo")
         {
@@ -233,67 +288,338 @@ namespace coulomb_adapt
             }
           gmsh::model::mesh::generate(2);
         }
+      const std::string in_file = "gmsh file '" + file_name + "'";
 
+      // The program is two-dimensional: a volume mesh, or nodes off the
+      // x-y plane, would otherwise be read as their projection.
+      {
+        std::vector<int>                      types;
+        std::vector<std::vector<std::size_t>> element_tags, node_tags;
+        gmsh::model::mesh::getElements(types, element_tags, node_tags, 3);
+        if (!types.empty())
+          throw ParameterError(in_file +
+                               " has volume elements (a 3D mesh); the "
+                               "program is two-dimensional: give a 2D mesh "
+                               "in the x-y plane");
+      }
       std::vector<std::size_t> node_tags;
       std::vector<double>      coordinates, parametric;
       gmsh::model::mesh::getNodes(
         node_tags, coordinates, parametric, -1, -1, false, false);
       std::map<std::size_t, Point<2>> nodes;
+      double                          extent = 0;
       for (std::size_t i = 0; i < node_tags.size(); ++i)
-        nodes[node_tags[i]] =
-          Point<2>(coordinates[3 * i], coordinates[3 * i + 1]);
-
-      auto require_group = [&](const int dim, const std::string &name) {
-        const int tag = find_physical_group(dim, name, file_name);
-        if (tag < 0)
-          throw ParameterError(
-            "gmsh file '" + file_name + "' has no physical " +
-            (dim == 2 ? "surface" : "curve") + " named '" + name +
-            "'; required: surfaces 'body 1', 'body 2' and curves "
-            "'dirichlet', 'traction', 'contact'");
-        return tag;
-      };
-
-      std::map<types::boundary_id, std::vector<std::vector<std::size_t>>>
-        lines;
-      lines[boundary_ids::dirichlet] =
-        elements_of_group(1, require_group(1, "dirichlet"), file_name);
-      lines[boundary_ids::traction] =
-        elements_of_group(1, require_group(1, "traction"), file_name);
-      lines[boundary_ids::contact] =
-        elements_of_group(1, require_group(1, "contact"), file_name);
-
-      // An element may name a node that the file does not define (a
-      // hand-edited or truncated file); gmsh does not check it.
-      for (const auto &[id, group_lines] : lines)
-        for (const auto &line : group_lines)
-          for (const std::size_t node : line)
-            if (nodes.count(node) == 0)
-              throw ParameterError("gmsh file '" + file_name +
-                                   "': a line element refers to node " +
-                                   std::to_string(node) +
-                                   ", which is not in $Nodes");
-
-      for (unsigned int b = 0; b < 2; ++b)
         {
-          const std::string name = "body " + std::to_string(b + 1);
-          const auto        elements =
-            elements_of_group(2, require_group(2, name), file_name);
-          if (elements.empty())
-            throw ParameterError("gmsh file '" + file_name +
-                                 "': physical surface '" + name +
-                                 "' has no elements");
+          nodes[node_tags[i]] =
+            Point<2>(coordinates[3 * i], coordinates[3 * i + 1]);
+          extent = std::max({extent,
+                             std::abs(coordinates[3 * i]),
+                             std::abs(coordinates[3 * i + 1])});
+        }
+      for (std::size_t i = 0; i < node_tags.size(); ++i)
+        if (std::abs(coordinates[3 * i + 2]) > 1e-10 * extent)
+          throw ParameterError(in_file + ": node " +
+                               std::to_string(node_tags[i]) + " has z = " +
+                               Patterns::Tools::Convert<double>::to_string(
+                                 coordinates[3 * i + 2]) +
+                               "; the program reads 2D meshes in the x-y "
+                               "plane (z = 0)");
+
+      const auto groups = physical_groups_by_name(file_name);
+      // The entities of group @p name, which @p entry names and which must
+      // have dimension @p dim.
+      const auto entities_of = [&](const std::string &name,
+                                   const int          dim,
+                                   const std::string &entry,
+                                   const std::string &why) {
+        const auto group = groups.find(name);
+        if (group == groups.end())
+          throw ParameterError(in_file + " has no physical " +
+                               dimension_name(dim) + " named '" + name +
+                               "' (" + entry + " names it); the file's "
+                               "physical groups: " + list_of_groups(groups));
+        if (group->second.first != dim)
+          throw ParameterError(in_file + ": '" + name + "' (" + entry +
+                               ") is a physical " +
+                               dimension_name(group->second.first) +
+                               ", not a physical " + dimension_name(dim) +
+                               ": " + why);
+        std::vector<int> tags;
+        gmsh::model::getEntitiesForPhysicalGroup(dim,
+                                                 group->second.second,
+                                                 tags);
+        return tags;
+      };
+      const auto require_known_nodes =
+        [&](const std::vector<std::vector<std::size_t>> &elements,
+            const std::string &                           what) {
+          // An element may name a node that the file does not define (a
+          // hand-edited or truncated file); gmsh does not check it.
           for (const auto &element : elements)
             for (const std::size_t node : element)
               if (nodes.count(node) == 0)
-                throw ParameterError("gmsh file '" + file_name +
-                                     "': an element of '" + name +
-                                     "' refers to node " +
+                throw ParameterError(in_file + ": " + what + " refers to node " +
                                      std::to_string(node) +
                                      ", which is not in $Nodes");
-          meshes[b] = build_body_mesh(elements, nodes, lines, b, file_name);
+        };
+
+      // The bodies: their surfaces, none in both.
+      std::array<std::vector<std::vector<std::size_t>>, 2> body_elements;
+      std::array<std::set<Edge>, 2>                        body_boundary;
+      std::map<int, std::pair<unsigned int, std::string>>  body_of_surface;
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          std::vector<int> surfaces;
+          for (const auto &name : use.body_surfaces[b])
+            for (const int s :
+                 entities_of(name,
+                             2,
+                             use.body_entries[b],
+                             "a body is made of surfaces"))
+              {
+                const auto [it, inserted] =
+                  body_of_surface.emplace(s, std::pair(b, name));
+                if (!inserted && it->second.first != b)
+                  throw ParameterError(
+                    in_file + ": surface " + std::to_string(s) +
+                    " is in both body 1's '" + it->second.second + "' (" +
+                    use.body_entries[0] + ") and body 2's '" + name + "' (" +
+                    use.body_entries[1] +
+                    "); the bodies would overlap: give each surface to one "
+                    "body");
+                if (std::find(surfaces.begin(), surfaces.end(), s) ==
+                    surfaces.end())
+                  surfaces.push_back(s);
+              }
+          body_elements[b] = elements_of_entities(2, surfaces, file_name);
+          const std::string name = "body " + std::to_string(b + 1);
+          if (body_elements[b].empty())
+            throw ParameterError(in_file + ": " + name + " (" +
+                                 use.body_entries[b] + ") has no elements");
+          require_known_nodes(body_elements[b], "an element of " + name);
+          body_boundary[b] = boundary_edges(body_elements[b]);
         }
-      return meshes;
+
+      // The lines of the curve groups, with the curve each comes from.
+      const auto lines_of = [&](const std::string &name,
+                                const std::string &entry,
+                                const std::string &why) {
+        std::vector<std::pair<Edge, int>> lines;
+        for (const int curve : entities_of(name, 1, entry, why))
+          for (const auto &line : elements_of_entities(1, {curve}, file_name))
+            {
+              require_known_nodes({line}, "a line element of '" + name + "'");
+              lines.emplace_back(edge_of(line[0], line[1]), curve);
+            }
+        return lines;
+      };
+      const auto count_on = [&](const std::vector<std::pair<Edge, int>> &lines,
+                                const unsigned int                       b) {
+        unsigned int n = 0;
+        for (const auto &line : lines)
+          n += body_boundary[b].count(line.first);
+        return n;
+      };
+
+      // The contact pair: the slave group on body 1, the master on body 2.
+      const auto &[slave_name, master_name] = use.contact_pair;
+      const std::string contact_why =
+        "contact acts on boundary curves";
+      const auto slave_lines =
+        lines_of(slave_name, use.contact_entry, contact_why);
+      const auto master_lines =
+        slave_name == master_name ?
+          slave_lines :
+          lines_of(master_name, use.contact_entry, contact_why);
+      {
+        const unsigned int s1 = count_on(slave_lines, 0),
+                           s2 = count_on(slave_lines, 1),
+                           m1 = count_on(master_lines, 0),
+                           m2 = count_on(master_lines, 1);
+        const std::string pair = "the contact pair '" + slave_name + "', '" +
+                                 master_name + "' (" + use.contact_entry + ")";
+        for (unsigned int b = 0; b < 2; ++b)
+          {
+            const bool only_this_body =
+              b == 0 ? (s2 == 0 && m2 == 0 && s1 > 0 && m1 > 0) :
+                       (s1 == 0 && m1 == 0 && s2 > 0 && m2 > 0);
+            if (only_this_body)
+              throw ParameterError(
+                in_file + ": " + pair + " is body " + std::to_string(b + 1) +
+                " in contact with itself: both groups lie on body " +
+                std::to_string(b + 1) +
+                "'s boundary only. The slave group must lie on body 1, the "
+                "master group on body 2");
+          }
+        if (s1 == 0)
+          throw ParameterError(
+            in_file + ": " + pair + ": the slave group '" + slave_name +
+            "' has no line on the boundary of body 1; the slave side is body "
+            "1's" +
+            (s2 > 0 && m1 > 0 ? std::string(" (swap the pair's groups)") :
+                                std::string()));
+        if (m2 == 0)
+          throw ParameterError(
+            in_file + ": " + pair + ": the master group '" + master_name +
+            "' has no line on the boundary of body 2; the master side is "
+            "body 2's" +
+            (m1 > 0 && s2 > 0 ? std::string(" (swap the pair's groups)") :
+                                std::string()));
+        if (slave_name != master_name && (s2 > 0 || m1 > 0))
+          throw ParameterError(
+            in_file + ": " + pair + ": the " +
+            (s2 > 0 ? "slave group '" + slave_name + "' also lies on body 2" :
+                      "master group '" + master_name +
+                        "' also lies on body 1") +
+            "; two different contact groups each lie on one body (one group "
+            "named as both slave and master may lie on both)");
+      }
+      std::map<Edge, std::string> contact_group_of;
+      for (const auto &[edge, curve] : slave_lines)
+        contact_group_of.emplace(edge, slave_name);
+      for (const auto &[edge, curve] : master_lines)
+        contact_group_of.emplace(edge, master_name);
+
+      // The condition groups: each line gets the set of groups it is in.
+      TwoBodyGmshMeshes                         result;
+      std::map<Edge, std::vector<unsigned int>> groups_of_line;
+      std::vector<Edge>                         condition_lines;
+      std::map<Edge, int>                       curve_of_line;
+      for (unsigned int g = 0; g < use.condition_groups.size(); ++g)
+        {
+          const auto &[name, entry] = use.condition_groups[g];
+          const auto  group         = groups.find(name);
+          if (group != groups.end() && group->second.first == 0 &&
+              use.point_groups_allowed.count(name) > 0)
+            {
+              // A point support: the nodes of the group's points, in the
+              // body (or bodies) whose node they are.
+              std::vector<int> points;
+              gmsh::model::getEntitiesForPhysicalGroup(0,
+                                                       group->second.second,
+                                                       points);
+              for (const int point : points)
+                {
+                  std::vector<std::size_t> tags;
+                  std::vector<double>      xyz, uvw;
+                  gmsh::model::mesh::getNodes(tags, xyz, uvw, 0, point);
+                  for (const std::size_t tag : tags)
+                    {
+                      bool found = false;
+                      for (unsigned int b = 0; b < 2; ++b)
+                        for (const auto &element : body_elements[b])
+                          if (std::find(element.begin(), element.end(), tag) !=
+                              element.end())
+                            {
+                              result.point_supports.push_back(
+                                {name, b, nodes.at(tag)});
+                              found = true;
+                              break;
+                            }
+                      if (!found)
+                        throw ParameterError(
+                          in_file + ": point " + std::to_string(point) +
+                          " of '" + name + "' (" + entry +
+                          ") is not a node of either body's mesh (embed it "
+                          "in a surface: 'Point{...} In Surface{...};')");
+                    }
+                }
+              continue;
+            }
+          const auto lines =
+            lines_of(name,
+                     entry,
+                     use.point_groups_allowed.count(name) > 0 ?
+                       "fixed components act on boundary curves or points" :
+                       "boundary conditions and loads act on boundary "
+                       "curves");
+          if (count_on(lines, 0) + count_on(lines, 1) == 0)
+            throw ParameterError(
+              in_file + ": '" + name + "' (" + entry +
+              ") has no line on the boundary of either body (an interior "
+              "curve?); boundary conditions and loads act on boundary "
+              "curves");
+          for (const auto &[edge, curve] : lines)
+            {
+              const auto contact = contact_group_of.find(edge);
+              if (contact != contact_group_of.end())
+                throw ParameterError(
+                  in_file + ": curve " + std::to_string(curve) +
+                  " is in the contact group '" + contact->second + "' (" +
+                  use.contact_entry + ") and in '" + name + "' (" + entry +
+                  "); a contact curve takes no other condition or load");
+              auto &line_groups = groups_of_line[edge];
+              if (line_groups.empty())
+                {
+                  condition_lines.push_back(edge);
+                  curve_of_line[edge] = curve;
+                }
+              if (line_groups.empty() || line_groups.back() != g)
+                line_groups.push_back(g);
+            }
+        }
+
+      // Boundary ids: contact, clamped, then one per set of groups.
+      std::map<std::vector<unsigned int>, types::boundary_id> id_of_set;
+      types::boundary_id next_id = boundary_ids::traction;
+      std::map<types::boundary_id, std::vector<std::vector<std::size_t>>>
+        lines;
+      for (const auto &[edge, curve] : slave_lines)
+        lines[boundary_ids::contact].push_back({edge.first, edge.second});
+      if (slave_name != master_name)
+        for (const auto &[edge, curve] : master_lines)
+          lines[boundary_ids::contact].push_back({edge.first, edge.second});
+      for (const Edge &edge : condition_lines)
+        {
+          const auto &set = groups_of_line[edge];
+          unsigned int n_clamped = 0;
+          for (const unsigned int g : set)
+            n_clamped += use.clamped_groups.count(use.condition_groups[g].first);
+          if (n_clamped > 0 && set.size() > 1)
+            {
+              const auto is_clamped = [&](const unsigned int g) {
+                return use.clamped_groups.count(
+                         use.condition_groups[g].first) > 0;
+              };
+              const unsigned int clamped =
+                *std::find_if(set.begin(), set.end(), is_clamped);
+              const unsigned int other = set[0] == clamped ? set[1] : set[0];
+              throw ParameterError(
+                in_file + ": curve " + std::to_string(curve_of_line[edge]) +
+                " is in '" + use.condition_groups[clamped].first +
+                "', clamped in x and y (" +
+                use.condition_groups[clamped].second + "), and in '" +
+                use.condition_groups[other].first + "' (" +
+                use.condition_groups[other].second +
+                "); a clamped curve takes no other condition or load");
+            }
+          types::boundary_id id;
+          if (n_clamped > 0)
+            id = boundary_ids::dirichlet;
+          else
+            {
+              const auto [it, inserted] = id_of_set.emplace(set, next_id);
+              if (inserted)
+                {
+                  if (next_id == numbers::internal_face_boundary_id - 1)
+                    throw ParameterError(in_file +
+                                         ": too many combinations of "
+                                         "condition groups");
+                  ++next_id;
+                }
+              id = it->second;
+            }
+          if (result.groups_of_boundary_id.count(id) == 0)
+            for (const unsigned int g : set)
+              result.groups_of_boundary_id[id].push_back(
+                use.condition_groups[g].first);
+          lines[id].push_back({edge.first, edge.second});
+        }
+
+      for (unsigned int b = 0; b < 2; ++b)
+        result.meshes[b] =
+          build_body_mesh(body_elements[b], nodes, lines, b, file_name);
+      return result;
     }
   } // namespace
 
@@ -319,11 +645,12 @@ namespace coulomb_adapt
 
 
 
-  std::array<CoarseMeshData, 2>
-  read_two_body_gmsh_file(const std::string &file_name,
-                          const CellType     requested_cell_type,
-                          const double       mesh_size_factor,
-                          const MPI_Comm     comm)
+  TwoBodyGmshMeshes
+  read_two_body_gmsh_geometry(const std::string & file_name,
+                              const CellType      requested_cell_type,
+                              const double        mesh_size_factor,
+                              const GmshGroupUse &use,
+                              const MPI_Comm      comm)
   {
     if (!std::filesystem::is_regular_file(file_name))
       throw ParameterError("Scene/Gmsh/Mesh file",
@@ -335,8 +662,8 @@ namespace coulomb_adapt
     // One rank reads (gmsh is serial, and meshing a .geo on every rank
     // would only repeat the work); every rank then either gets the meshes
     // or throws the same error, so none waits for another that gave up.
-    std::array<CoarseMeshData, 2> meshes;
-    std::string                   error;
+    TwoBodyGmshMeshes result;
+    std::string       error;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
         gmsh::initialize();
@@ -344,9 +671,10 @@ namespace coulomb_adapt
         gmsh::option::setNumber("General.Verbosity", 0);
         try
           {
-            meshes = read_with_gmsh(file_name,
+            result = read_with_gmsh(file_name,
                                     requested_cell_type,
-                                    mesh_size_factor);
+                                    mesh_size_factor,
+                                    use);
           }
         catch (const ParameterError &e)
           {
@@ -372,10 +700,26 @@ namespace coulomb_adapt
       {
         error = Utilities::MPI::broadcast(comm, error, 0);
         if (error.empty())
-          meshes = Utilities::MPI::broadcast(comm, meshes, 0);
+          result = Utilities::MPI::broadcast(comm, result, 0);
       }
     if (!error.empty())
       throw ParameterError(error);
-    return meshes;
+    return result;
+  }
+
+
+
+  std::array<CoarseMeshData, 2>
+  read_two_body_gmsh_file(const std::string &file_name,
+                          const CellType     requested_cell_type,
+                          const double       mesh_size_factor,
+                          const MPI_Comm     comm)
+  {
+    return read_two_body_gmsh_geometry(file_name,
+                                       requested_cell_type,
+                                       mesh_size_factor,
+                                       GmshGroupUse(),
+                                       comm)
+      .meshes;
   }
 } // namespace coulomb_adapt

@@ -4,15 +4,24 @@
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 #include <coulomb_adapt/scenes/scene.h>
 
+#include <optional>
+
 namespace coulomb_adapt
 {
   namespace scenes
   {
     /**
-     * Any two-body geometry from a gmsh `.geo` or `.msh` file (see
-     * read_two_body_gmsh_file for the physical groups it must define):
-     * clamped on `dirichlet`, a uniform traction on `traction`, contact
-     * candidate `contact`.
+     * Any two-body geometry from a gmsh `.geo` or `.msh` file, with boundary
+     * conditions and loads given per physical group (in the manner of
+     * ASPECT's `Prescribed velocity boundary indicators`): fixed
+     * components with optional prescribed values, tractions and normal
+     * pressures per curve group, the contact pair (slave group, master
+     * group), and per body its surfaces, material and body force (gravity,
+     * centrifugal). doc/scenes.md describes the entries.
+     *
+     * Without any of `Fixed components`, `Tractions`, `Normal pressures`
+     * the old fixed groups apply: `dirichlet` clamped, the uniform
+     * `Traction` on `traction`, contact on `contact`.
      */
     class GmshFile : public Scene
     {
@@ -35,10 +44,38 @@ namespace coulomb_adapt
       BodyDescription
       describe_body(const unsigned int body) const override;
 
+      /** What applies on the curves of one physical group. */
+      struct GroupConditions
+      {
+        /** Prescribed displacement (mm) of x and y, where fixed. */
+        std::array<std::optional<double>, 2> fixed;
+        /** Traction vector (MPa). */
+        Tensor<1, 2> traction;
+        /** Normal pressure (MPa): the traction -p n. */
+        double pressure = 0;
+        /** Whether any traction or pressure is given. */
+        bool loaded = false;
+      };
+
+      /** Constant and centrifugal body force of one body. */
+      struct BodyForce
+      {
+        /** Mass density (t/mm^3, so that density x acceleration is in
+         * N/mm^3). */
+        double density = 0;
+        /** Acceleration of gravity (mm/s^2). */
+        Tensor<1, 2> gravity;
+        /** Angular velocity (rad/s) about the axis through
+         * @p axis perpendicular to the plane. */
+        double   angular_velocity = 0;
+        Point<2> axis;
+      };
+
     private:
-      std::array<CoarseMeshData, 2> meshes;
-      Tensor<1, 2>                  traction;
-      std::array<MaterialConstants, 2>             materials;
+      TwoBodyGmshMeshes                      geometry;
+      std::map<std::string, GroupConditions> conditions;
+      std::array<MaterialConstants, 2>       materials;
+      std::array<BodyForce, 2>               body_forces;
     };
   } // namespace scenes
 } // namespace coulomb_adapt

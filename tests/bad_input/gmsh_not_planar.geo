@@ -1,0 +1,13 @@
+// A square in the plane z = 0.5, not in the x-y plane.
+h = 0.5;
+Point(1) = {0, 0, 0.5, h};
+Point(2) = {1, 0, 0.5, h};
+Point(3) = {1, 1, 0.5, h};
+Point(4) = {0, 1, 0.5, h};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Surface("body 1") = {1};
