@@ -426,6 +426,9 @@ namespace coulomb_adapt
                                     &computing_timer));
     check_finite_estimate(bodies, *error_estimate);
     compared_estimates.clear();
+    // The compared estimators judge the same solution: they take the
+    // driving estimator's corrected contact fields instead of solving the
+    // corrected problem again.
     if (indicator.compare_estimators)
       for (const ErrorEstimator other : all_error_estimators())
         if (other != indicator.estimator)
@@ -436,7 +439,9 @@ namespace coulomb_adapt
               parameters.contact.friction_coefficient,
               other,
               indicator,
-              parameters.linear_solver)));
+              parameters.linear_solver,
+              nullptr,
+              &error_estimate->correction)));
     const ErrorEstimate &e = *error_estimate;
     if (e.has_contact)
       {

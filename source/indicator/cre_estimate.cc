@@ -42,7 +42,8 @@ namespace coulomb_adapt
                      const double                              mu,
                      const unsigned int                        degree_increase,
                      const parameters::LinearSolver &          solver_parameters,
-                     TimerOutput *                             timer)
+                     TimerOutput *                             timer,
+                     const CorrectedContactSolution *          known_correction)
   {
     ErrorEstimate estimate;
     estimate.estimator   = ErrorEstimator::cre;
@@ -59,11 +60,11 @@ namespace coulomb_adapt
       {
         {
           const OptionalTimerSection section(timer, "error indicator: correction");
-          estimate.correction = correct_contact_solution(*bodies[0],
-                                                         *bodies[1],
-                                                         *contact_solver,
-                                                         mu,
-                                                         solver_parameters);
+          estimate.correction =
+            known_correction != nullptr ?
+              *known_correction :
+              correct_contact_solution(
+                *bodies[0], *bodies[1], *contact_solver, mu, solver_parameters);
           equilibrium =
             correct_contact_solution(*bodies[0],
                                      *bodies[1],

@@ -116,7 +116,8 @@ namespace coulomb_adapt
                  const ErrorEstimator                      estimator,
                  const parameters::ErrorIndicator &        indicator_parameters,
                  const parameters::LinearSolver &          solver_parameters,
-                 TimerOutput *                             timer)
+                 TimerOutput *                             timer,
+                 const CorrectedContactSolution *          known_correction)
   {
     if (estimator == ErrorEstimator::cre)
       return estimate_error_cre(bodies,
@@ -124,7 +125,8 @@ namespace coulomb_adapt
                                 mu,
                                 indicator_parameters.cre_degree_increase,
                                 solver_parameters,
-                                timer);
+                                timer,
+                                known_correction);
     ErrorEstimate estimate =
       estimate_error(bodies,
                      contact_solver,
@@ -133,7 +135,8 @@ namespace coulomb_adapt
                        StressRecoveryMethod::spr :
                        StressRecoveryMethod::l2_projection,
                      solver_parameters,
-                     timer);
+                     timer,
+                     known_correction);
     estimate.estimator = estimator;
     return estimate;
   }
@@ -146,7 +149,8 @@ namespace coulomb_adapt
                  const double                              mu,
                  const StressRecoveryMethod                recovery,
                  const parameters::LinearSolver &          solver_parameters,
-                 TimerOutput *                             timer)
+                 TimerOutput *                             timer,
+                 const CorrectedContactSolution *          known_correction)
   {
     ErrorEstimate estimate;
     estimate.recovery    = recovery;
@@ -159,11 +163,11 @@ namespace coulomb_adapt
         {
           const OptionalTimerSection section(timer,
                                              "error indicator: correction");
-          estimate.correction = correct_contact_solution(*bodies[0],
-                                                         *bodies[1],
-                                                         *contact,
-                                                         mu,
-                                                         solver_parameters);
+          estimate.correction =
+            known_correction != nullptr ?
+              *known_correction :
+              correct_contact_solution(
+                *bodies[0], *bodies[1], *contact, mu, solver_parameters);
         }
         const OptionalTimerSection section(timer,
                                            "error indicator: contributions");

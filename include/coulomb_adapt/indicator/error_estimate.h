@@ -64,6 +64,10 @@ namespace coulomb_adapt
    * "error indicator: smoothing" (sigma_c at the quadrature points, the
    * stress space and the recovery) and "error indicator: contributions"
    * (volume and contact terms, epsilon and epsilon_E).
+   *
+   * @p known_correction: the seed's corrected solution of this same
+   * contact solution if another estimator has already computed it
+   * (`Compare estimators`); it is then copied instead of solved again.
    */
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
@@ -71,7 +75,8 @@ namespace coulomb_adapt
                  const double                              friction_coefficient,
                  const StressRecoveryMethod                recovery,
                  const parameters::LinearSolver &          solver_parameters,
-                 TimerOutput *                             timer = nullptr);
+                 TimerOutput *                             timer = nullptr,
+                 const CorrectedContactSolution *known_correction = nullptr);
 
   /**
    * The estimator @p estimator (zz, spr or cre) for the current solution:
@@ -85,7 +90,8 @@ namespace coulomb_adapt
                  const ErrorEstimator                      estimator,
                  const parameters::ErrorIndicator &        indicator_parameters,
                  const parameters::LinearSolver &          solver_parameters,
-                 TimerOutput *                             timer = nullptr);
+                 TimerOutput *                             timer = nullptr,
+                 const CorrectedContactSolution *known_correction = nullptr);
 
   /**
    * The error in constitutive relation (theory.md section 7): the
@@ -105,7 +111,8 @@ namespace coulomb_adapt
                      const double                              friction_coefficient,
                      const unsigned int                        degree_increase,
                      const parameters::LinearSolver &          solver_parameters,
-                     TimerOutput *                             timer = nullptr);
+                     TimerOutput *                             timer = nullptr,
+                     const CorrectedContactSolution *known_correction = nullptr);
 
   /** The common end of every estimator: the contact term added to the
    * contact cells of each side (the factor 2 of (3-10)), the seed's
