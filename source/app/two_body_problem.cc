@@ -10,6 +10,7 @@
 #include <coulomb_adapt/indicator/exact_error.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -40,6 +41,7 @@ namespace coulomb_adapt
       summary->set("reference", scene->reference_values());
     summary->set("friction_coefficient",
                  parameters.contact.friction_coefficient);
+    check_initial_mesh_size();
   }
 
 
@@ -714,6 +716,42 @@ namespace coulomb_adapt
         << ")";
     reason = s.str();
     return reason.empty();
+  }
+
+
+
+  // Unbounded work is refused before it starts: the first meshes' DoFs,
+  // estimated from the coarse meshes (each uniform refinement multiplies
+  // the cells by 4; a P_p mesh has about p^2 vertices' worth of DoFs per
+  // quadrilateral, half that per triangle), must stay below the limit the
+  // adaptation keeps to. Before: 'Global refinements = 12' ended in
+  // std::bad_alloc after minutes.
+  void
+  TwoBodyProblem::check_initial_mesh_size() const
+  {
+    const unsigned int p = parameters.finite_elements.degree;
+    double             estimate = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        Triangulation<2> coarse;
+        scene->create_coarse_mesh(b, parameters.mesh.cell_type, coarse);
+        const double per_cell =
+          (coarse.all_reference_cells_are_hyper_cube() ? 2. : 1.) * p * p;
+        estimate += coarse.n_active_cells() * per_cell *
+                    std::pow(4., parameters.mesh.global_refinements);
+      }
+    if (estimate > parameters.adaptation.max_dofs)
+      {
+        std::ostringstream s;
+        s << "the first meshes would have about " << std::setprecision(3)
+          << estimate << " DoFs, above 'Adaptation/Maximum number of DoFs' ("
+          << parameters.adaptation.max_dofs
+          << "): lower it, or raise that limit if the machine has the "
+             "memory (about 1 kB per DoF)";
+        throw ParameterError("Mesh/Global refinements",
+                             std::to_string(parameters.mesh.global_refinements),
+                             s.str());
+      }
   }
 
 

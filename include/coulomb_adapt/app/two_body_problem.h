@@ -57,6 +57,10 @@ namespace coulomb_adapt
     last_error_estimate() const;
 
   private:
+    /** Refuse first meshes above 'Adaptation/Maximum number of DoFs'
+     * (estimated from the coarse meshes). */
+    void
+    check_initial_mesh_size() const;
     void
     setup_system();
     void
