@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdlib>
 #include <limits>
 
 namespace coulomb_adapt
@@ -245,11 +244,6 @@ namespace coulomb_adapt
       {
         const BodyEquilibrium e = body_equilibrium(
           *bodies[b], b == 0, mortar, states, linear_tolerance);
-        if (std::getenv("COULOMB_ADAPT_EQUILIBRIUM_LOG"))
-          pcout << "    equilibrium of body " << b + 1 << ": "
-                << e.n_free_modes << " free modes, imbalance " << e.imbalance
-                << ", round-off " << e.round_off << ", forces "
-                << e.force_scale << std::endl;
         if (!e.balanced())
           throw ContactDiagnosis(
             "Newton step " + std::to_string(k) + ": the contact sets "
@@ -348,10 +342,24 @@ namespace coulomb_adapt
     double size = 0;
     for (const auto &s : states)
       size = std::max(size, s.position.distance(states.front().position));
+    // A floating body 1 that does not touch yet would start from the
+    // open set, where nothing holds it and the first Newton system is
+    // singular (before: "nothing holds it (is it loaded towards body
+    // 2?)" for any initial gap, even 0.001 mm, of a body loaded towards
+    // body 2). It starts closed where the gap is smallest instead: those
+    // nodes are the first to touch, and the set rule opens them again if
+    // the load pulls the body away.
+    double closest = std::numeric_limits<double>::max();
+    for (unsigned int j = 0; j < states.size(); ++j)
+      if (mortar.is_covered(j))
+        closest = std::min(closest, gaps[j] / D[j]);
+    const double closed_below =
+      support.holds_all_rigid_motions() ? 1e-10 * size :
+                                          std::max(closest, 0.) + 1e-10 * size;
     for (unsigned int j = 0; j < states.size(); ++j)
       {
         const bool touching =
-          mortar.is_covered(j) && gaps[j] / D[j] <= 1e-10 * size;
+          mortar.is_covered(j) && gaps[j] / D[j] <= closed_below;
         states[j].status    = initial_status(touching, mu);
         states[j].slip_sign = 1;
       }
@@ -526,7 +534,10 @@ namespace coulomb_adapt
   double
   ContactSolver::residual_round_off_floor() const
   {
-    return multiplier_round_off / largest_pressure(states);
+    // The tangential function is mu p (lambda_t - trial): its round-off
+    // grows with mu (mu = 1e10 stuck all-stick at a residual of 1e-6).
+    return multiplier_round_off / largest_pressure(states) *
+           std::max(1., mu);
   }
 
 
