@@ -40,9 +40,9 @@ namespace coulomb_adapt
     Point<2>     centre;
     /** Largest |z^T (f + c)| over the free unit modes (N/mm). */
     double       imbalance = 0;
-    /** Round-off bound of that sum: (terms per row + rows) eps times the
-     * sum of the magnitudes of the terms of z^T (f - K u) and z^T c, plus
-     * the linear solver's tolerance on |f|. */
+    /** Round-off bound of that sum: (terms per row + 2 + sqrt(rows)) eps
+     * times the sum of the magnitudes of the terms of z^T (f - K u) and
+     * z^T c, plus the linear solver's tolerance on |f|. */
     double       round_off = 0;
     /** The scale of the forces that balance: sum |z_i f_i| + sum |z c|. */
     double       force_scale = 0;
@@ -50,8 +50,10 @@ namespace coulomb_adapt
      * than a force (it slides). */
     bool         tips = false;
 
-    /** Balanced to round-off, and the round-off itself small against the
-     * forces (a singular system's round-off is of the order of the load). */
+    /** Balanced to round-off, and the round-off itself below 1e-4 of the
+     * forces: a singular system's round-off is of the order of the load
+     * (50 to 300 times it in the tests' cases), a regular one's below
+     * 1e-8 of it. */
     bool
     balanced() const;
   };
