@@ -34,6 +34,14 @@ namespace coulomb_adapt
                       TimerOutput::wall_times)
   {
     scene   = scenes::create_scene(parameters, prm);
+    if (parameters.scene.name == "gmsh")
+      {
+        prm.enter_subsection("Scene");
+        prm.enter_subsection("Gmsh");
+        mesh_source = "gmsh file '" + prm.get("Mesh file") + "': ";
+        prm.leave_subsection();
+        prm.leave_subsection();
+      }
     summary = std::make_unique<RunSummary>(
       mpi_communicator,
       parameters.output.directory + "/summary.json",
@@ -737,6 +745,16 @@ namespace coulomb_adapt
       {
         Triangulation<2> coarse;
         scene->create_coarse_mesh(b, parameters.mesh.cell_type, coarse);
+        // Degenerate cells, named with the file they come from (ElasticBody
+        // checks every mesh it builds again, remeshed ones too).
+        try
+          {
+            check_mesh_cells(coarse, scene->describe_body(b).name, b);
+          }
+        catch (const std::exception &e)
+          {
+            throw ParameterError(mesh_source + e.what());
+          }
         const double per_cell =
           (coarse.all_reference_cells_are_hyper_cube() ? 2. : 1.) * p * p;
         const double n_cells = coarse.n_active_cells() *

@@ -67,6 +67,9 @@ namespace coulomb_adapt
      * directory (rank 0; the log says how many). */
     void
     remove_files_of_earlier_run() const;
+    /** Where the meshes come from, for messages ("gmsh file 'x.msh': "),
+     * empty for the built-in scenes. */
+    std::string mesh_source;
     void
     setup_system();
     void
