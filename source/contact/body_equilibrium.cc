@@ -102,7 +102,7 @@ namespace coulomb_adapt
   bool
   BodyEquilibrium::balanced() const
   {
-    return imbalance <= round_off && round_off <= 1e-4 * force_scale;
+    return imbalance <= round_off && round_off <= 1e-1 * force_scale;
   }
 
 
@@ -267,7 +267,7 @@ namespace coulomb_adapt
       << e.contact_force[1] << ") N/mm with moment " << e.contact_moment
       << " N: out of balance by " << e.imbalance
       << " N/mm, where round-off allows " << e.round_off << " N/mm";
-    if (e.round_off > 1e-4 * e.force_scale)
+    if (e.round_off > 1e-1 * e.force_scale)
       s << " (and round-off of that size means a singular system: the "
            "contact sets do not hold the body)";
     s << ". The contact does not hold the body: it slides or tips (the "
