@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <iterator>
 #include <sstream>
 
@@ -53,8 +54,15 @@ namespace coulomb_adapt
             if (equal == std::string::npos || equal == 0)
               throw ParameterError("option -s '" + assignment +
                                    "': expected \"Section/Entry=value\"");
-            command_line.overrides.emplace_back(assignment.substr(0, equal),
-                                                assignment.substr(equal + 1));
+            // Blanks around the names and the value, as the file parser
+            // trims them ("Section/Entry = value" is the file's spelling).
+            std::vector<std::string> names = Utilities::split_string_list(
+              assignment.substr(0, equal), '/');
+            std::string path;
+            for (const auto &name : names)
+              path += (path.empty() ? "" : "/") + Utilities::trim(name);
+            command_line.overrides.emplace_back(
+              path, Utilities::trim(assignment.substr(equal + 1)));
           }
         else if (!arg.empty() && arg[0] == '-')
           throw ParameterError("unknown option '" + arg + "'\n" + usage());
@@ -67,6 +75,60 @@ namespace coulomb_adapt
       }
     return command_line;
   }
+
+
+
+  namespace
+  {
+    // deal.II's parser lets the last of two 'set' lines of one entry win
+    // without a word (a subsection given twice merges, which is how both
+    // end up in one place): a user who edits the first never sees an
+    // effect. Stop on the second, with both lines.
+    void
+    reject_repeated_entries(const std::string &text, const std::string &file)
+    {
+      std::istringstream                  input(text);
+      std::vector<std::string>            path;
+      std::map<std::string, unsigned int> first_line;
+      std::string                         line, joined;
+      unsigned int                        line_number = 0, start = 0;
+      while (std::getline(input, line))
+        {
+          ++line_number;
+          line = line.substr(0, line.find('#'));
+          if (joined.empty())
+            start = line_number;
+          if (!line.empty() && line.back() == '\\')
+            {
+              joined += line.substr(0, line.size() - 1);
+              continue;
+            }
+          joined += line;
+          const std::string statement = Utilities::trim(joined);
+          joined.clear();
+          if (statement.rfind("subsection ", 0) == 0)
+            path.push_back(Utilities::trim(statement.substr(11)));
+          else if (statement == "end" && !path.empty())
+            path.pop_back();
+          else if (statement.rfind("set ", 0) == 0 &&
+                   statement.find('=') != std::string::npos)
+            {
+              std::string key;
+              for (const auto &p : path)
+                key += p + "/";
+              key += Utilities::trim(
+                statement.substr(4, statement.find('=') - 4));
+              const auto [where, inserted] = first_line.emplace(key, start);
+              if (!inserted)
+                throw ParameterError(
+                  "in parameter file '" + file + "': line " +
+                  std::to_string(start) + " sets '" + key +
+                  "' again (first on line " + std::to_string(where->second) +
+                  "); each entry may be set once");
+            }
+        }
+    }
+  } // namespace
 
 
 
@@ -105,6 +167,7 @@ namespace coulomb_adapt
         // the first line.
         if (text.compare(0, 3, "\xEF\xBB\xBF") == 0)
           text.erase(0, 3);
+        reject_repeated_entries(text, file);
         try
           {
             std::istringstream input(text);
@@ -124,6 +187,27 @@ namespace coulomb_adapt
         const std::string entry = sections.back();
         sections.pop_back();
         unsigned int depth = 0;
+        // Name the first subsection on the path that does not exist
+        // (deal.II would only say that the entry is not declared).
+        std::vector<std::string> existing;
+        for (const auto &section : sections)
+          {
+            std::vector<std::string> next = existing;
+            next.push_back(section);
+            if (!prm.subsection_path_exists(next))
+              {
+                std::string parent;
+                for (const auto &e : existing)
+                  parent += (parent.empty() ? "" : "/") + e;
+                throw ParameterError(
+                  "in option -s \"" + path + "=" + value + "\": there is "
+                  "no subsection '" + section + "' " +
+                  (parent.empty() ? std::string("at the top level") :
+                                    "in '" + parent + "'") +
+                  " (--print-parameters lists them)");
+              }
+            existing = next;
+          }
         try
           {
             for (const auto &s : sections)

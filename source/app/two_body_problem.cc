@@ -10,6 +10,9 @@
 #include <coulomb_adapt/indicator/exact_error.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 
+#include <cmath>
+#include <filesystem>
+#include <regex>
 #include <iomanip>
 #include <sstream>
 
@@ -32,6 +35,14 @@ namespace coulomb_adapt
     , target_calibration(parameters.adaptation.target_safety_factor)
   {
     scene   = scenes::create_scene(parameters, prm);
+    if (parameters.scene.name == "gmsh")
+      {
+        prm.enter_subsection("Scene");
+        prm.enter_subsection("Gmsh");
+        mesh_source = "gmsh file '" + prm.get("Mesh file") + "': ";
+        prm.leave_subsection();
+        prm.leave_subsection();
+      }
     summary = std::make_unique<RunSummary>(
       mpi_communicator,
       parameters.output.directory + "/summary.json",
@@ -41,6 +52,7 @@ namespace coulomb_adapt
       summary->set("reference", scene->reference_values());
     summary->set("friction_coefficient",
                  parameters.contact.friction_coefficient);
+    check_initial_mesh_size();
   }
 
 
@@ -753,6 +765,130 @@ namespace coulomb_adapt
 
 
 
+  // Unbounded work is refused before it starts: the first meshes' DoFs,
+  // estimated from the coarse meshes (each uniform refinement multiplies
+  // the cells by 4; a P_p mesh has about p^2 vertices' worth of DoFs per
+  // quadrilateral, half that per triangle), must stay below the limit the
+  // adaptation keeps to. Before: 'Global refinements = 12' ended in
+  // std::bad_alloc after minutes.
+  void
+  TwoBodyProblem::check_initial_mesh_size() const
+  {
+    const unsigned int p = parameters.finite_elements.degree;
+    double             estimate = 0;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        Triangulation<2> coarse;
+        scene->create_coarse_mesh(b, parameters.mesh.cell_type, coarse);
+        // Degenerate cells, named with the file they come from (ElasticBody
+        // checks every mesh it builds again, remeshed ones too).
+        try
+          {
+            check_mesh_cells(coarse, scene->describe_body(b).name, b);
+          }
+        catch (const std::exception &e)
+          {
+            throw ParameterError(mesh_source + e.what());
+          }
+        const double per_cell =
+          (coarse.all_reference_cells_are_hyper_cube() ? 2. : 1.) * p * p;
+        const double n_cells = coarse.n_active_cells() *
+                               std::pow(4., parameters.mesh.global_refinements);
+        estimate += n_cells * per_cell;
+        // The recovered stress of a single cell (its projection onto the
+        // continuous space, or its patch fit) is the finite element stress
+        // itself: the zz/spr indicator would be 0 whatever the error
+        // (blocks with 1 x 1 subdivisions: epsilon = 0 %, exact 15.6 %).
+        if (n_cells == 1 &&
+            parameters.error_indicator.estimator != ErrorEstimator::cre)
+          throw ParameterError(
+            "Mesh/Global refinements",
+            std::to_string(parameters.mesh.global_refinements),
+            "body " + std::to_string(b + 1) + " (" +
+              scene->describe_body(b).name +
+              ") would have a single cell, on which the recovered stress "
+              "of the '" + to_string(parameters.error_indicator.estimator) +
+              "' estimator is the finite element stress itself: the "
+              "error indicator would be 0 whatever the error. Give the "
+              "body more cells (the scene's subdivisions) or refine once");
+      }
+    // The multipliers are differences of body 1's nodal forces, whose
+    // terms are E1 / E_c times the contact force: their round-off, n eps
+    // E1 / E_c of the pressure, reaches the largest 'Contact/Tolerance'
+    // (1e-6) at a ratio of about 1e8 (E1 = 1e30 on the blocks: a wrong
+    // "would slide"). Body 2 may be the stiff one.
+    const BodyDescription body_1 = scene->describe_body(0);
+    const BodyDescription body_2 = scene->describe_body(1);
+    const double          E1     = body_1.material.youngs_modulus;
+    const double          E2     = body_2.material.youngs_modulus;
+    if (body_1.contact_boundary_id != numbers::invalid_boundary_id &&
+        body_2.contact_boundary_id != numbers::invalid_boundary_id &&
+        E1 / E2 > 1e8)
+      {
+        std::ostringstream s;
+        s << std::setprecision(3) << "body 1's Young's modulus (" << E1
+          << " MPa) is " << E1 / E2 << " times body 2's (" << E2
+          << " MPa): the contact pressures are differences of body 1's "
+             "nodal forces, which would lose all their digits above a ratio "
+             "of 1e8. Make the stiffer body body 2 (the lower one), or use "
+             "moduli closer to each other";
+        throw ParameterError(s.str());
+      }
+    // Nearly incompressible bodies lock with P1 elements: the displacement
+    // comes out too small and the indicator measures the locked solution.
+    for (const BodyDescription *d : {&body_1, &body_2})
+      if (d->material.poissons_ratio > 0.49 && p == 1)
+        pcout << "warning: " << d->name << " has Poisson's ratio "
+              << d->material.poissons_ratio
+              << ": nearly incompressible, it locks with linear elements "
+                 "(displacements too small, stresses oscillating); use "
+                 "'Finite elements/Polynomial degree' = 2"
+              << std::endl;
+    if (estimate > parameters.adaptation.max_dofs)
+      {
+        std::ostringstream s;
+        s << "the first meshes would have about " << std::setprecision(3)
+          << estimate << " DoFs, above 'Adaptation/Maximum number of DoFs' ("
+          << parameters.adaptation.max_dofs
+          << "): lower it, or raise that limit if the machine has the "
+             "memory (about 1 kB per DoF)";
+        throw ParameterError("Mesh/Global refinements",
+                             std::to_string(parameters.mesh.global_refinements),
+                             s.str());
+      }
+  }
+
+
+
+  // A run into the directory of an earlier, longer one would leave that
+  // run's later cycles beside this run's summary.json, as if they were
+  // its own. The program's own per-cycle files (and the .pvd lists) go
+  // before the first cycle; other files stay.
+  void
+  TwoBodyProblem::remove_files_of_earlier_run() const
+  {
+    unsigned int n_removed = 0;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        const std::regex own_file(
+          "(body-[12]|contact)(_[0-9]{3}(\\.[0-9]+)?\\.(vtu|pvtu|csv)|\\.pvd)"
+          "(\\.tmp)?");
+        std::error_code error;
+        for (const auto &entry : std::filesystem::directory_iterator(
+               parameters.output.directory, error))
+          if (entry.is_regular_file(error) &&
+              std::regex_match(entry.path().filename().string(), own_file))
+            n_removed += std::filesystem::remove(entry.path(), error);
+      }
+    n_removed = Utilities::MPI::broadcast(mpi_communicator, n_removed, 0);
+    if (n_removed > 0)
+      pcout << "  removed " << n_removed
+            << " output files of an earlier run from '"
+            << parameters.output.directory << "'" << std::endl;
+  }
+
+
+
   void
   TwoBodyProblem::run()
   {
@@ -760,6 +896,7 @@ namespace coulomb_adapt
           << Utilities::MPI::n_mpi_processes(mpi_communicator)
           << " MPI rank(s), results in '" << parameters.output.directory
           << "'" << std::endl;
+    remove_files_of_earlier_run();
 
     {
       TimerOutput::Scope t(computing_timer, "setup");

@@ -23,7 +23,10 @@
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 
+#include <cmath>
 #include <map>
+#include <sstream>
+#include <stdexcept>
 
 namespace coulomb_adapt
 {
@@ -69,6 +72,60 @@ namespace coulomb_adapt
 
 
 
+  // A cell with a non-finite vertex, or with no area (a repeated node, a
+    // zero-area triangle), makes a singular or
+    // non-finite stiffness matrix: the solver then reports garbage (a
+    // MUMPS dump, "body 1 is not held") or a wrong equilibrium. Every rank
+  // holds the serial mesh, so every rank stops alike.
+    void
+    check_mesh_cells(const Triangulation<2> &mesh,
+                     const std::string &     name,
+                     const unsigned int      body_index)
+    {
+      for (const auto &cell : mesh.active_cell_iterators())
+        {
+          std::vector<Point<2>> polygon;
+          if (cell->n_vertices() == 3)
+            polygon = {cell->vertex(0), cell->vertex(1), cell->vertex(2)};
+          else
+            polygon = {cell->vertex(0),
+                       cell->vertex(1),
+                       cell->vertex(3),
+                       cell->vertex(2)};
+          std::ostringstream where;
+          where << "the mesh of body " << body_index + 1 << " (" << name
+                << ") has a cell with the vertices";
+          bool   finite   = true;
+          double diameter = 0, area = 0;
+          for (unsigned int v = 0; v < polygon.size(); ++v)
+            {
+              const Point<2> &a = polygon[v];
+              const Point<2> &b = polygon[(v + 1) % polygon.size()];
+              where << (v == 0 ? " (" : ", (") << a[0] << ", " << a[1] << ")";
+              finite = finite && std::isfinite(a[0]) && std::isfinite(a[1]);
+              for (const auto &c : polygon)
+                diameter = std::max(diameter, a.distance(c));
+              area += a[0] * b[1] - b[0] * a[1];
+            }
+          area /= 2;
+          if (!finite)
+            throw std::runtime_error(where.str() +
+                                     ": a coordinate is not a finite "
+                                     "number");
+          // Well below the round-off of the diameter squared there is no
+          // area (either orientation: gmsh's triangles may run clockwise).
+          if (!(std::abs(area) > 1e-12 * diameter * diameter))
+            throw std::runtime_error(
+              where.str() +
+              ": it has no area (a repeated node, or its vertices on one "
+              "line)" +
+              "; the stiffness matrix of such a cell is singular. Fix the "
+              "mesh");
+        }
+    }
+
+
+
   // Builds the distributed mesh. Quadrilaterals: p4est from the coarse mesh,
   // refined in place. Triangles: the serial mesh is refined, partitioned
   // and handed to a fully distributed triangulation (each rank keeps its
@@ -90,6 +147,7 @@ namespace coulomb_adapt
         serial.copy_triangulation(remeshed_tria);
       }
     simplex = !serial.all_reference_cells_are_hyper_cube();
+    check_mesh_cells(serial, body_description.name, body_index);
 
     std::unique_ptr<parallel::TriangulationBase<2>> new_tria;
     if (!simplex)

@@ -2,6 +2,7 @@
 
 #include <deal.II/lac/solver_control.h>
 
+#include <coulomb_adapt/contact/body_equilibrium.h>
 #include <coulomb_adapt/contact/contact_diagnosis.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/contact/eliminated_contact_system.h>
@@ -10,6 +11,7 @@
 #include <coulomb_adapt/contact/set_change_control.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
 namespace coulomb_adapt
@@ -101,12 +103,47 @@ namespace coulomb_adapt
   ContactSolver::check_sets(const unsigned int k) const
   {
     newton_diagnostics::check_support(support, states, mu, k, slave.name());
+    check_master_support(k);
     const bool turning = support.rotation_free(states);
     if (turning)
       pcout << "    body 1 can turn about its active node(s) in these "
                "sets: the system is singular"
             << std::endl;
     return turning;
+  }
+
+
+
+  // Body 2 is held by its Dirichlet data, or, floating, by the contact
+  // alone: then, as for body 1, the sets must have an active node, and
+  // without friction its Dirichlet data must hold its slide along the
+  // interface (a frictionless contact does not). Otherwise the system is
+  // singular and body 2's rigid motion arbitrary (and different on 1 and
+  // 2 ranks).
+  void
+  ContactSolver::check_master_support(const unsigned int k) const
+  {
+    if (holds_all_rigid_motions(master_gram))
+      return;
+    unsigned int n_active = 0;
+    for (const auto &s : states)
+      n_active += (s.status != ContactStatus::open);
+    const std::string where = "Newton step " + std::to_string(k) +
+                              ": body 2 (" + master.name() + ") ";
+    if (n_active == 0)
+      throw ContactDiagnosis(where + "has no active contact node and its "
+                                     "Dirichlet data do not hold it: "
+                                     "nothing holds it (is it loaded "
+                                     "towards body 1?).",
+                             k - 1);
+    const Tensor<1, 2> tangent = interface_tangent();
+    if (mu == 0 && tangent.norm() > 0 &&
+        !holds_translation_along(master_gram, tangent))
+      throw ContactDiagnosis(where + "can slide freely along the "
+                                     "frictionless interface: its Dirichlet "
+                                     "data do not hold it tangentially. Hold "
+                                     "it, or use friction.",
+                             k - 1);
   }
 
 
@@ -152,6 +189,7 @@ namespace coulomb_adapt
     if (update.n_changed == 0 &&
         residual <= std::max(contact_parameters.tolerance, floor))
       {
+        check_equilibrium(k);
         report.converged           = true;
         report.slave_rotation_free = turning;
         newton_diagnostics::log_convergence(
@@ -186,6 +224,35 @@ namespace coulomb_adapt
       }
     control.record(update, residual);
     return NextStep::iterate;
+  }
+
+
+
+  // Converged sets are not yet an answer: a singular system (a body that
+  // the sets do not hold) can meet the contact conditions node by node
+  // with forces that do not balance the load. Each body's free rigid
+  // motions must balance to round-off (contact/body_equilibrium.h).
+  void
+  ContactSolver::check_equilibrium(const unsigned int k) const
+  {
+    const double linear_tolerance =
+      iterative ? std::min(solver_parameters.relative_tolerance, 1e-12) *
+                    linear_tolerance_factor :
+                  0.;
+    const std::array<const ElasticBody *, 2> bodies = {{&slave, &master}};
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const BodyEquilibrium e = body_equilibrium(
+          *bodies[b], b == 0, mortar, states, linear_tolerance);
+        if (!e.balanced())
+          throw ContactDiagnosis(
+            "Newton step " + std::to_string(k) + ": the contact sets "
+              "converged, but " +
+              equilibrium_message("body " + std::to_string(b + 1) + " (" +
+                                    bodies[b]->name() + ")",
+                                  e),
+            k);
+      }
   }
 
 
@@ -253,6 +320,7 @@ namespace coulomb_adapt
         states[j].weight   = D[j];
       }
     support.reinit(slave, states);
+    master_gram = master.support_gram(Point<2>());
     if (first_step)
       {
         initialize_sets();
@@ -274,10 +342,24 @@ namespace coulomb_adapt
     double size = 0;
     for (const auto &s : states)
       size = std::max(size, s.position.distance(states.front().position));
+    // A floating body 1 that does not touch yet would start from the
+    // open set, where nothing holds it and the first Newton system is
+    // singular (before: "nothing holds it (is it loaded towards body
+    // 2?)" for any initial gap, even 0.001 mm, of a body loaded towards
+    // body 2). It starts closed where the gap is smallest instead: those
+    // nodes are the first to touch, and the set rule opens them again if
+    // the load pulls the body away.
+    double closest = std::numeric_limits<double>::max();
+    for (unsigned int j = 0; j < states.size(); ++j)
+      if (mortar.is_covered(j))
+        closest = std::min(closest, gaps[j] / D[j]);
+    const double closed_below =
+      support.holds_all_rigid_motions() ? 1e-10 * size :
+                                          std::max(closest, 0.) + 1e-10 * size;
     for (unsigned int j = 0; j < states.size(); ++j)
       {
         const bool touching =
-          mortar.is_covered(j) && gaps[j] / D[j] <= 1e-10 * size;
+          mortar.is_covered(j) && gaps[j] / D[j] <= closed_below;
         states[j].status    = initial_status(touching, mu);
         states[j].slip_sign = 1;
       }
@@ -452,7 +534,10 @@ namespace coulomb_adapt
   double
   ContactSolver::residual_round_off_floor() const
   {
-    return multiplier_round_off / largest_pressure(states);
+    // The tangential function is mu p (lambda_t - trial): its round-off
+    // grows with mu (mu = 1e10 stuck all-stick at a residual of 1e-6).
+    return multiplier_round_off / largest_pressure(states) *
+           std::max(1., mu);
   }
 
 

@@ -2,6 +2,7 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
+#include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/scenes/hertz.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
@@ -113,12 +114,28 @@ namespace coulomb_adapt
           normal_displacement     = prm.get_double("Normal displacement");
           tangential_displacement = prm.get_double("Tangential displacement");
           n_tangential_steps = prm.get_integer("Tangential load steps");
+          // Without it the disc does not press on the block: no contact
+          // force, no strain, and a tangential displacement of the holder
+          // only moves the disc rigidly; the relative error is then a
+          // ratio of round-off to round-off.
+          require_parameter(normal_displacement > 0,
+                            "Scene/Cattaneo/Normal displacement",
+                            normal_displacement,
+                            "must be > 0: the disc must be pressed onto the "
+                            "block before the tangential load (0 leaves no "
+                            "contact force and no strain)");
           prm.leave_subsection();
         }
       prm.enter_subsection("Hertz");
       {
         const std::string path = "Scene/Hertz";
         radius                 = prm.get_double("Radius");
+        // R = 0 is a point, whose Hertz half-width a = 0 would grade the
+        // mesh towards it without end.
+        require_parameter(radius > 0,
+                          path + "/Radius",
+                          radius,
+                          "must be > 0 (mm)");
         line_load              = prm.get_double("Line load");
         // A tangential load must not be carried by a support on the axis.
         hold_axis = prm.get_bool("Hold axis") && !cattaneo;

@@ -58,6 +58,19 @@ namespace coulomb_adapt
     last_error_estimate() const;
 
   private:
+    /** Refuse, before any mesh is built, first meshes above 'Adaptation/
+     * Maximum number of DoFs' (estimated from the coarse meshes), a body
+     * of one cell (a blind zz/spr indicator) and a body 1 more than 1e8
+     * times stiffer than body 2. */
+    void
+    check_initial_mesh_size() const;
+    /** Remove the per-cycle output files of an earlier run from the output
+     * directory (rank 0; the log says how many). */
+    void
+    remove_files_of_earlier_run() const;
+    /** Where the meshes come from, for messages ("gmsh file 'x.msh': "),
+     * empty for the built-in scenes. */
+    std::string mesh_source;
     void
     setup_system();
     void

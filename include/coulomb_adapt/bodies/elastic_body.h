@@ -30,6 +30,14 @@
 
 namespace coulomb_adapt
 {
+  /** Throw if a cell of @p mesh (of body @p body_index, @p name) has a
+   * vertex that is not a finite number or no area (a repeated node, a
+   * zero-area triangle): its stiffness would be singular or non-finite. */
+  void
+  check_mesh_cells(const Triangulation<2> &mesh,
+                   const std::string &     name,
+                   const unsigned int      body_index);
+
   /**
    * One linear elastic body: its distributed mesh, finite element space,
    * constraints (hanging nodes, Dirichlet data) and elasticity system.

@@ -6,6 +6,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/bodies/rigid_motion_gram.h>
 #include <coulomb_adapt/contact/active_set.h>
 #include <coulomb_adapt/contact/condensed_newton_system.h>
 #include <coulomb_adapt/contact/contact_state.h>
@@ -129,6 +130,10 @@ namespace coulomb_adapt
      * held); returns whether its rotation is free. */
     bool
     check_sets(const unsigned int k) const;
+    /** The same for body 2, whose Dirichlet data may leave it floating
+     * (throws the diagnosis if the sets of step @p k do not hold it). */
+    void
+    check_master_support(const unsigned int k) const;
     /** Assemble and solve the Newton system of step @p k for the current
      * sets, and evaluate the contact state of its solution. Returns the
      * wall times of assembly and solve. */
@@ -158,6 +163,10 @@ namespace coulomb_adapt
               const bool                         turning,
               SetChangeControl &                 control,
               ContactSolverReport &              report);
+    /** The force balance of both bodies for the converged sets of step
+     * @p k; throws the diagnosis if one does not balance. */
+    void
+    check_equilibrium(const unsigned int k) const;
     void
     evaluate_contact_state();
     /** After convergence: the slip of this load step, the slip history
@@ -189,6 +198,9 @@ namespace coulomb_adapt
     SlaveCondensation condensation;
     ActiveSetRule     rule;
     SlaveSupport      support;
+    /** Body 2's Gram matrix of its supported rigid motions (rotation
+     * about the origin), once per load step. */
+    FullMatrix<double> master_gram;
     /** Bound on the round-off of the nodal multipliers at the last
      * evaluation (MPa). */
     double            multiplier_round_off = 0;
