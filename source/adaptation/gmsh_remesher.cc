@@ -359,35 +359,91 @@ namespace coulomb_adapt
       std::vector<double>      coordinates, parametric;
       gmsh::model::mesh::getNodes(
         node_tags, coordinates, parametric, -1, -1, true, false);
-      std::map<std::size_t, Point<2>> nodes;
+      // The mesh as CoarseMeshData: what build_body_mesh
+      // (scenes/gmsh_reader.h) makes of gmsh's elements, with the same
+      // vertex, cell and line order, so the same mesh, but on flat arrays
+      // instead of maps and one vector per element, and without its check
+      // that each line is a boundary edge (the lines here are those of the
+      // boundary curves gmsh meshed): on large meshes that check and the
+      // maps were a large part of the remeshing time
+      // (benchmarks/adaptive_run).
+      std::size_t max_tag = 0;
+      for (const std::size_t t : node_tags)
+        max_tag = std::max(max_tag, t);
+      std::vector<std::size_t> node_of_tag(max_tag + 1);
       for (std::size_t i = 0; i < node_tags.size(); ++i)
-        nodes[node_tags[i]] =
-          Point<2>(coordinates[3 * i], coordinates[3 * i + 1]);
+        node_of_tag[node_tags[i]] = i;
+      constexpr unsigned int invalid = numbers::invalid_unsigned_int;
+      std::vector<unsigned int> local_index(max_tag + 1, invalid);
 
-      auto elements_of = [](const int dim, const int tag, const unsigned n) {
+      CoarseMeshData mesh;
+      auto           vertex = [&](const std::size_t tag) {
+        if (local_index[tag] == invalid)
+          {
+            local_index[tag] = mesh.vertices.size();
+            const std::size_t i = node_of_tag[tag];
+            mesh.vertices.emplace_back(coordinates[3 * i],
+                                       coordinates[3 * i + 1]);
+          }
+        return local_index[tag];
+      };
+      const types::material_id material_id =
+        geometry.begin_active()->material_id();
+      {
         std::vector<int>                      types;
         std::vector<std::vector<std::size_t>> element_tags, element_nodes;
         gmsh::model::mesh::getElements(
-          types, element_tags, element_nodes, dim, tag);
-        std::vector<std::vector<std::size_t>> elements;
+          types, element_tags, element_nodes, 2, surface);
         for (unsigned int t = 0; t < types.size(); ++t)
           for (std::size_t e = 0; e < element_tags[t].size(); ++e)
-            elements.emplace_back(element_nodes[t].begin() + e * n,
-                                  element_nodes[t].begin() + (e + 1) * n);
-        return elements;
-      };
-      // Lines keyed by the index of their curve, renamed below.
-      std::map<types::boundary_id, std::vector<std::vector<std::size_t>>>
-        lines;
+            {
+              CellData<2> cell(3);
+              for (unsigned int v = 0; v < 3; ++v)
+                cell.vertices[v] = vertex(element_nodes[t][3 * e + v]);
+              // deal.II wants counter-clockwise triangles (the shoelace
+              // formula, as build_body_mesh evaluates it).
+              double area = 0;
+              for (unsigned int v = 0; v < 3; ++v)
+                {
+                  const Point<2> &p = mesh.vertices[cell.vertices[v]];
+                  const Point<2> &q =
+                    mesh.vertices[cell.vertices[(v + 1) % 3]];
+                  area += p[0] * q[1] - q[0] * p[1];
+                }
+              if (0.5 * area < 0)
+                std::swap(cell.vertices[1], cell.vertices[2]);
+              cell.material_id = material_id;
+              mesh.cells.push_back(cell);
+            }
+      }
+      // Lines by curve index (the boundary id until renamed below), each
+      // curve's in gmsh's order.
+      std::map<unsigned int, std::vector<int>> tags_of_curve;
       for (const auto &[tag, c] : curve_index)
-        for (auto &line : elements_of(1, tag, 2))
-          lines[c].push_back(line);
-      CoarseMeshData mesh =
-        build_body_mesh(elements_of(2, surface, 3),
-                        nodes,
-                        lines,
-                        geometry.begin_active()->material_id(),
-                        "remeshed " + body_name);
+        tags_of_curve[c].push_back(tag);
+      for (const auto &[c, tags] : tags_of_curve)
+        for (const int tag : tags)
+          {
+            std::vector<int>                      types;
+            std::vector<std::vector<std::size_t>> element_tags, element_nodes;
+            gmsh::model::mesh::getElements(
+              types, element_tags, element_nodes, 1, tag);
+            for (unsigned int t = 0; t < types.size(); ++t)
+              for (std::size_t e = 0; e < element_tags[t].size(); ++e)
+                {
+                  const auto edge =
+                    std::minmax(local_index[element_nodes[t][2 * e]],
+                                local_index[element_nodes[t][2 * e + 1]]);
+                  AssertThrow(edge.first != invalid && edge.second != invalid,
+                              ExcMessage("remeshing " + body_name +
+                                         ": a boundary node of gmsh's mesh "
+                                         "is not a vertex of a triangle"));
+                  CellData<1> line;
+                  line.vertices    = {edge.first, edge.second};
+                  line.boundary_id = c;
+                  mesh.boundary_lines.boundary_lines.push_back(line);
+                }
+          }
       for (auto &line : mesh.boundary_lines.boundary_lines)
         {
           const Curve &curve = curves[line.boundary_id];

@@ -652,18 +652,22 @@ namespace coulomb_adapt
 
 
   void
-  TwoBodyProblem::output_results(const unsigned int cycle)
+  TwoBodyProblem::output_results(const unsigned int cycle,
+                                 const bool         last_cycle)
   {
     TimerOutput::Scope t(computing_timer, "output");
-    // The contact CSV is small and always written; VTU on request.
+    // The contact CSV is small and always written; the fields on request.
+    const std::string &write_cycles = parameters.output.write_cycles;
+    const bool         write_fields =
+      write_cycles == "all" || (write_cycles == "last" && last_cycle);
     if (contact_solver)
       contact_output->write(contact_solver->node_states(),
                             error_estimate ?
                               error_estimate->contact.nodal_density :
                               std::vector<double>(),
                             cycle,
-                            parameters.output.write_vtu);
-    if (!parameters.output.write_vtu)
+                            write_fields);
+    if (!write_fields)
       return;
     for (unsigned int b = 0; b < 2; ++b)
       {
@@ -910,10 +914,14 @@ namespace coulomb_adapt
             parameters.mesh.global_refinements,
             parameters.finite_elements);
           body_outputs[b] = std::make_unique<BodyOutput>(
-            parameters.output.directory, "body-" + std::to_string(b + 1));
+            parameters.output.directory,
+            "body-" + std::to_string(b + 1),
+            parameters.output.format);
         }
       contact_output = std::make_unique<ContactOutput>(
-        parameters.output.directory, mpi_communicator);
+        parameters.output.directory,
+        mpi_communicator,
+        parameters.output.format);
     }
     // Before any solve: the exact error needs something to compare with.
     AssertThrow(!parameters.error_indicator.compute_exact_error ||
@@ -1011,7 +1019,11 @@ namespace coulomb_adapt
         for (unsigned int b = 0; b < 2; ++b)
           body_records[b]["strain_energy"] =
             strain_energy(*bodies[b], bodies[b]->solution());
-        output_results(cycle);
+        // Decided before the output: 'Write cycles = last' writes the
+        // fields of the cycle after which the adaptation stops.
+        std::string reason;
+        const bool  last_cycle = !continue_cycles(cycle, n_dofs, reason);
+        output_results(cycle, last_cycle);
 
         cycle_timer.stop();
         Utilities::System::MemoryStats memory;
@@ -1059,8 +1071,7 @@ namespace coulomb_adapt
           cycle_table.add_value("Newton", newton);
         cycle_table.add_value("time s", cycle_timer.wall_time());
 
-        std::string reason;
-        if (!continue_cycles(cycle, n_dofs, reason))
+        if (last_cycle)
           {
             pcout << "Adaptation stops after cycle " << cycle << ": "
                   << reason << std::endl;

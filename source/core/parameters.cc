@@ -15,13 +15,32 @@ namespace coulomb_adapt
                           "output",
                           Patterns::DirectoryName(),
                           "Directory for all results of a run (created if "
-                          "missing): VTU/PVTU/PVD files, summary.json and "
+                          "missing): VTU/PVTU/PVD or HDF5/XDMF files, "
+                          "summary.json, the contact CSV files and "
                           "the resolved parameters.prm.");
+        prm.declare_entry("Format",
+                          "vtu",
+                          Patterns::Selection("vtu|hdf5"),
+                          "File format of the per-cycle fields. vtu: one "
+                          ".vtu per rank and cycle, a .pvtu per cycle and a "
+                          ".pvd per body indexing the cycles. hdf5: one .h5 "
+                          "per body and cycle, written by all ranks "
+                          "together (parallel HDF5), and a .xdmf per body "
+                          "indexing the cycles (ParaView: open the .xdmf "
+                          "with the 'Xdmf Reader'); better for large and "
+                          "parallel runs.");
+        prm.declare_entry("Write cycles",
+                          "all",
+                          Patterns::Selection("all|last|none"),
+                          "Which cycles' fields are written: all, only the "
+                          "last one (the mesh adaptation's result), or none. "
+                          "summary.json and the contact CSV are written "
+                          "after every cycle in any case.");
         prm.declare_entry("Write VTU",
                           "true",
                           Patterns::Bool(),
-                          "Write the per-cycle fields for ParaView. "
-                          "summary.json is always written.");
+                          "Kept for old parameter files: false is the same "
+                          "as 'Write cycles = none' (and overrides it).");
       }
       prm.leave_subsection();
     }
@@ -34,7 +53,10 @@ namespace coulomb_adapt
       prm.enter_subsection("Output");
       {
         directory = prm.get("Output directory");
-        write_vtu = prm.get_bool("Write VTU");
+        format       = prm.get("Format");
+        write_cycles = prm.get("Write cycles");
+        if (!prm.get_bool("Write VTU"))
+          write_cycles = "none";
       }
       prm.leave_subsection();
     }

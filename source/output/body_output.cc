@@ -12,9 +12,11 @@
 namespace coulomb_adapt
 {
   BodyOutput::BodyOutput(const std::string &directory,
-                         const std::string &base_name)
+                         const std::string &base_name,
+                         const std::string &format)
     : directory(directory)
     , base_name(base_name)
+    , format(format)
   {}
 
 
@@ -67,6 +69,25 @@ namespace coulomb_adapt
                            body.dof_handler().get_fe().degree,
                            DataOut<2>::curved_inner_cells);
 
+    if (format == "hdf5")
+      {
+        const std::string h5 =
+          base_name + "_" + Utilities::int_to_string(cycle, 3) + ".h5";
+        xdmf_entries.push_back(write_hdf5(comm, data_out, directory, h5, cycle));
+        write_xdmf_file(comm,
+                        directory + "/" + base_name + ".xdmf",
+                        xdmf_entries,
+                        tria.get_reference_cells()[0]);
+        return;
+      }
+
+    // zlib's fastest level instead of deal.II's default, the best
+    // compression: on these fields the files are hardly larger, and
+    // writing them no longer dominates an adaptive run
+    // (benchmarks/adaptive_run).
+    DataOutBase::VtkFlags vtk_flags;
+    vtk_flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    data_out.set_flags(vtk_flags);
     const std::string pvtu = write_vtu_with_pvtu_record(
       comm, data_out, directory, base_name, cycle);
 

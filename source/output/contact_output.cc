@@ -2,6 +2,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/output/contact_output.h>
 #include <coulomb_adapt/output/file_writer.h>
 
@@ -10,9 +11,11 @@
 namespace coulomb_adapt
 {
   ContactOutput::ContactOutput(const std::string &directory,
-                               const MPI_Comm     comm)
+                               const MPI_Comm     comm,
+                               const std::string &format)
     : directory(directory)
     , mpi_communicator(comm)
+    , format(format)
   {}
 
 
@@ -21,12 +24,12 @@ namespace coulomb_adapt
   ContactOutput::write(const std::vector<ContactNodeState> &states,
                        const std::vector<double> &contact_error_density,
                        const unsigned int                   cycle,
-                       const bool                           write_vtu)
+                       const bool                           write_fields)
   {
     // Every rank holds all slave nodes; rank 0 writes (write_file).
     const bool with_density = !contact_error_density.empty();
-    const std::string base =
-      directory + "/contact_" + Utilities::int_to_string(cycle, 3);
+    const std::string stem = "contact_" + Utilities::int_to_string(cycle, 3);
+    const std::string base = directory + "/" + stem;
 
     write_file(mpi_communicator, base + ".csv", [&](std::ostream &csv) {
       csv << "x,y,normal_x,normal_y,weight,contact_pressure,"
@@ -47,53 +50,101 @@ namespace coulomb_adapt
         }
     });
 
-    if (!write_vtu)
+    if (!write_fields)
       return;
 
-    write_file(mpi_communicator, base + ".vtu", [&](std::ostream &vtu) {
-      // One 1D patch per pair of consecutive slave nodes (the nodes are
-      // sorted along the interface); built where it is written, rank 0.
-      std::vector<std::string> names = {
-        "contact_pressure", "tangential_traction", "gap", "slip", "status"};
-      if (with_density)
-        names.emplace_back("contact_error_density");
-      std::vector<DataOutBase::Patch<1, 2>> patches;
-      for (unsigned int j = 0; j + 1 < states.size(); ++j)
-        {
-          DataOutBase::Patch<1, 2> patch;
-          patch.n_subdivisions = 1;
-          patch.reference_cell = ReferenceCells::Line;
-          patch.data.reinit(names.size(), 2);
-          for (unsigned int v = 0; v < 2; ++v)
+    // One 1D patch per pair of consecutive slave nodes (the nodes are
+    // sorted along the interface); built where it is written, rank 0.
+    const bool on_rank_0 =
+      Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    std::vector<std::string> names = {
+      "contact_pressure", "tangential_traction", "gap", "slip", "status"};
+    if (with_density)
+      names.emplace_back("contact_error_density");
+    std::vector<DataOutBase::Patch<1, 2>> patches;
+    for (unsigned int j = 0; on_rank_0 && j + 1 < states.size(); ++j)
+      {
+        DataOutBase::Patch<1, 2> patch;
+        patch.n_subdivisions = 1;
+        patch.reference_cell = ReferenceCells::Line;
+        patch.data.reinit(names.size(), 2);
+        for (unsigned int v = 0; v < 2; ++v)
+          {
+            const ContactNodeState &s = states[j + v];
+            patch.vertices[v]         = s.position;
+            patch.data(0, v)          = s.pressure;
+            patch.data(1, v)          = s.tangential_traction;
+            patch.data(2, v)          = s.gap;
+            patch.data(3, v)          = s.slip;
+            // 0 open, 1 stick, 2 slip.
+            patch.data(4, v) = static_cast<double>(s.status);
+            if (with_density)
+              patch.data(5, v) = contact_error_density[j + v];
+          }
+        patch.patch_index = j;
+        patches.push_back(patch);
+      }
+    const std::vector<
+      std::tuple<unsigned int,
+                 unsigned int,
+                 std::string,
+                 DataComponentInterpretation::DataComponentInterpretation>>
+      no_vector_fields;
+
+    if (format == "hdf5")
+      {
+        // An interface without slave nodes has no polyline to write.
+        if (states.size() < 2)
+          return;
+        // Rank 0 holds the polyline and writes it alone (MPI_COMM_SELF);
+        // its error, if any, reaches every rank.
+        std::string error;
+        if (on_rank_0)
+          try
             {
-              const ContactNodeState &s = states[j + v];
-              patch.vertices[v]         = s.position;
-              patch.data(0, v)          = s.pressure;
-              patch.data(1, v)          = s.tangential_traction;
-              patch.data(2, v)          = s.gap;
-              patch.data(3, v)          = s.slip;
-              // 0 open, 1 stick, 2 slip.
-              patch.data(4, v) = static_cast<double>(s.status);
-              if (with_density)
-                patch.data(5, v) = contact_error_density[j + v];
+              DataOutBase::DataOutFilter filter(
+                DataOutBase::DataOutFilterFlags(false, true));
+              DataOutBase::write_filtered_data(patches,
+                                               names,
+                                               no_vector_fields,
+                                               filter);
+              write_hdf5_file(MPI_COMM_SELF,
+                              base + ".h5",
+                              [&](const std::string &temporary) {
+                                DataOutBase::write_hdf5_parallel(
+                                  patches, filter, temporary, MPI_COMM_SELF);
+                              });
+              XDMFEntry entry(stem + ".h5",
+                              stem + ".h5",
+                              cycle,
+                              filter.n_nodes(),
+                              filter.n_cells(),
+                              1,
+                              2);
+              for (unsigned int i = 0; i < filter.n_data_sets(); ++i)
+                entry.add_attribute(filter.get_data_set_name(i),
+                                    filter.get_data_set_dim(i));
+              xdmf_entries.push_back(entry);
             }
-          patch.patch_index = j;
-          patches.push_back(patch);
-        }
-      DataOutBase::write_vtu(
-        patches,
-        names,
-        std::vector<
-          std::tuple<unsigned int,
-                     unsigned int,
-                     std::string,
-                     DataComponentInterpretation::DataComponentInterpretation>>(),
-        DataOutBase::VtkFlags(),
-        vtu);
+          catch (const std::exception &e)
+            {
+              error = user_message(e);
+            }
+        error = Utilities::MPI::broadcast(mpi_communicator, error, 0);
+        AssertThrow(error.empty(), ExcMessage(error));
+        write_xdmf_file(mpi_communicator,
+                        directory + "/contact.xdmf",
+                        xdmf_entries,
+                        ReferenceCells::Line);
+        return;
+      }
+
+    write_file(mpi_communicator, base + ".vtu", [&](std::ostream &vtu) {
+      DataOutBase::VtkFlags vtk_flags;
+      vtk_flags.compression_level = DataOutBase::VtkFlags::best_speed;
+      DataOutBase::write_vtu(patches, names, no_vector_fields, vtk_flags, vtu);
     });
-    pvd_records.emplace_back(cycle,
-                             "contact_" + Utilities::int_to_string(cycle, 3) +
-                               ".vtu");
+    pvd_records.emplace_back(cycle, stem + ".vtu");
     write_file(mpi_communicator,
                directory + "/contact.pvd",
                [&](std::ostream &pvd) {

@@ -5,6 +5,8 @@
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/output/file_writer.h>
 
+#include <deal.II/grid/reference_cell.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -164,5 +166,87 @@ namespace coulomb_adapt
       data_out.write_pvtu_record(out, pieces);
     });
     return stem + ".pvtu";
+  }
+
+
+
+  void
+  write_hdf5_file(const MPI_Comm                                  comm,
+                  const std::string &                             path,
+                  const std::function<void(const std::string &)> &write)
+  {
+    const std::string temporary = path + ".tmp";
+    std::string       error;
+    errno = 0;
+    try
+      {
+        write(temporary);
+      }
+    catch (const std::exception &e)
+      {
+        // HDF5 reports a failed open as a generic error: the system's
+        // reason, when there is one, is more useful.
+        const int error_number = errno;
+        error = "output file '" + path + "': writing it failed" +
+                (error_number != 0 ? system_reason(error_number) :
+                                     ": " + user_message(e));
+      }
+    error = first_error(comm, error);
+    if (!error.empty())
+      {
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          std::remove(temporary.c_str());
+        AssertThrow(false, ExcMessage(error));
+      }
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      error = rename_temporary(path);
+    error = Utilities::MPI::broadcast(comm, error, 0);
+    AssertThrow(error.empty(), ExcMessage(error));
+  }
+
+
+
+  XDMFEntry
+  write_hdf5(const MPI_Comm                comm,
+             const DataOutInterface<2, 2> &data_out,
+             const std::string &           directory,
+             const std::string &           file_name,
+             const double                  time)
+  {
+    // Duplicate vertices are kept: the indicator and the material id are
+    // cell data, which merging the cells' vertices would smear.
+    DataOutBase::DataOutFilter filter(
+      DataOutBase::DataOutFilterFlags(false, true));
+    data_out.write_filtered_data(filter);
+    write_hdf5_file(comm,
+                    directory + "/" + file_name,
+                    [&](const std::string &temporary) {
+                      data_out.write_hdf5_parallel(filter, temporary, comm);
+                    });
+    // The XDMF file sits beside the HDF5 file: a relative name.
+    return data_out.create_xdmf_entry(filter, file_name, time, comm);
+  }
+
+
+
+  void
+  write_xdmf_file(const MPI_Comm                comm,
+                  const std::string &           path,
+                  const std::vector<XDMFEntry> &entries,
+                  const ReferenceCell &         cell_type)
+  {
+    write_file(comm, path, [&](std::ostream &xdmf) {
+      xdmf << "<?xml version=\"1.0\" ?>\n"
+           << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+           << "<Xdmf Version=\"2.0\">\n"
+           << "  <Domain>\n"
+           << "    <Grid Name=\"CellTime\" GridType=\"Collection\" "
+              "CollectionType=\"Temporal\">\n";
+      for (const XDMFEntry &entry : entries)
+        xdmf << entry.get_xdmf_content(3, cell_type);
+      xdmf << "    </Grid>\n"
+           << "  </Domain>\n"
+           << "</Xdmf>\n";
+    });
   }
 } // namespace coulomb_adapt

@@ -92,7 +92,7 @@ namespace coulomb_adapt
     void
     compare_with_exact_error(const unsigned int cycle);
     void
-    output_results(const unsigned int cycle);
+    output_results(const unsigned int cycle, const bool last_cycle);
     /** Adapt both meshes for the next cycle (Adaptation/Strategy). */
     void
     refine_grid();

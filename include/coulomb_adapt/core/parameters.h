@@ -40,7 +40,10 @@ namespace coulomb_adapt
     struct Output
     {
       std::string directory;
-      bool        write_vtu;
+      /** "vtu" or "hdf5". */
+      std::string format;
+      /** "all", "last" or "none". */
+      std::string write_cycles;
 
       static void
       declare_parameters(ParameterHandler &prm);

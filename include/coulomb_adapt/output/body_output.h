@@ -1,6 +1,8 @@
 #ifndef coulomb_adapt_output_body_output_h
 #define coulomb_adapt_output_body_output_h
 
+#include <deal.II/base/data_out_base.h>
+
 #include <deal.II/lac/vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
@@ -21,14 +23,18 @@ namespace coulomb_adapt
   };
 
   /**
-   * Writes one body's fields per cycle as `<base>_<cycle>.pvtu` (+ one
-   * `.vtu` per rank) and keeps `<base>.pvd` indexing all cycles written so
-   * far, so that ParaView shows the cycles as a time series.
+   * Writes one body's fields per cycle, and an index of all cycles written
+   * so far, so that ParaView shows the cycles as a time series (the cycle
+   * number is the time). @p format "vtu": `<base>_<cycle>.pvtu` (+ one
+   * `.vtu` per rank) indexed by `<base>.pvd`; "hdf5": `<base>_<cycle>.h5`
+   * (all ranks write into one file) indexed by `<base>.xdmf`.
    */
   class BodyOutput
   {
   public:
-    BodyOutput(const std::string &directory, const std::string &base_name);
+    BodyOutput(const std::string &directory,
+               const std::string &base_name,
+               const std::string &format);
 
     void
     write(const ElasticBody & body,
@@ -38,7 +44,9 @@ namespace coulomb_adapt
   private:
     const std::string                           directory;
     const std::string                           base_name;
+    const std::string                           format;
     std::vector<std::pair<double, std::string>> pvd_records;
+    std::vector<XDMFEntry>                      xdmf_entries;
   };
 } // namespace coulomb_adapt
 

@@ -1,6 +1,8 @@
 #ifndef coulomb_adapt_output_contact_output_h
 #define coulomb_adapt_output_contact_output_h
 
+#include <deal.II/base/data_out_base.h>
+
 #include <coulomb_adapt/contact/contact_state.h>
 
 #include <string>
@@ -12,29 +14,34 @@ namespace coulomb_adapt
   /**
    * The contact interface's nodal results per cycle:
    * `contact_<cycle>.csv` (one row per slave node, sorted along the
-   * interface) and `contact_<cycle>.vtu`, a polyline through the slave
-   * nodes with the same fields as point data, indexed by `contact.pvd` so
-   * that ParaView shows it beside the bodies. Written by rank 0 (every rank
-   * holds the whole interface).
+   * interface) and a polyline through the slave nodes with the same fields
+   * as point data, so that ParaView shows it beside the bodies: with
+   * @p format "vtu" `contact_<cycle>.vtu` indexed by `contact.pvd`, with
+   * "hdf5" `contact_<cycle>.h5` indexed by `contact.xdmf`. Written by
+   * rank 0 (every rank holds the whole interface).
    */
   class ContactOutput
   {
   public:
-    ContactOutput(const std::string &directory, const MPI_Comm comm);
+    ContactOutput(const std::string &directory,
+                  const MPI_Comm     comm,
+                  const std::string &format);
 
-    /** Write the CSV, and with @p write_vtu the VTU and PVD record.
+    /** Write the CSV, and with @p write_fields the polyline and its index.
      * @p contact_error_density (one value per slave node, may be empty) is
      * the density of the indicator's contact term. */
     void
     write(const std::vector<ContactNodeState> &states,
           const std::vector<double> &          contact_error_density,
           const unsigned int                   cycle,
-          const bool                           write_vtu);
+          const bool                           write_fields);
 
   private:
     const std::string                           directory;
     const MPI_Comm                              mpi_communicator;
+    const std::string                           format;
     std::vector<std::pair<double, std::string>> pvd_records;
+    std::vector<XDMFEntry>                      xdmf_entries;
   };
 } // namespace coulomb_adapt
 

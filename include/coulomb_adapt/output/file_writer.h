@@ -7,6 +7,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace coulomb_adapt
 {
@@ -43,6 +44,43 @@ namespace coulomb_adapt
                              const std::string &           directory,
                              const std::string &           base_name,
                              const unsigned int            cycle);
+
+  /**
+   * Write the HDF5 file @p path through @p write, which every rank of
+   * @p comm calls with the temporary name to write to (deal.II's parallel
+   * HDF5 writers are collective). The file is renamed to @p path once every
+   * rank has returned without error, so that a reader of the XDMF file
+   * never sees a half-written one. A failure on any rank throws the same
+   * error, naming @p path and the reason, on every rank.
+   */
+  void
+  write_hdf5_file(const MPI_Comm                                  comm,
+                  const std::string &                             path,
+                  const std::function<void(const std::string &)> &write);
+
+  /**
+   * DataOutInterface::write_hdf5_parallel of @p data_out (mesh and fields
+   * in one file, `directory/file_name`, through write_hdf5_file). Returns
+   * the file's XDMF entry at time @p time. Collective.
+   */
+  dealii::XDMFEntry
+  write_hdf5(const MPI_Comm                        comm,
+             const dealii::DataOutInterface<2, 2> &data_out,
+             const std::string &                   directory,
+             const std::string &                   file_name,
+             const double                          time);
+
+  /**
+   * The XDMF file @p path (a temporal collection of @p entries, the cells
+   * of type @p cell_type), written through write_file: what
+   * DataOutInterface::write_xdmf_file writes, but atomically, and without
+   * needing patches on rank 0. Collective.
+   */
+  void
+  write_xdmf_file(const MPI_Comm                        comm,
+                  const std::string &                   path,
+                  const std::vector<dealii::XDMFEntry> &entries,
+                  const dealii::ReferenceCell &         cell_type);
 } // namespace coulomb_adapt
 
 #endif

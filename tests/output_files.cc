@@ -1,0 +1,329 @@
+// What the program writes, by Output/Format and Output/Write cycles, on
+// blocks with P1 triangles refined uniformly (two cycles, the same meshes
+// on any number of ranks):
+//  - hdf5: one .xdmf per body and one for the contact line, each indexing
+//    both cycles; every .h5 they name exists and, opened back with the HDF5
+//    library, holds as many cells as the body (the contact line: one
+//    segment per pair of neighbouring slave nodes of the CSV) and three
+//    nodes per triangle (duplicate vertices are kept for the cell data),
+//    the sizes the XDMF entry states, and a displacement whose largest
+//    component is the solution vector's max norm;
+//  - Write cycles = last: the fields of the last cycle only (one record in
+//    each .pvd), the contact CSV and summary.json of every cycle;
+//  - Write cycles = none: no field file at all, CSV and summary.json still;
+//  - no temporary file (NAME.tmp) is left behind.
+
+#include <deal.II/base/mpi.h>
+
+#include <coulomb_adapt/app/two_body_problem.h>
+
+#include "test_utilities.h"
+
+#include <hdf5.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <regex>
+#include <sstream>
+
+using namespace coulomb_adapt;
+
+namespace
+{
+  using Settings = std::vector<std::pair<std::string, std::string>>;
+
+  struct ProgramRun
+  {
+    ParameterHandler                prm;
+    const Parameters                parameters;
+    std::ostringstream              log;
+    std::unique_ptr<TwoBodyProblem> problem;
+    nlohmann::json                  summary;
+
+    explicit ProgramRun(const Settings &settings)
+      : parameters(testing::make_parameters(prm, settings))
+    {
+      prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
+      problem = std::make_unique<TwoBodyProblem>(
+        MPI_COMM_WORLD, parameters, prm, "test", log);
+      problem->run();
+      MPI_Barrier(MPI_COMM_WORLD);
+      std::ifstream(parameters.output.directory + "/summary.json") >> summary;
+    }
+  };
+
+  Settings
+  blocks(const std::string &format,
+         const std::string &write_cycles,
+         const std::string &directory)
+  {
+    return {{"Scene/Name", "blocks"},
+            {"Scene/Blocks/Upper body subdivisions", "2, 2"},
+            {"Scene/Blocks/Lower body subdivisions", "4, 4"},
+            {"Contact/Friction coefficient", "0.3"},
+            {"Mesh/Cell type", "triangle"},
+            {"Adaptation/Strategy", "uniform"},
+            {"Adaptation/Target error", "0"},
+            {"Adaptation/Number of cycles", "2"},
+            {"Output/Format", format},
+            {"Output/Write cycles", write_cycles},
+            {"Output/Output directory", directory}};
+  }
+
+  // The directory's file names, sorted.
+  std::vector<std::string>
+  files_in(const std::string &directory)
+  {
+    std::vector<std::string> names;
+    for (const auto &entry : std::filesystem::directory_iterator(directory))
+      names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  std::string
+  read_text(const std::string &path)
+  {
+    std::ifstream     in(path);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+
+  unsigned int
+  count(const std::string &text, const std::string &what)
+  {
+    unsigned int n = 0;
+    for (std::size_t p = text.find(what); p != std::string::npos;
+         p          = text.find(what, p + 1))
+      ++n;
+    return n;
+  }
+
+  // Rows and columns of a two-dimensional data set of an HDF5 file.
+  std::array<hsize_t, 2>
+  dimensions(const hid_t file, const std::string &data_set)
+  {
+    const hid_t set = H5Dopen2(file, data_set.c_str(), H5P_DEFAULT);
+    AssertThrow(set >= 0, ExcMessage("no data set " + data_set));
+    const hid_t            space = H5Dget_space(set);
+    std::array<hsize_t, 2> dims  = {{0, 1}};
+    AssertThrow(H5Sget_simple_extent_ndims(space) <= 2, ExcInternalError());
+    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    H5Sclose(space);
+    H5Dclose(set);
+    return dims;
+  }
+
+  double
+  max_abs(const hid_t file, const std::string &data_set)
+  {
+    const auto          dims = dimensions(file, data_set);
+    std::vector<double> values(dims[0] * dims[1]);
+    const hid_t         set = H5Dopen2(file, data_set.c_str(), H5P_DEFAULT);
+    H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+            values.data());
+    H5Dclose(set);
+    double m = 0;
+    for (const double v : values)
+      m = std::max(m, std::abs(v));
+    return m;
+  }
+
+  // The .h5 files an XDMF file names, in order, and the "rows cols" of its
+  // topology and geometry data items.
+  struct XdmfEntryText
+  {
+    std::string h5;
+    std::string cells, nodes;
+  };
+
+  std::vector<XdmfEntryText>
+  xdmf_entries(const std::string &path)
+  {
+    const std::string text = read_text(path);
+    const std::regex  grid(
+      "<Geometry[^>]*>\\s*<DataItem Dimensions=\"([0-9 ]+)\"[^>]*>\\s*"
+      "([^:\\s]+):/nodes[\\s\\S]*?<Topology[^>]*>\\s*<DataItem "
+      "Dimensions=\"([0-9 ]+)\"");
+    std::vector<XdmfEntryText> entries;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), grid);
+         it != std::sregex_iterator();
+         ++it)
+      entries.push_back({(*it)[2], (*it)[3], (*it)[1]});
+    return entries;
+  }
+
+  void
+  check_no_temporary_files(const std::string &directory,
+                           ConditionalOStream &out)
+  {
+    unsigned int n = 0;
+    for (const auto &name : files_in(directory))
+      n += name.size() > 4 && name.substr(name.size() - 4) == ".tmp";
+    out << "  temporary files left: " << n << std::endl;
+    AssertThrow(n == 0, ExcMessage("a .tmp file was left behind"));
+  }
+
+  void
+  check_hdf5(ConditionalOStream &out)
+  {
+    out << "Format = hdf5, Write cycles = all" << std::endl;
+    const ProgramRun run(blocks("hdf5", "all", "output-hdf5"));
+    const std::string directory = run.parameters.output.directory;
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        const std::vector<std::string> bases = {"body-1", "body-2",
+                                                "contact"};
+        for (unsigned int k = 0; k < 3; ++k)
+          {
+            const auto entries =
+              xdmf_entries(directory + "/" + bases[k] + ".xdmf");
+            out << "  " << bases[k] << ".xdmf: " << entries.size()
+                << " cycles" << std::endl;
+            AssertThrow(entries.size() == 2,
+                        ExcMessage("the XDMF file does not index 2 cycles"));
+            for (unsigned int c = 0; c < entries.size(); ++c)
+              {
+                const std::string h5 = directory + "/" + entries[c].h5;
+                AssertThrow(std::filesystem::exists(h5),
+                            ExcMessage("missing " + h5));
+                const hid_t file =
+                  H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+                AssertThrow(file >= 0, ExcMessage("cannot open " + h5));
+                const auto cells = dimensions(file, "/cells");
+                const auto nodes = dimensions(file, "/nodes");
+                // What the mesh says: a body's triangles, or one segment
+                // per pair of neighbouring slave nodes (the CSV's rows).
+                std::size_t expected_cells = 0, nodes_per_cell = 3;
+                if (k < 2)
+                  expected_cells =
+                    run.summary["cycles"][c]["bodies"][k]["n_cells"]
+                      .get<std::size_t>();
+                else
+                  {
+                    const std::string csv = read_text(
+                      directory + "/contact_" +
+                      Utilities::int_to_string(c, 3) + ".csv");
+                    expected_cells = count(csv, "\n") - 2;
+                    nodes_per_cell = 2;
+                  }
+                out << "    " << entries[c].h5 << ": cells " << cells[0]
+                    << " x " << cells[1] << ", nodes " << nodes[0] << " x "
+                    << nodes[1] << " (XDMF: " << entries[c].cells << ", "
+                    << entries[c].nodes << "; expected " << expected_cells
+                    << " cells)" << std::endl;
+                AssertThrow(cells[0] == expected_cells &&
+                              cells[1] == nodes_per_cell &&
+                              nodes[0] == nodes_per_cell * expected_cells &&
+                              nodes[1] == 2,
+                            ExcMessage("wrong sizes in " + h5));
+                AssertThrow(entries[c].cells ==
+                                std::to_string(cells[0]) + " " +
+                                  std::to_string(cells[1]) &&
+                              entries[c].nodes ==
+                                std::to_string(nodes[0]) + " 2",
+                            ExcMessage("the XDMF sizes differ from " + h5));
+                H5Fclose(file);
+              }
+          }
+      }
+    // The last cycle's displacement, against the solution vectors.
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const double expected = run.problem->body(b).solution().linfty_norm();
+        if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+          {
+            const std::string h5 =
+              directory + "/body-" + std::to_string(b + 1) + "_001.h5";
+            const hid_t  file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+            const double written = max_abs(file, "/displacement");
+            H5Fclose(file);
+            out << "  body " << b + 1 << ", cycle 1: max |u| written "
+                << written << " mm, of the solution " << expected << " mm"
+                << std::endl;
+            // DataOut keeps the fields in single precision.
+            AssertThrow(std::abs(written - expected) <= 1.2e-7 * expected,
+                        ExcMessage("the written displacement differs"));
+          }
+      }
+    check_no_temporary_files(directory, out);
+  }
+
+  void
+  check_write_cycles(const std::string &format,
+                     const std::string &write_cycles,
+                     ConditionalOStream &out)
+  {
+    out << "Format = " << format << ", Write cycles = " << write_cycles
+        << std::endl;
+    const ProgramRun run(blocks(format,
+                                write_cycles,
+                                "output-" + format + "-" + write_cycles));
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) > 0)
+      return;
+    const std::string directory = run.parameters.output.directory;
+    // The files, with the rank number of VTU pieces left out so that any
+    // number of ranks prints the same.
+    std::set<std::string> files;
+    for (const auto &name : files_in(directory))
+      files.insert(std::regex_replace(
+        name, std::regex("(_[0-9]{3})\\.[0-9]+\\.vtu$"), "$1.R.vtu"));
+    out << "  files:";
+    for (const auto &name : files)
+      out << ' ' << name;
+    out << std::endl;
+    const unsigned int n_cycles = run.summary["cycles"].size();
+    AssertThrow(n_cycles == 2, ExcMessage("summary.json lacks a cycle"));
+    for (unsigned int c = 0; c < 2; ++c)
+      AssertThrow(files.count("contact_" + Utilities::int_to_string(c, 3) +
+                              ".csv") == 1,
+                  ExcMessage("a contact CSV is missing"));
+    const std::string index = format == "vtu" ? ".pvd" : ".xdmf";
+    for (const std::string base : {"body-1", "body-2", "contact"})
+      {
+        const bool has_index = files.count(base + index) == 1;
+        const bool has_first = files.count(base + "_000.h5") +
+                                 files.count(base + "_000.pvtu") +
+                                 files.count(base + "_000.vtu") >
+                               0;
+        const bool has_last = files.count(base + "_001.h5") +
+                                files.count(base + "_001.pvtu") +
+                                files.count(base + "_001.vtu") >
+                              0;
+        if (write_cycles == "none")
+          {
+            AssertThrow(!has_index && !has_first && !has_last,
+                        ExcMessage("fields written with Write cycles = none"));
+          }
+        else
+          {
+            const unsigned int n_records =
+              count(read_text(directory + "/" + base + index),
+                    format == "vtu" ? "<DataSet" : "<Grid Name=\"mesh\"");
+            out << "  " << base << index << ": " << n_records
+                << " record(s)" << std::endl;
+            AssertThrow(!has_first && has_last && n_records == 1,
+                        ExcMessage("Write cycles = last wrote other than "
+                                   "the last cycle"));
+          }
+      }
+  }
+} // namespace
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  auto                             out = testing::root_output();
+  out << std::setprecision(6);
+
+  check_hdf5(out);
+  check_write_cycles("vtu", "last", out);
+  check_write_cycles("hdf5", "last", out);
+  check_write_cycles("vtu", "none", out);
+}
