@@ -344,13 +344,17 @@ namespace coulomb_adapt
           throw ParameterError(scene_path + "/Mesh file",
                                file,
                                "the gmsh scene needs a .geo or .msh file");
+        // gmsh reads a factor of 0 as "no factor" (1): refuse it rather
+        // than mesh at a size the user did not ask for.
+        const double size_factor = prm.get_double("Mesh size factor");
+        require_parameter(size_factor > 0,
+                          scene_path + "/Mesh size factor",
+                          size_factor,
+                          "a factor > 0 on the element sizes of the .geo "
+                          "file (gmsh ignores 0 and meshes with factor 1)");
         // The program runs on MPI_COMM_WORLD: rank 0 reads the file.
-        geometry = read_two_body_gmsh_geometry(file,
-                                               requested_cell_type,
-                                               prm.get_double(
-                                                 "Mesh size factor"),
-                                               use,
-                                               MPI_COMM_WORLD);
+        geometry = read_two_body_gmsh_geometry(
+          file, requested_cell_type, size_factor, use, MPI_COMM_WORLD);
 
         // A point support holds its nodes in place (no prescribed value,
         // no load: a point has no length to carry one).
