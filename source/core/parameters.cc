@@ -27,8 +27,11 @@ namespace coulomb_adapt
                           "per body and cycle, written by all ranks "
                           "together (parallel HDF5), and a .xdmf per body "
                           "indexing the cycles (ParaView: open the .xdmf "
-                          "with the 'Xdmf Reader'); better for large and "
-                          "parallel runs.");
+                          "with the 'Xdmf Reader'): one file per cycle "
+                          "whatever the number of ranks, for parallel runs. "
+                          "Its data are uncompressed doubles: on one rank "
+                          "the files are about 4 times larger than the "
+                          "compressed VTU and slower to write.");
         prm.declare_entry("Write cycles",
                           "all",
                           Patterns::Selection("all|last|none"),
