@@ -29,6 +29,7 @@
 
 #include <coulomb_adapt/app/two_body_problem.h>
 
+#include "program_run.h"
 #include "test_utilities.h"
 
 #include <nlohmann/json.hpp>
@@ -53,30 +54,8 @@ namespace
                     p.distance(contact_zone_ends[1]));
   }
 
-  using Settings = std::vector<std::pair<std::string, std::string>>;
-
-  // The program run to its end on @p settings, with what it keeps
-  // references to (the parameters) and what it wrote (log, summary.json).
-  struct ProgramRun
-  {
-    ParameterHandler                prm;
-    const Parameters                parameters;
-    std::ostringstream              log;
-    std::unique_ptr<TwoBodyProblem> problem;
-    nlohmann::json                  summary;
-
-    explicit ProgramRun(const Settings &settings)
-      : parameters(testing::make_parameters(prm, settings))
-    {
-      prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
-      problem = std::make_unique<TwoBodyProblem>(
-        MPI_COMM_WORLD, parameters, prm, "test", log);
-      problem->run();
-      // Rank 0 writes the summary; the others read it once it is complete.
-      MPI_Barrier(MPI_COMM_WORLD);
-      std::ifstream(parameters.output.directory + "/summary.json") >> summary;
-    }
-  };
+  using testing::ProgramRun;
+  using testing::Settings;
 
   Settings
   blocks(const std::string &cell_type,

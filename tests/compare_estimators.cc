@@ -17,6 +17,7 @@
 
 #include <coulomb_adapt/app/two_body_problem.h>
 
+#include "program_run.h"
 #include "test_utilities.h"
 
 #include <nlohmann/json.hpp>
@@ -45,16 +46,8 @@ namespace
       {"Output/Write VTU", "false"},
       {"Output/Output directory", directory}};
     settings.insert(settings.end(), extra.begin(), extra.end());
-    ParameterHandler prm;
-    const Parameters parameters = testing::make_parameters(prm, settings);
-    prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
-    std::ostringstream log;
-    TwoBodyProblem problem(MPI_COMM_WORLD, parameters, prm, "test", log);
-    problem.run();
-    MPI_Barrier(MPI_COMM_WORLD);
-    nlohmann::json summary;
-    std::ifstream(directory + "/summary.json") >> summary;
-    return summary["cycles"][0];
+    const testing::ProgramRun run(settings);
+    return run.summary["cycles"][0];
   }
 
   void

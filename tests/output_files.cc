@@ -17,6 +17,7 @@
 
 #include <coulomb_adapt/app/two_body_problem.h>
 
+#include "program_run.h"
 #include "test_utilities.h"
 
 #include <hdf5.h>
@@ -32,27 +33,8 @@ using namespace coulomb_adapt;
 
 namespace
 {
-  using Settings = std::vector<std::pair<std::string, std::string>>;
-
-  struct ProgramRun
-  {
-    ParameterHandler                prm;
-    const Parameters                parameters;
-    std::ostringstream              log;
-    std::unique_ptr<TwoBodyProblem> problem;
-    nlohmann::json                  summary;
-
-    explicit ProgramRun(const Settings &settings)
-      : parameters(testing::make_parameters(prm, settings))
-    {
-      prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
-      problem = std::make_unique<TwoBodyProblem>(
-        MPI_COMM_WORLD, parameters, prm, "test", log);
-      problem->run();
-      MPI_Barrier(MPI_COMM_WORLD);
-      std::ifstream(parameters.output.directory + "/summary.json") >> summary;
-    }
-  };
+  using testing::ProgramRun;
+  using testing::Settings;
 
   Settings
   blocks(const std::string &format,
