@@ -169,7 +169,7 @@ namespace coulomb_adapt
     // the choice: at most two steps, final meshes somewhat larger than
     // those of the slower loop.
     auto lowest_ratio = [&](const CellData &c) {
-      return c.rate < degree ? std::pow(min_ratio, 1.5) : min_ratio;
+      return lowest_size_ratio(min_ratio, c.rate < degree);
     };
     auto ratio = [&](const CellData &c, const double L, const bool lower_bound) {
       if (c.epsilon_squared <= 0)

@@ -1,5 +1,6 @@
 #include <deal.II/base/utilities.h>
 
+#include <coulomb_adapt/adaptation/optimal_size.h>
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/bodies/elasticity_errors.h>
 #include <coulomb_adapt/contact/contact_diagnosis.h>
@@ -718,7 +719,7 @@ namespace coulomb_adapt
             << "): N* = " << std::llround(r.predicted_n_cells)
             << " cells, predicted epsilon " << std::setprecision(3)
             << 100 * r.predicted_epsilon << " % (r_E bounded to ["
-            << a.min_size_ratio << " (" << std::pow(a.min_size_ratio, 1.5)
+            << a.min_size_ratio << " (" << lowest_size_ratio(a.min_size_ratio, true)
             << " at singular points), " << a.max_size_ratio << "]: "
             << r.n_at_min_ratio << " cells at the lower, "
             << r.n_at_max_ratio << " at the upper bound; q reduced to "

@@ -10,6 +10,7 @@
 #include <coulomb_adapt/indicator/error_estimate.h>
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace coulomb_adapt
@@ -38,6 +39,17 @@ namespace coulomb_adapt
      * and the mesh is the optimal one with that many cells instead. */
     bool limited_by_max_n_cells = false;
   };
+
+  /**
+   * The lower bound of r_E in one cycle: @p min_ratio, and
+   * @p min_ratio^{3/2} in cells whose rate is reduced at a singular point
+   * (optimal_size_ratios says why).
+   */
+  inline double
+  lowest_size_ratio(const double min_ratio, const bool at_singular_point)
+  {
+    return at_singular_point ? std::pow(min_ratio, 1.5) : min_ratio;
+  }
 
   /**
    * Points where the displacement is expected to be singular, the same on
