@@ -363,6 +363,16 @@ namespace coulomb_adapt
                           "k: the local problems of the cre estimator are "
                           "solved with polynomials of degree p + k (k >= 2 "
                           "makes their discretisation error negligible).");
+        prm.declare_entry("CRE traction optimisation",
+                          "true",
+                          Patterns::Bool(),
+                          "true: the free parameters of the element "
+                          "equilibration (one per interior or Dirichlet node "
+                          "and component) minimise the estimate itself (one "
+                          "sparse SPD solve; the bound stays guaranteed and "
+                          "is tighter, above all on triangles). false: the "
+                          "classical choice of Ladeveze and Leguillon, the "
+                          "tractions closest to the averaged FE traction.");
         prm.declare_entry("Compute exact error",
                           "false",
                           Patterns::Bool(),
@@ -402,6 +412,7 @@ namespace coulomb_adapt
         estimator = error_estimator_from_string(prm.get("Estimator"));
         compare_estimators = prm.get_bool("Compare estimators");
         cre_degree_increase = prm.get_integer("CRE degree increase");
+        cre_traction_optimisation = prm.get_bool("CRE traction optimisation");
         compute_exact_error   = prm.get_bool("Compute exact error");
         reference_refinements = prm.get_integer("Reference refinements");
       }

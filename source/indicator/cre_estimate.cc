@@ -41,6 +41,7 @@ namespace coulomb_adapt
                      const ContactSolution *                   contact_solver,
                      const double                              mu,
                      const unsigned int                        degree_increase,
+                     const bool                                optimise_tractions,
                      const parameters::LinearSolver &          solver_parameters,
                      TimerOutput *                             timer,
                      const CorrectedContactSolution *          known_correction)
@@ -89,7 +90,7 @@ namespace coulomb_adapt
       }
 
     std::array<double, 2> volume_squared;
-    double                normalisation_squared = 0;
+    double                normalisation_squared = 0, before_squared = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
         const OptionalTimerSection section(timer, "error indicator: equilibration");
@@ -98,7 +99,10 @@ namespace coulomb_adapt
                                      equilibrium.displacement(b),
                                      estimate.correction.displacement(b),
                                      contact[b],
-                                     degree_increase);
+                                     degree_increase,
+                                     optimise_tractions);
+        before_squared += errors.error_squared_before_optimisation;
+        estimate.optimisation_iterations += errors.optimisation_iterations;
         estimate.contribution_squared[b].swap(errors.error_squared);
         normalisation_squared += errors.sum_norm_squared;
         volume_squared[b] = Utilities::MPI::sum(
@@ -112,6 +116,10 @@ namespace coulomb_adapt
 
     const OptionalTimerSection section(timer, "error indicator: contributions");
     finish_error_estimate(bodies, volume_squared, normalisation_squared, estimate);
+    // With the same normalisation D (that of the optimised sigma^).
+    estimate.epsilon_before_optimisation =
+      std::sqrt((before_squared + 2 * std::max(0., estimate.contact.integral)) /
+                (normalisation_squared > 0 ? normalisation_squared : 1.));
     return estimate;
   }
 } // namespace coulomb_adapt

@@ -5,7 +5,16 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
 #include <coulomb_adapt/indicator/equilibrated_stress.h>
+#include <coulomb_adapt/indicator/local_neumann_problem.h>
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +34,8 @@ namespace coulomb_adapt
       /** Per node k of the scalar base element: the global DoF index of its
        * x component (the node's name on every rank). */
       std::vector<types::global_dof_index> nodes;
+      /** Per node k and component c: the global DoF index. */
+      std::vector<std::array<types::global_dof_index, 2>> component_dofs;
       /** The nodes' positions. */
       std::vector<Point<2>> points;
       /** int_E sigma_c : eps(phi_k e_c) - f . phi_k e_c, [k][c]. */
@@ -49,10 +60,18 @@ namespace coulomb_adapt
        * v0 -> v1. */
       std::vector<types::global_dof_index> nodes;
       std::vector<double>                  s;
+      /** The nodes' DoF indices per component: the names of the free
+       * parameters of their node systems. */
+      std::vector<std::array<types::global_dof_index, 2>> node_dofs;
       /** Moments b[node][c], and those of the averaged FE traction. */
       std::vector<std::array<double, 2>> moments, average;
-      /** Nodal coefficients of F (degree p, Lagrange in s). */
+      /** The change of b[node][c] per unit of the free parameter of the
+       * node system of (node, c) (0 where that system has none). */
+      std::vector<std::array<double, 2>> kernel;
+      /** Nodal coefficients of F (degree p, Lagrange in s), and the inverse
+       * of the edge mass matrix that maps moments to them. */
       std::vector<std::array<double, 2>> coefficients;
+      FullMatrix<double>                 mass_inverse;
     };
 
     // Lagrange polynomials of the face's nodes at parameter s.
@@ -74,99 +93,133 @@ namespace coulomb_adapt
       return (x - face.v0) * d / d.norm_square();
     }
 
-    // The complete polynomials of degree P in the scaled coordinates
-    // (x - centre) / h of a cell: a basis of the local problem's space that
-    // is the same for triangles and quadrilaterals, and contains the rigid
-    // motions and the FE space (P >= 2p).
-    class MonomialBasis
+
+    // Step 5 of equilibrated_stress_errors(): the free parameters of the
+    // node systems that minimise sum_E ||sigma^ - sigma_c||^2. On each
+    // owned cell, sigma^ = sigma^_0 + sum_j alpha_j S_j with S_j the
+    // response of the local problem to the change of the edge tractions
+    // per unit of parameter j of one of the cell's nodes; the minimum
+    // solves H alpha = -g with
+    //   H_ij = sum_E (S_i, S_j)_E,  g_i = sum_E (S_i, sigma^_0 - sigma_c)_E,
+    // assembled like a stiffness matrix over the DoF indices that name the
+    // parameters. The moments are updated in place.
+    template <typename CellLoad, typename FaceLoad>
+    void
+    optimise_free_parameters(const ElasticBody &                  body,
+                             const std::vector<CellData> &        cells,
+                             std::vector<FaceData> &              faces,
+                             LocalNeumannProblem &                local,
+                             const TrilinosWrappers::MPI::Vector &u_kinematic,
+                             const CellLoad &                     cell_load,
+                             const FaceLoad &                     add_face_load,
+                             EquilibratedStressErrors &           result)
     {
-    public:
-      MonomialBasis(const unsigned int degree)
-        : degree(degree)
-      {
-        for (unsigned int total = 0; total <= degree; ++total)
-          for (unsigned int b = 0; b <= total; ++b)
-            exponents.push_back({{total - b, b}});
-      }
+      const MPI_Comm  comm     = body.triangulation().get_communicator();
+      const IndexSet &owned    = body.locally_owned_dof_set();
+      const IndexSet &relevant = body.locally_relevant_dof_set();
+      DynamicSparsityPattern dsp(relevant);
+      DoFTools::make_sparsity_pattern(body.dof_handler(), dsp);
+      SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+      TrilinosWrappers::SparseMatrix H;
+      H.reinit(owned, owned, dsp, comm);
+      TrilinosWrappers::MPI::Vector g(owned, comm), alpha(owned, comm);
 
-      unsigned int
-      size() const
-      {
-        return exponents.size();
-      }
-
-      void
-      reinit(const Point<2> &c, const double size)
-      {
-        centre = c;
-        h      = size;
-      }
-
-      // Values and gradients of all monomials at x.
-      void
-      evaluate(const Point<2> &             x,
-               std::vector<double> &        values,
-               std::vector<Tensor<1, 2>> &  gradients) const
-      {
-        const double xi[2] = {(x[0] - centre[0]) / h, (x[1] - centre[1]) / h};
-        // Powers xi_d^0 ... xi_d^degree, by products (no std::pow).
-        std::array<std::vector<double>, 2> power;
-        for (unsigned int d = 0; d < 2; ++d)
+      double                                  before = 0;
+      Vector<double>                          load(local.n_coefficients()),
+        base;
+      std::map<types::global_dof_index, Vector<double>> direction_loads;
+      std::vector<Vector<double>>                       responses;
+      std::vector<types::global_dof_index>              indices;
+      for (unsigned int slot = 0; slot < cells.size(); ++slot)
+        if (cells[slot].owned)
           {
-            power[d].resize(degree + 1);
-            power[d][0] = 1;
-            for (unsigned int e = 1; e <= degree; ++e)
-              power[d][e] = power[d][e - 1] * xi[d];
+            local.reinit(cells[slot].cell, u_kinematic);
+            cell_load(slot, load);
+            local.solve(load, base);
+            before += local.errors(base)[0];
+
+            // The loads of the cell's free parameters: the kernel moments
+            // of a node system change F on the faces through its node.
+            direction_loads.clear();
+            for (const unsigned int fi : cells[slot].faces)
+              {
+                const FaceData &face = faces[fi];
+                for (unsigned int k = 0; k < face.nodes.size(); ++k)
+                  for (unsigned int c = 0; c < 2; ++c)
+                    if (face.kernel[k][c] != 0)
+                      {
+                        std::vector<std::array<double, 2>> coefficients(
+                          face.nodes.size(), {{0., 0.}});
+                        for (unsigned int l = 0; l < face.nodes.size(); ++l)
+                          coefficients[l][c] =
+                            face.mass_inverse(l, k) * face.kernel[k][c];
+                        auto &direction = direction_loads[face.node_dofs[k][c]];
+                        if (direction.size() == 0)
+                          direction.reinit(local.n_coefficients());
+                        std::array<bool, 2> mask = {{false, false}};
+                        mask[c]                  = true;
+                        add_face_load(direction, slot, face, coefficients, mask);
+                      }
+              }
+            const unsigned int n = direction_loads.size();
+            if (n == 0)
+              continue;
+            indices.clear();
+            responses.resize(n);
+            for (const auto &[dof, direction] : direction_loads)
+              {
+                local.solve(direction, responses[indices.size()]);
+                indices.push_back(dof);
+              }
+            FullMatrix<double>  cell_H(n, n);
+            std::vector<double> cell_g(n);
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                for (unsigned int j = 0; j <= i; ++j)
+                  cell_H(i, j) = cell_H(j, i) =
+                    local.energy_product(responses[i], responses[j]);
+                cell_g[i] = local.energy_product(responses[i], base) -
+                            local.kinematic_work(responses[i]);
+              }
+            H.add(indices, cell_H);
+            g.add(indices, cell_g);
           }
-        values.resize(size());
-        gradients.resize(size());
-        for (unsigned int m = 0; m < size(); ++m)
-          {
-            const auto &e = exponents[m];
-            values[m]     = power[0][e[0]] * power[1][e[1]];
-            gradients[m][0] =
-              e[0] == 0 ? 0. : e[0] * power[0][e[0] - 1] * power[1][e[1]] / h;
-            gradients[m][1] =
-              e[1] == 0 ? 0. : e[1] * power[0][e[0]] * power[1][e[1] - 1] / h;
-          }
-      }
+      H.compress(VectorOperation::add);
+      g.compress(VectorOperation::add);
+      result.error_squared_before_optimisation = Utilities::MPI::sum(before, comm);
 
-      // Coefficient vectors (x block, then y block) of the rigid motions:
-      // the translations and the rotation (-xi_y, xi_x).
-      std::array<std::vector<double>, 3>
-      rigid_motions() const
-      {
-        const unsigned int M = size();
-        std::array<std::vector<double>, 3> modes;
-        for (auto &m : modes)
-          m.assign(2 * M, 0.);
-        // exponents: (0,0) is 0, (1,0) is 1, (0,1) is 2.
-        modes[0][0]     = 1;
-        modes[1][M]     = 1;
-        modes[2][2]     = -1;
-        modes[2][M + 1] = 1;
-        return modes;
-      }
+      // Rows without a free parameter (nodes on loaded edges, higher-order
+      // nodes inside edges and cells) get alpha = 0.
+      for (const auto i : owned)
+        if (H.diag_element(i) == 0)
+          H.set(i, i, 1.);
+      H.compress(VectorOperation::insert);
+      g *= -1;
+      const double g_norm = g.l2_norm();
+      if (g_norm == 0)
+        return;
+      SolverControl                                control(1000, 1e-8 * g_norm);
+      SolverCG<TrilinosWrappers::MPI::Vector>      cg(control);
+      TrilinosWrappers::PreconditionJacobi         jacobi;
+      jacobi.initialize(H);
+      try
+        {
+          cg.solve(H, alpha, g, jacobi);
+        }
+      catch (const SolverControl::NoConvergence &)
+        {
+          // The last iterate is as admissible as the solution.
+        }
+      result.optimisation_iterations = control.last_step();
 
-    private:
-      unsigned int                             degree;
-      std::vector<std::array<unsigned int, 2>> exponents;
-      Point<2>                                 centre;
-      double                                   h = 1;
-    };
-
-    // eps of basis function a of the vector space (x block, then y block).
-    SymmetricTensor<2, 2>
-    basis_strain(const std::vector<Tensor<1, 2>> &gradients,
-                 const unsigned int               a)
-    {
-      const unsigned int    M = gradients.size();
-      const unsigned int    c = a / M;
-      const Tensor<1, 2> &  g = gradients[a % M];
-      SymmetricTensor<2, 2> e;
-      e[c][c]         = g[c];
-      e[0][1]         = 0.5 * g[1 - c];
-      return e;
+      TrilinosWrappers::MPI::Vector alpha_local(owned, relevant, comm);
+      alpha_local = alpha;
+      for (auto &face : faces)
+        for (unsigned int k = 0; k < face.nodes.size(); ++k)
+          for (unsigned int c = 0; c < 2; ++c)
+            if (face.kernel[k][c] != 0)
+              face.moments[k][c] +=
+                alpha_local(face.node_dofs[k][c]) * face.kernel[k][c];
     }
   } // namespace
 
@@ -177,7 +230,8 @@ namespace coulomb_adapt
                              const TrilinosWrappers::MPI::Vector &u_equilibrium,
                              const TrilinosWrappers::MPI::Vector &u_kinematic_in,
                              const ContactTractionData &          contact,
-                             const unsigned int                   degree_increase)
+                             const unsigned int                   degree_increase,
+                             const bool                           optimise_tractions)
   {
     // Ghosted copies: the node systems read the ghost cells too (the
     // corrected solutions come without ghost entries).
@@ -234,6 +288,7 @@ namespace coulomb_adapt
             data.cell  = cell;
             data.owned = cell->is_locally_owned();
             data.nodes.resize(n_nodes);
+            data.component_dofs.resize(n_nodes);
             data.residual.assign(n_nodes, {{0., 0.}});
             cell->get_dof_indices(dofs);
             support_values.reinit(cell);
@@ -246,6 +301,7 @@ namespace coulomb_adapt
                 const auto [c, k] = fe.system_to_component_index(j);
                 if (c == 0)
                   data.nodes[k] = dofs[j];
+                data.component_dofs[k][c] = dofs[j];
                 double r = 0;
                 for (const unsigned int q :
                      fe_values.quadrature_point_indices())
@@ -315,6 +371,7 @@ namespace coulomb_adapt
               }
             face.nodes.clear();
             face.s.clear();
+            face.node_dofs.clear();
             // The nodes on the face: support points on its chord (up to
             // the sagitta of a curved face; has_support_on_face() is not
             // precise for every element).
@@ -328,6 +385,7 @@ namespace coulomb_adapt
                     distance < 0.05 * face.length)
                   {
                     face.nodes.push_back(cells[slot].nodes[k]);
+                    face.node_dofs.push_back(cells[slot].component_dofs[k]);
                     // Vertices at 0 and 1, an edge's middle node at 1/2.
                     face.s.push_back(std::round(2 * s) / 2);
                   }
@@ -346,6 +404,7 @@ namespace coulomb_adapt
         {
           face.moments.assign(face.nodes.size(), {{0., 0.}});
           face.average.assign(face.nodes.size(), {{0., 0.}});
+          face.kernel.assign(face.nodes.size(), {{0., 0.}});
           if (!face.at_boundary)
             continue;
           const auto &cell = cells[face.plus].cell;
@@ -548,6 +607,26 @@ namespace coulomb_adapt
                     for (unsigned int j = 0; j < n_cols; ++j)
                       y(j) += coefficient * Vt(i, j) * scale[j];
                   }
+              // The free parameter: the first null vector of the scaled
+              // matrix (one per interior or Dirichlet node), mapped back
+              // to moments. Every rank that solves this node system finds
+              // the same one (same star, same order).
+              unsigned int rank = 0;
+              while (rank < std::min(n_rows, n_cols) &&
+                     svd.singular_value(rank) > 1e-10 * svd.singular_value(0))
+                ++rank;
+              if (rank < n_cols)
+                {
+                  double largest = 0;
+                  for (unsigned int j = 0; j < n_cols; ++j)
+                    largest = std::max(largest, std::abs(Vt(rank, j) * scale[j]));
+                  for (unsigned int j = 0; j < n_cols; ++j)
+                    {
+                      const auto &e = node_faces[columns[j]];
+                      faces[e.first].kernel[e.second][c] =
+                        Vt(rank, j) * scale[j] / largest;
+                    }
+                }
               Vector<double> defect(n_rows);
               A.vmult(defect, y);
               defect -= rhs;
@@ -564,190 +643,142 @@ namespace coulomb_adapt
         result.node_system_defect /= largest_residual;
     }
 
-    // 4. F on each face of an owned cell: the polynomial of degree p with
-    // the face's moments (edge mass matrix on the chord).
-    for (auto &face : faces)
-      {
-        const unsigned int n = face.nodes.size();
-        face.coefficients.assign(n, {{0., 0.}});
-        if (face.plus < 0 || (!face.unknown[0] && !face.unknown[1]))
-          continue;
-        FullMatrix<double> mass(n, n);
-        const QGauss<1>    gauss(p + 1);
-        for (unsigned int q = 0; q < gauss.size(); ++q)
+    // 4. F on each face: the polynomial of degree p with the face's
+    // moments (the inverse edge mass matrix on the chord).
+    const auto update_coefficients = [](FaceData &face) {
+      const unsigned int n = face.nodes.size();
+      face.coefficients.assign(n, {{0., 0.}});
+      if (face.plus < 0 || (!face.unknown[0] && !face.unknown[1]))
+        return;
+      for (unsigned int k = 0; k < n; ++k)
+        for (unsigned int l = 0; l < n; ++l)
+          for (unsigned int c = 0; c < 2; ++c)
+            face.coefficients[k][c] +=
+              face.mass_inverse(k, l) * face.moments[l][c];
+    };
+    {
+      const QGauss<1> gauss(p + 1);
+      for (auto &face : faces)
+        {
+          const unsigned int n = face.nodes.size();
+          face.mass_inverse.reinit(n, n);
+          for (unsigned int q = 0; q < gauss.size(); ++q)
+            {
+              const auto phi = face_shape_values(face.s, gauss.point(q)[0]);
+              for (unsigned int k = 0; k < n; ++k)
+                for (unsigned int l = 0; l < n; ++l)
+                  face.mass_inverse(k, l) +=
+                    phi[k] * phi[l] * gauss.weight(q) * face.length;
+            }
+          if (n > 0)
+            face.mass_inverse.gauss_jordan();
+          update_coefficients(face);
+        }
+    }
+
+    // The loads of the local problems. A face's traction eta F with the
+    // given nodal coefficients, on the components in mask:
+    LocalNeumannProblem local(body, p + degree_increase);
+    const QGauss<1>     edge_rule(p + degree_increase + 2);
+    const auto          add_face_load =
+      [&](Vector<double> &                          load,
+          const unsigned int                        slot,
+          const FaceData &                          face,
+          const std::vector<std::array<double, 2>> &coefficients,
+          const std::array<bool, 2> &               mask) {
+        const double eta = face.plus == static_cast<int>(slot) ? 1 : -1;
+        for (unsigned int q = 0; q < edge_rule.size(); ++q)
           {
-            const auto phi = face_shape_values(face.s, gauss.point(q)[0]);
-            for (unsigned int k = 0; k < n; ++k)
-              for (unsigned int l = 0; l < n; ++l)
-                mass(k, l) += phi[k] * phi[l] * gauss.weight(q) * face.length;
+            const double s   = edge_rule.point(q)[0];
+            const auto   phi = face_shape_values(face.s, s);
+            Tensor<1, 2> F;
+            for (unsigned int k = 0; k < face.nodes.size(); ++k)
+              for (unsigned int c = 0; c < 2; ++c)
+                F[c] += phi[k] * coefficients[k][c];
+            local.add_traction(load,
+                               face.v0 + s * (face.v1 - face.v0),
+                               eta * F,
+                               edge_rule.weight(q) * face.length,
+                               mask);
           }
-        mass.gauss_jordan();
-        for (unsigned int k = 0; k < n; ++k)
-          for (unsigned int l = 0; l < n; ++l)
-            for (unsigned int c = 0; c < 2; ++c)
-              face.coefficients[k][c] += mass(k, l) * face.moments[l][c];
-      }
+      };
+    // ... and the whole load of a cell: the body force, eta F where the
+    // moments were solved for, the prescribed data elsewhere, and the
+    // contact traction. local must be reinit'ed on the cell.
+    const auto cell_load = [&](const unsigned int slot, Vector<double> &load) {
+      const auto &cell = cells[slot].cell;
+      load             = local.body_force_load();
+      for (const unsigned int f : cell->face_indices())
+        {
+          const FaceData &          face   = faces[cells[slot].faces[f]];
+          const std::array<bool, 2> solved = {{face.unknown[0], face.unknown[1]}};
+          if (solved[0] || solved[1])
+            add_face_load(load, slot, face, face.coefficients, solved);
+          const std::array<bool, 2> prescribed = {{!solved[0], !solved[1]}};
+          if (face.at_boundary && (prescribed[0] || prescribed[1]))
+            {
+              const auto t = traction_on.find(cell->face(f)->boundary_id());
+              if (t != traction_on.end())
+                for (unsigned int q = 0; q < edge_rule.size(); ++q)
+                  {
+                    const Point<2> x =
+                      face.v0 + edge_rule.point(q)[0] * (face.v1 - face.v0);
+                    local.add_traction(load,
+                                       x,
+                                       (*t->second)(x, face.normal),
+                                       edge_rule.weight(q) * face.length,
+                                       prescribed);
+                  }
+            }
+        }
+      if (const auto c = contact.find(cell->id()); c != contact.end())
+        for (const auto &point : c->second)
+          local.add_traction(load, point.point, point.traction, point.weight,
+                             {{true, true}});
+    };
 
-    // 5. The local Neumann problems and the errors, cell by cell.
-    const unsigned int P = p + degree_increase;
-    MonomialBasis      basis(P);
-    const unsigned int M = basis.size();
-    const std::unique_ptr<Quadrature<2>> cell_rule =
-      body.is_simplex_mesh() ?
-        // Witherden-Vincent: QGaussSimplex stops at 4 points per direction.
-        std::unique_ptr<Quadrature<2>>(
-          new QWitherdenVincentSimplex<2>(std::min(P + 1, 7u))) :
-        std::unique_ptr<Quadrature<2>>(new QGauss<2>(P + 1));
-    FEValues<2> fe_values(body.mapping(),
-                          fe,
-                          *cell_rule,
-                          update_gradients | update_quadrature_points |
-                            update_JxW_values);
-    const QGauss<1> edge_rule(P + 2);
-    std::vector<SymmetricTensor<2, 2>> strains(cell_rule->size());
-    std::vector<double>                values;
-    std::vector<Tensor<1, 2>>          gradients;
-    std::vector<std::vector<SymmetricTensor<2, 2>>> basis_strains(
-      cell_rule->size(), std::vector<SymmetricTensor<2, 2>>(2 * M));
-    const auto         rigid = basis.rigid_motions();
-    FullMatrix<double> K(2 * M, 2 * M);
-    Vector<double>     load(2 * M), coefficients(2 * M);
+    // 5. The free parameters of the node systems (one per interior or
+    // Dirichlet node and component) chosen to minimise the estimate
+    // sum_E ||sigma^ - sigma_c||^2 itself, instead of the distance to the
+    // averaged traction: sigma^ is affine in them, so this is one sparse
+    // symmetric positive definite system with the pattern of the
+    // stiffness matrix. Any value of the parameters keeps sigma^
+    // statically admissible, so an inexact solve only makes the bound
+    // less tight.
+    if (optimise_tractions)
+      optimise_free_parameters(body,
+                               cells,
+                               faces,
+                               local,
+                               u_kinematic,
+                               cell_load,
+                               add_face_load,
+                               result);
+    for (auto &face : faces)
+      update_coefficients(face);
 
+    // 6. The local Neumann problems and the errors, cell by cell.
     result.error_squared.reinit(body.triangulation().n_active_cells());
-    double sum_norm = 0;
+    double         sum_norm = 0;
+    Vector<double> load(local.n_coefficients()), coefficients;
     for (unsigned int slot = 0; slot < cells.size(); ++slot)
       if (cells[slot].owned)
         {
-          const auto &cell = cells[slot].cell;
-          basis.reinit(cell->center(), cell->diameter());
-          fe_values.reinit(cell);
-          fe_values[displacement].get_function_symmetric_gradients(u_kinematic,
-                                                                   strains);
-          K    = 0;
-          load = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              basis.evaluate(fe_values.quadrature_point(q), values, gradients);
-              for (unsigned int a = 0; a < 2 * M; ++a)
-                basis_strains[q][a] = basis_strain(gradients, a);
-              const double JxW = fe_values.JxW(q);
-              for (unsigned int a = 0; a < 2 * M; ++a)
-                {
-                  const SymmetricTensor<2, 2> sigma_a =
-                    material.stress(basis_strains[q][a]);
-                  for (unsigned int b = 0; b <= a; ++b)
-                    K(a, b) += sigma_a * basis_strains[q][b] * JxW;
-                }
-              if (description.body_force)
-                {
-                  const Tensor<1, 2> f =
-                    description.body_force(fe_values.quadrature_point(q));
-                  for (unsigned int a = 0; a < 2 * M; ++a)
-                    load(a) += f[a / M] * values[a % M] * JxW;
-                }
-            }
-          for (unsigned int a = 0; a < 2 * M; ++a)
-            for (unsigned int b = a + 1; b < 2 * M; ++b)
-              K(a, b) = K(b, a);
-
-          // Tractions on the faces: eta F where the moments were solved
-          // for, the prescribed data elsewhere.
-          auto add_traction = [&](const Point<2> &    x,
-                                  const Tensor<1, 2> &t,
-                                  const double        w,
-                                  const bool          component[2]) {
-            basis.evaluate(x, values, gradients);
-            for (unsigned int a = 0; a < 2 * M; ++a)
-              if (component[a / M])
-                load(a) += t[a / M] * values[a % M] * w;
-          };
-          for (const unsigned int f : cell->face_indices())
-            {
-              const FaceData &face = faces[cells[slot].faces[f]];
-              const double    eta  = face.plus == static_cast<int>(slot) ? 1 : -1;
-              const bool      solved[2] = {face.unknown[0], face.unknown[1]};
-              if (solved[0] || solved[1])
-                for (unsigned int q = 0; q < edge_rule.size(); ++q)
-                  {
-                    const double   s   = edge_rule.point(q)[0];
-                    const auto     phi = face_shape_values(face.s, s);
-                    Tensor<1, 2>   F;
-                    for (unsigned int k = 0; k < face.nodes.size(); ++k)
-                      for (unsigned int c = 0; c < 2; ++c)
-                        F[c] += phi[k] * face.coefficients[k][c];
-                    add_traction(face.v0 + s * (face.v1 - face.v0),
-                                 eta * F,
-                                 edge_rule.weight(q) * face.length,
-                                 solved);
-                  }
-              const bool prescribed[2] = {!solved[0], !solved[1]};
-              if (face.at_boundary && (prescribed[0] || prescribed[1]))
-                {
-                  const auto t = traction_on.find(cell->face(f)->boundary_id());
-                  if (t != traction_on.end())
-                    for (unsigned int q = 0; q < edge_rule.size(); ++q)
-                      {
-                        const Point<2> x =
-                          face.v0 + edge_rule.point(q)[0] * (face.v1 - face.v0);
-                        add_traction(x,
-                                     (*t->second)(x, face.normal),
-                                     edge_rule.weight(q) * face.length,
-                                     prescribed);
-                      }
-                }
-            }
-          if (const auto c = contact.find(cell->id()); c != contact.end())
-            for (const auto &point : c->second)
-              {
-                // Only on components whose moments are prescribed (a
-                // contact edge is not a Dirichlet edge).
-                const bool all[2] = {true, true};
-                add_traction(point.point, point.traction, point.weight, all);
-              }
-
-          // The data are self-equilibrated up to round-off and the
-          // quadrature of non-polynomial data: measure, then solve with
-          // the rigid motions penalised (K + s R R^T has the solution of
-          // K u = load orthogonal to R when load is orthogonal to R).
-          double load_size = 0, rigid_load = 0, diagonal = 0;
-          for (unsigned int a = 0; a < 2 * M; ++a)
-            {
-              load_size += std::abs(load(a));
-              diagonal = std::max(diagonal, K(a, a));
-            }
-          for (const auto &mode : rigid)
-            {
-              double w = 0;
-              for (unsigned int a = 0; a < 2 * M; ++a)
-                w += mode[a] * load(a);
-              rigid_load = std::max(rigid_load, std::abs(w));
-              for (unsigned int a = 0; a < 2 * M; ++a)
-                for (unsigned int b = 0; b < 2 * M; ++b)
-                  K(a, b) += diagonal * mode[a] * mode[b];
-            }
-          if (load_size > 0)
-            result.local_problem_defect =
-              std::max(result.local_problem_defect, rigid_load / load_size);
-          K.gauss_jordan();
-          K.vmult(coefficients, load);
-
-          double error = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              SymmetricTensor<2, 2> strain;
-              for (unsigned int a = 0; a < 2 * M; ++a)
-                strain += coefficients(a) * basis_strains[q][a];
-              const SymmetricTensor<2, 2> sigma_hat = material.stress(strain);
-              const SymmetricTensor<2, 2> sigma_c = material.stress(strains[q]);
-              const SymmetricTensor<2, 2> minus   = sigma_hat - sigma_c;
-              const SymmetricTensor<2, 2> plus    = sigma_hat + sigma_c;
-              error += minus * material.strain(minus) * fe_values.JxW(q);
-              sum_norm += plus * material.strain(plus) * fe_values.JxW(q);
-            }
-          result.error_squared(cell->active_cell_index()) = error;
+          local.reinit(cells[slot].cell, u_kinematic);
+          cell_load(slot, load);
+          result.local_problem_defect =
+            std::max(result.local_problem_defect,
+                     local.solve(load, coefficients));
+          const auto errors = local.errors(coefficients);
+          result.error_squared(cells[slot].cell->active_cell_index()) =
+            errors[0];
+          sum_norm += errors[1];
         }
 
-    result.sum_norm_squared     = Utilities::MPI::sum(sum_norm, comm);
+    result.sum_norm_squared = Utilities::MPI::sum(sum_norm, comm);
+    if (!optimise_tractions)
+      result.error_squared_before_optimisation =
+        Utilities::MPI::sum(result.error_squared.l1_norm(), comm);
     result.node_system_defect   = Utilities::MPI::max(result.node_system_defect, comm);
     result.local_problem_defect = Utilities::MPI::max(result.local_problem_defect, comm);
     return result;

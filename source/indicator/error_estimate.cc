@@ -124,6 +124,7 @@ namespace coulomb_adapt
                                 contact_solver,
                                 mu,
                                 indicator_parameters.cre_degree_increase,
+                                indicator_parameters.cre_traction_optimisation,
                                 solver_parameters,
                                 timer,
                                 known_correction);

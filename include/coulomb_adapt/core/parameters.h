@@ -123,6 +123,9 @@ namespace coulomb_adapt
       bool         compare_estimators;
       /** k of the cre estimator's local problems (degree p + k). */
       unsigned int cre_degree_increase;
+      /** Choose the equilibration's free parameters to minimise the cre
+       * estimate (else: closest to the averaged traction). */
+      bool         cre_traction_optimisation;
       /** Compare with the exact error: the scene's exact solution if it
        * has one, else a reference solution on a finer mesh. */
       bool         compute_exact_error;

@@ -45,6 +45,13 @@ namespace coulomb_adapt
      * the load's size: the local problems' data are self-equilibrated to
      * this accuracy. */
     double local_problem_defect = 0;
+    /** sum over all cells of ||sigma^ - sigma_c||^2 with the edge
+     * tractions closest to the averaged traction (before the free
+     * parameters are optimised; equal to the sum of error_squared when
+     * they are not). */
+    double error_squared_before_optimisation = 0;
+    /** CG iterations of the optimisation of the free parameters. */
+    unsigned int optimisation_iterations = 0;
   };
 
   /**
@@ -61,7 +68,13 @@ namespace coulomb_adapt
    *      sum_{G in dE} eta_{E,G} b_{G,i} = int_E sigma : eps(phi_i) - f phi_i,
    *    with the moments known on loaded, free and contact edges and unknown
    *    on interior and Dirichlet edges; solved in least squares closest to
-   *    the moments of the averaged traction.
+   *    the moments of the averaged traction. The systems of interior and
+   *    Dirichlet nodes leave one free parameter per component: with
+   *    @p optimise_tractions, these are then chosen to minimise the
+   *    estimate sum_E ||sigma^ - sigma_c||^2 over all cells (one sparse
+   *    SPD system; the classical technique keeps the least-squares
+   *    choice, which is tight on quadrilaterals but about twice the
+   *    error on triangles).
    * 2. F_G: the polynomial of degree p on each edge with these moments.
    * 3. On each cell, the Neumann problem with body force f and tractions
    *    eta F_G (the prescribed data on loaded and contact edges) in the
@@ -73,7 +86,8 @@ namespace coulomb_adapt
                              const TrilinosWrappers::MPI::Vector &u_equilibrium,
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const ContactTractionData &          contact,
-                             const unsigned int                   degree_increase);
+                             const unsigned int                   degree_increase,
+                             const bool optimise_tractions = true);
 } // namespace coulomb_adapt
 
 #endif

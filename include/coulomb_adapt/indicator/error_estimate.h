@@ -41,6 +41,11 @@ namespace coulomb_adapt
      * larger of the two bodies'. */
     double                        node_system_defect   = 0;
     double                        local_problem_defect = 0;
+    /** cre: the estimate with the classical edge tractions (closest to the
+     * averaged traction), before its free parameters are optimised, and
+     * the CG steps of that optimisation (0: not optimised). */
+    double       epsilon_before_optimisation = 0;
+    unsigned int optimisation_iterations     = 0;
     /** The corrected solution (for scenes with contact). */
     CorrectedContactSolution correction;
     bool                     has_contact = false;
@@ -110,6 +115,7 @@ namespace coulomb_adapt
                      const ContactSolution *                   contact_solver,
                      const double                              friction_coefficient,
                      const unsigned int                        degree_increase,
+                     const bool                                optimise_tractions,
                      const parameters::LinearSolver &          solver_parameters,
                      TimerOutput *                             timer = nullptr,
                      const CorrectedContactSolution *known_correction = nullptr);
