@@ -7,6 +7,10 @@
 
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_system.h>
+
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/sparsity_tools.h>
@@ -72,6 +76,17 @@ namespace coulomb_adapt
        * of the edge mass matrix that maps moments to them. */
       std::vector<std::array<double, 2>> coefficients;
       FullMatrix<double>                 mass_inverse;
+      /** Amplitude per component of the edge bubble added to F: the
+       * Legendre polynomial of degree p + 1 along the edge, orthogonal to
+       * every shape function on it, so that it leaves the moments and the
+       * prolongation conditions unchanged (a free parameter of every edge
+       * whose tractions are unknown). */
+      std::array<double, 2> bubble = {{0., 0.}};
+      /** Names of the free parameters in the optimisation's numbering:
+       * per node and component (vertices), and of the bubble. */
+      std::vector<std::array<types::global_dof_index, 2>> parameter_of_node;
+      std::array<types::global_dof_index, 2>              parameter_of_bubble = {
+        {numbers::invalid_dof_index, numbers::invalid_dof_index}};
     };
 
     // Lagrange polynomials of the face's nodes at parameter s.
@@ -86,6 +101,23 @@ namespace coulomb_adapt
       return values;
     }
 
+    // The Legendre polynomial of degree n on [0, 1] at s.
+    double
+    edge_bubble(const unsigned int n, const double s)
+    {
+      const double x = 2 * s - 1;
+      double       previous = 1, current = x;
+      if (n == 0)
+        return 1;
+      for (unsigned int k = 1; k < n; ++k)
+        {
+          const double next = ((2 * k + 1) * x * current - k * previous) / (k + 1);
+          previous          = current;
+          current           = next;
+        }
+      return current;
+    }
+
     double
     face_parameter(const FaceData &face, const Point<2> &x)
     {
@@ -94,15 +126,19 @@ namespace coulomb_adapt
     }
 
 
-    // Step 5 of equilibrated_stress_errors(): the free parameters of the
-    // node systems that minimise sum_E ||sigma^ - sigma_c||^2. On each
-    // owned cell, sigma^ = sigma^_0 + sum_j alpha_j S_j with S_j the
-    // response of the local problem to the change of the edge tractions
-    // per unit of parameter j of one of the cell's nodes; the minimum
-    // solves H alpha = -g with
+    // Step 5 of equilibrated_stress_errors(): the free parameters that
+    // minimise sum_E ||sigma^ - sigma_c||^2. They are the null vectors of
+    // the node systems (one per interior or Dirichlet vertex and
+    // component) and the edge bubbles (one per edge with unknown tractions
+    // and component). On each owned cell, sigma^ = sigma^_0 + sum_j alpha_j
+    // S_j with S_j the response of the local problem to the change of the
+    // edge tractions per unit of parameter j; the minimum solves
+    // H alpha = -g with
     //   H_ij = sum_E (S_i, S_j)_E,  g_i = sum_E (S_i, sigma^_0 - sigma_c)_E,
-    // assembled like a stiffness matrix over the DoF indices that name the
-    // parameters. The moments are updated in place.
+    // assembled like a stiffness matrix: the parameters are named by the
+    // vertex and edge DoFs of the continuous quadratic element on the same
+    // mesh, which also gives the matrix's pattern and its
+    // parallel layout. The moments and bubbles are updated in place.
     template <typename CellLoad, typename FaceLoad>
     void
     optimise_free_parameters(const ElasticBody &                  body,
@@ -112,63 +148,123 @@ namespace coulomb_adapt
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const CellLoad &                     cell_load,
                              const FaceLoad &                     add_face_load,
+                             const bool                           with_bubbles,
                              EquilibratedStressErrors &           result)
     {
-      const MPI_Comm  comm     = body.triangulation().get_communicator();
-      const IndexSet &owned    = body.locally_owned_dof_set();
-      const IndexSet &relevant = body.locally_relevant_dof_set();
+      const auto &       tria = body.triangulation();
+      const MPI_Comm     comm = tria.get_communicator();
+      // Quadratic elements: one DoF per vertex and one per edge, whatever
+      // p (deal.II 9.4 has no cubic FE_SimplexP).
+      std::unique_ptr<FiniteElement<2>> scalar;
+      if (body.is_simplex_mesh())
+        scalar = std::make_unique<FE_SimplexP<2>>(2);
+      else
+        scalar = std::make_unique<FE_Q<2>>(2);
+      const FESystem<2> names_fe(*scalar, 2);
+      DoFHandler<2>     names(tria);
+      names.distribute_dofs(names_fe);
+      const IndexSet owned = names.locally_owned_dofs();
+      IndexSet       relevant;
+      DoFTools::extract_locally_relevant_dofs(names, relevant);
       DynamicSparsityPattern dsp(relevant);
-      DoFTools::make_sparsity_pattern(body.dof_handler(), dsp);
+      DoFTools::make_sparsity_pattern(names, dsp);
       SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
       TrilinosWrappers::SparseMatrix H;
       H.reinit(owned, owned, dsp, comm);
       TrilinosWrappers::MPI::Vector g(owned, comm), alpha(owned, comm);
 
-      double                                  before = 0;
-      Vector<double>                          load(local.n_coefficients()),
-        base;
+      std::vector<types::global_dof_index> name_dofs(names_fe.n_dofs_per_cell());
+      double         before = 0;
+      Vector<double> load(local.n_coefficients()), base;
       std::map<types::global_dof_index, Vector<double>> direction_loads;
       std::vector<Vector<double>>                       responses;
       std::vector<types::global_dof_index>              indices;
       for (unsigned int slot = 0; slot < cells.size(); ++slot)
         if (cells[slot].owned)
           {
-            local.reinit(cells[slot].cell, u_kinematic);
+            const auto &cell = cells[slot].cell;
+            local.reinit(cell, u_kinematic);
             cell_load(slot, load);
             local.solve(load, base);
             before += local.errors(base)[0];
 
-            // The loads of the cell's free parameters: the kernel moments
-            // of a node system change F on the faces through its node.
+            const DoFHandler<2>::active_cell_iterator name_cell(&tria,
+                                                                cell->level(),
+                                                                cell->index(),
+                                                                &names);
+            name_cell->get_dof_indices(name_dofs);
+            const auto name = [&](const unsigned int c, const unsigned int k) {
+              return name_dofs[names_fe.component_to_system_index(c, k)];
+            };
+            // The loads of the cell's free parameters.
             direction_loads.clear();
-            for (const unsigned int fi : cells[slot].faces)
+            const auto direction = [&](const types::global_dof_index dof)
+              -> Vector<double> & {
+              auto &d = direction_loads[dof];
+              if (d.size() == 0)
+                d.reinit(local.n_coefficients());
+              return d;
+            };
+            for (const unsigned int f : cell->face_indices())
               {
-                const FaceData &face = faces[fi];
-                for (unsigned int k = 0; k < face.nodes.size(); ++k)
-                  for (unsigned int c = 0; c < 2; ++c)
-                    if (face.kernel[k][c] != 0)
+                FaceData &face = faces[cells[slot].faces[f]];
+                face.parameter_of_node.assign(
+                  face.nodes.size(),
+                  {{numbers::invalid_dof_index, numbers::invalid_dof_index}});
+                for (unsigned int c = 0; c < 2; ++c)
+                  {
+                    std::array<bool, 2> mask = {{false, false}};
+                    mask[c]                  = true;
+                    // A vertex's null vector changes F on the faces
+                    // through it (moments b[k] += kernel[k]).
+                    for (unsigned int k = 0; k < face.nodes.size(); ++k)
+                      if (face.kernel[k][c] != 0)
+                        {
+                          unsigned int v = 0;
+                          while (v < cell->n_vertices() &&
+                                 cells[slot].component_dofs[v][c] !=
+                                   face.node_dofs[k][c])
+                            ++v;
+                          Assert(v < cell->n_vertices(), ExcInternalError());
+                          face.parameter_of_node[k][c] = name(c, v);
+                          std::vector<std::array<double, 2>> coefficients(
+                            face.nodes.size(), {{0., 0.}});
+                          for (unsigned int l = 0; l < face.nodes.size(); ++l)
+                            coefficients[l][c] =
+                              face.mass_inverse(l, k) * face.kernel[k][c];
+                          add_face_load(direction(name(c, v)),
+                                        slot,
+                                        face,
+                                        coefficients,
+                                        std::array<double, 2>{{0., 0.}},
+                                        mask);
+                        }
+                    // The edge bubble, named by the edge's DoF.
+                    if (with_bubbles && face.unknown[c])
                       {
-                        std::vector<std::array<double, 2>> coefficients(
-                          face.nodes.size(), {{0., 0.}});
-                        for (unsigned int l = 0; l < face.nodes.size(); ++l)
-                          coefficients[l][c] =
-                            face.mass_inverse(l, k) * face.kernel[k][c];
-                        auto &direction = direction_loads[face.node_dofs[k][c]];
-                        if (direction.size() == 0)
-                          direction.reinit(local.n_coefficients());
-                        std::array<bool, 2> mask = {{false, false}};
-                        mask[c]                  = true;
-                        add_face_load(direction, slot, face, coefficients, mask);
+                        const types::global_dof_index dof =
+                          name(c, cell->n_vertices() + f);
+                        face.parameter_of_bubble[c] = dof;
+                        std::array<double, 2> unit = {{0., 0.}};
+                        unit[c]                    = 1;
+                        add_face_load(direction(dof),
+                                      slot,
+                                      face,
+                                      std::vector<std::array<double, 2>>(
+                                        face.nodes.size(), {{0., 0.}}),
+                                      unit,
+                                      mask);
                       }
+                  }
               }
             const unsigned int n = direction_loads.size();
             if (n == 0)
               continue;
             indices.clear();
             responses.resize(n);
-            for (const auto &[dof, direction] : direction_loads)
+            for (const auto &[dof, d] : direction_loads)
               {
-                local.solve(direction, responses[indices.size()]);
+                local.solve(d, responses[indices.size()]);
                 indices.push_back(dof);
               }
             FullMatrix<double>  cell_H(n, n);
@@ -188,8 +284,8 @@ namespace coulomb_adapt
       g.compress(VectorOperation::add);
       result.error_squared_before_optimisation = Utilities::MPI::sum(before, comm);
 
-      // Rows without a free parameter (nodes on loaded edges, higher-order
-      // nodes inside edges and cells) get alpha = 0.
+      // Names without a free parameter (vertices on loaded edges, edges
+      // with known tractions, the interior DoF of Q2) get alpha = 0.
       for (const auto i : owned)
         if (H.diag_element(i) == 0)
           H.set(i, i, 1.);
@@ -198,9 +294,9 @@ namespace coulomb_adapt
       const double g_norm = g.l2_norm();
       if (g_norm == 0)
         return;
-      SolverControl                                control(1000, 1e-8 * g_norm);
-      SolverCG<TrilinosWrappers::MPI::Vector>      cg(control);
-      TrilinosWrappers::PreconditionJacobi         jacobi;
+      SolverControl                           control(1000, 1e-8 * g_norm);
+      SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+      TrilinosWrappers::PreconditionJacobi    jacobi;
       jacobi.initialize(H);
       try
         {
@@ -215,11 +311,15 @@ namespace coulomb_adapt
       TrilinosWrappers::MPI::Vector alpha_local(owned, relevant, comm);
       alpha_local = alpha;
       for (auto &face : faces)
-        for (unsigned int k = 0; k < face.nodes.size(); ++k)
-          for (unsigned int c = 0; c < 2; ++c)
-            if (face.kernel[k][c] != 0)
-              face.moments[k][c] +=
-                alpha_local(face.node_dofs[k][c]) * face.kernel[k][c];
+        for (unsigned int c = 0; c < 2; ++c)
+          {
+            for (unsigned int k = 0; k < face.parameter_of_node.size(); ++k)
+              if (face.parameter_of_node[k][c] != numbers::invalid_dof_index)
+                face.moments[k][c] +=
+                  alpha_local(face.parameter_of_node[k][c]) * face.kernel[k][c];
+            if (face.parameter_of_bubble[c] != numbers::invalid_dof_index)
+              face.bubble[c] = alpha_local(face.parameter_of_bubble[c]);
+          }
     }
   } // namespace
 
@@ -685,6 +785,7 @@ namespace coulomb_adapt
           const unsigned int                        slot,
           const FaceData &                          face,
           const std::vector<std::array<double, 2>> &coefficients,
+          const std::array<double, 2> &             bubble,
           const std::array<bool, 2> &               mask) {
         const double eta = face.plus == static_cast<int>(slot) ? 1 : -1;
         for (unsigned int q = 0; q < edge_rule.size(); ++q)
@@ -695,6 +796,9 @@ namespace coulomb_adapt
             for (unsigned int k = 0; k < face.nodes.size(); ++k)
               for (unsigned int c = 0; c < 2; ++c)
                 F[c] += phi[k] * coefficients[k][c];
+            const double L = edge_bubble(p + 1, s);
+            for (unsigned int c = 0; c < 2; ++c)
+              F[c] += bubble[c] * L;
             local.add_traction(load,
                                face.v0 + s * (face.v1 - face.v0),
                                eta * F,
@@ -713,7 +817,7 @@ namespace coulomb_adapt
           const FaceData &          face   = faces[cells[slot].faces[f]];
           const std::array<bool, 2> solved = {{face.unknown[0], face.unknown[1]}};
           if (solved[0] || solved[1])
-            add_face_load(load, slot, face, face.coefficients, solved);
+            add_face_load(load, slot, face, face.coefficients, face.bubble, solved);
           const std::array<bool, 2> prescribed = {{!solved[0], !solved[1]}};
           if (face.at_boundary && (prescribed[0] || prescribed[1]))
             {
@@ -753,6 +857,12 @@ namespace coulomb_adapt
                                u_kinematic,
                                cell_load,
                                add_face_load,
+                               // A bubble of degree p + 1 needs local
+                               // problems of degree p + 3 to be resolved:
+                               // with p + 2 the minimisation finds the
+                               // local problems' blind spots (Q2: an
+                               // estimate below the exact error).
+                               degree_increase >= 3,
                                result);
     for (auto &face : faces)
       update_coefficients(face);

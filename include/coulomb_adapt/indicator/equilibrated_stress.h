@@ -69,12 +69,13 @@ namespace coulomb_adapt
    *    with the moments known on loaded, free and contact edges and unknown
    *    on interior and Dirichlet edges; solved in least squares closest to
    *    the moments of the averaged traction. The systems of interior and
-   *    Dirichlet nodes leave one free parameter per component: with
-   *    @p optimise_tractions, these are then chosen to minimise the
-   *    estimate sum_E ||sigma^ - sigma_c||^2 over all cells (one sparse
-   *    SPD system; the classical technique keeps the least-squares
-   *    choice, which is tight on quadrilaterals but about twice the
-   *    error on triangles).
+   *    Dirichlet vertices leave one free parameter per component, and with
+   *    @p degree_increase >= 3 each edge with unknown tractions gets a
+   *    bubble of degree p + 1 (it changes no moment). With
+   *    @p optimise_tractions, these are chosen to minimise the estimate
+   *    sum_E ||sigma^ - sigma_c||^2 over all cells (one sparse SPD
+   *    system); the classical technique keeps the least-squares choice
+   *    (doc/indicator.md compares both).
    * 2. F_G: the polynomial of degree p on each edge with these moments.
    * 3. On each cell, the Neumann problem with body force f and tractions
    *    eta F_G (the prescribed data on loaded and contact edges) in the
