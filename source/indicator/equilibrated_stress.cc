@@ -89,11 +89,14 @@ namespace coulomb_adapt
         {numbers::invalid_dof_index, numbers::invalid_dof_index}};
     };
 
-    // Lagrange polynomials of the face's nodes at parameter s.
-    std::vector<double>
+    // Lagrange polynomials of the face's nodes at parameter s (p <= 2:
+    // at most three nodes; a fixed array, as this is called per
+    // quadrature point of every face).
+    std::array<double, 3>
     face_shape_values(const std::vector<double> &nodes_s, const double s)
     {
-      std::vector<double> values(nodes_s.size(), 1.);
+      AssertIndexRange(nodes_s.size(), 4);
+      std::array<double, 3> values = {{1., 1., 1.}};
       for (unsigned int k = 0; k < nodes_s.size(); ++k)
         for (unsigned int l = 0; l < nodes_s.size(); ++l)
           if (l != k)
@@ -178,6 +181,7 @@ namespace coulomb_adapt
       Vector<double> load(local.n_coefficients()), base;
       std::map<types::global_dof_index, Vector<double>> direction_loads;
       std::vector<Vector<double>>                       responses;
+      std::vector<const Vector<double> *>               loads;
       std::vector<types::global_dof_index>              indices;
       for (unsigned int slot = 0; slot < cells.size(); ++slot)
         if (cells[slot].owned)
@@ -262,20 +266,23 @@ namespace coulomb_adapt
               continue;
             indices.clear();
             responses.resize(n);
+            loads.resize(n);
             for (const auto &[dof, d] : direction_loads)
               {
                 local.solve(d, responses[indices.size()]);
+                loads[indices.size()] = &d;
                 indices.push_back(dof);
               }
+            // K S_j = l_j (the loads are self-equilibrated), so the energy
+            // products are the loads' work: (S_i, S_j) = l_j . S_i.
             FullMatrix<double>  cell_H(n, n);
             std::vector<double> cell_g(n);
             for (unsigned int i = 0; i < n; ++i)
               {
                 for (unsigned int j = 0; j <= i; ++j)
-                  cell_H(i, j) = cell_H(j, i) =
-                    local.energy_product(responses[i], responses[j]);
-                cell_g[i] = local.energy_product(responses[i], base) -
-                            local.kinematic_work(responses[i]);
+                  cell_H(i, j) = cell_H(j, i) = *loads[j] * responses[i];
+                cell_g[i] =
+                  load * responses[i] - local.kinematic_work(responses[i]);
               }
             H.add(indices, cell_H);
             g.add(indices, cell_g);

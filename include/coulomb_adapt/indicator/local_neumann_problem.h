@@ -28,7 +28,7 @@ namespace coulomb_adapt
    * triangles and quadrilaterals; it contains the rigid motions, which are
    * removed from the solution (the data must be self-equilibrated).
    *
-   * reinit() assembles the cell's stiffness matrix and inverts it once, so
+   * reinit() assembles the cell's stiffness matrix and factors it once, so
    * that a cell can be solved for several loads (the response to each free
    * parameter of the edge tractions) at the cost of a matrix-vector
    * product each.
@@ -68,10 +68,6 @@ namespace coulomb_adapt
     double
     solve(const Vector<double> &load, Vector<double> &coefficients) const;
 
-    /** int eps(u) : K : eps(v) for two coefficient vectors. */
-    double
-    energy_product(const Vector<double> &u, const Vector<double> &v) const;
-
     /** int sigma_c : eps(v): the work of the FE stress on v. */
     double
     kinematic_work(const Vector<double> &v) const;
@@ -102,9 +98,10 @@ namespace coulomb_adapt
     std::vector<std::vector<Tensor<1, 2>>>     gradients_at;
     std::vector<double>                        JxW;
     std::vector<SymmetricTensor<2, 2>>         sigma_c;
-    // The stiffness matrix, its inverse with the rigid motions penalised,
-    // the body force load and the work of sigma_c on each basis function.
-    FullMatrix<double>                         stiffness, inverse;
+    // The stiffness matrix, the Cholesky factor of it with the rigid
+    // motions penalised, the body force load and the work of sigma_c on
+    // each basis function.
+    FullMatrix<double>                         stiffness, factor;
     Vector<double>                             body_force, sigma_c_work;
     std::array<std::vector<double>, 3>         rigid;
   };
