@@ -142,7 +142,7 @@ namespace coulomb_adapt
     // vertex and edge DoFs of the continuous quadratic element on the same
     // mesh, which also gives the matrix's pattern and its
     // parallel layout. The moments and bubbles are updated in place.
-    template <typename CellLoad, typename FaceLoad>
+    template <typename CellLoad, typename FaceWork>
     void
     optimise_free_parameters(const ElasticBody &                  body,
                              const std::vector<CellData> &        cells,
@@ -150,7 +150,7 @@ namespace coulomb_adapt
                              LocalNeumannProblem &                local,
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const CellLoad &                     cell_load,
-                             const FaceLoad &                     add_face_load,
+                             const FaceWork &                     face_work,
                              const bool                           with_bubbles,
                              EquilibratedStressErrors &           result)
     {
@@ -179,7 +179,11 @@ namespace coulomb_adapt
       std::vector<types::global_dof_index> name_dofs(names_fe.n_dofs_per_cell());
       double         before = 0;
       Vector<double> load(local.n_coefficients()), base;
-      std::map<types::global_dof_index, Vector<double>> direction_loads;
+      const unsigned int                   M = local.n_coefficients() / 2;
+      std::vector<Vector<double>>          direction_loads;
+      std::vector<types::global_dof_index> direction_dofs;
+      unsigned int                         n_directions = 0;
+      FullMatrix<double>                   W;
       std::vector<Vector<double>>                       responses;
       std::vector<const Vector<double> *>               loads;
       std::vector<types::global_dof_index>              indices;
@@ -200,28 +204,37 @@ namespace coulomb_adapt
             const auto name = [&](const unsigned int c, const unsigned int k) {
               return name_dofs[names_fe.component_to_system_index(c, k)];
             };
-            // The loads of the cell's free parameters.
-            direction_loads.clear();
+            // The loads of the cell's free parameters, from the work W of
+            // each face's traction basis (the nodal polynomials, then the
+            // bubble) on the monomials.
+            n_directions = 0;
             const auto direction = [&](const types::global_dof_index dof)
               -> Vector<double> & {
-              auto &d = direction_loads[dof];
-              if (d.size() == 0)
-                d.reinit(local.n_coefficients());
-              return d;
+              for (unsigned int i = 0; i < n_directions; ++i)
+                if (direction_dofs[i] == dof)
+                  return direction_loads[i];
+              if (n_directions == direction_loads.size())
+                {
+                  direction_loads.emplace_back(local.n_coefficients());
+                  direction_dofs.push_back(dof);
+                }
+              direction_dofs[n_directions]  = dof;
+              direction_loads[n_directions] = 0;
+              return direction_loads[n_directions++];
             };
             for (const unsigned int f : cell->face_indices())
               {
                 FaceData &face = faces[cells[slot].faces[f]];
+                const unsigned int n_face = face.nodes.size();
                 face.parameter_of_node.assign(
-                  face.nodes.size(),
+                  n_face,
                   {{numbers::invalid_dof_index, numbers::invalid_dof_index}});
+                face_work(slot, face, W);
                 for (unsigned int c = 0; c < 2; ++c)
                   {
-                    std::array<bool, 2> mask = {{false, false}};
-                    mask[c]                  = true;
                     // A vertex's null vector changes F on the faces
                     // through it (moments b[k] += kernel[k]).
-                    for (unsigned int k = 0; k < face.nodes.size(); ++k)
+                    for (unsigned int k = 0; k < n_face; ++k)
                       if (face.kernel[k][c] != 0)
                         {
                           unsigned int v = 0;
@@ -231,17 +244,14 @@ namespace coulomb_adapt
                             ++v;
                           Assert(v < cell->n_vertices(), ExcInternalError());
                           face.parameter_of_node[k][c] = name(c, v);
-                          std::vector<std::array<double, 2>> coefficients(
-                            face.nodes.size(), {{0., 0.}});
-                          for (unsigned int l = 0; l < face.nodes.size(); ++l)
-                            coefficients[l][c] =
-                              face.mass_inverse(l, k) * face.kernel[k][c];
-                          add_face_load(direction(name(c, v)),
-                                        slot,
-                                        face,
-                                        coefficients,
-                                        std::array<double, 2>{{0., 0.}},
-                                        mask);
+                          Vector<double> &d = direction(name(c, v));
+                          for (unsigned int l = 0; l < n_face; ++l)
+                            {
+                              const double coefficient =
+                                face.mass_inverse(l, k) * face.kernel[k][c];
+                              for (unsigned int m = 0; m < M; ++m)
+                                d(c * M + m) += coefficient * W(m, l);
+                            }
                         }
                     // The edge bubble, named by the edge's DoF.
                     if (with_bubbles && face.unknown[c])
@@ -249,29 +259,23 @@ namespace coulomb_adapt
                         const types::global_dof_index dof =
                           name(c, cell->n_vertices() + f);
                         face.parameter_of_bubble[c] = dof;
-                        std::array<double, 2> unit = {{0., 0.}};
-                        unit[c]                    = 1;
-                        add_face_load(direction(dof),
-                                      slot,
-                                      face,
-                                      std::vector<std::array<double, 2>>(
-                                        face.nodes.size(), {{0., 0.}}),
-                                      unit,
-                                      mask);
+                        Vector<double> &d           = direction(dof);
+                        for (unsigned int m = 0; m < M; ++m)
+                          d(c * M + m) += W(m, n_face);
                       }
                   }
               }
-            const unsigned int n = direction_loads.size();
+            const unsigned int n = n_directions;
             if (n == 0)
               continue;
             indices.clear();
             responses.resize(n);
             loads.resize(n);
-            for (const auto &[dof, d] : direction_loads)
+            for (unsigned int i = 0; i < n; ++i)
               {
-                local.solve(d, responses[indices.size()]);
-                loads[indices.size()] = &d;
-                indices.push_back(dof);
+                local.solve(direction_loads[i], responses[i]);
+                loads[i] = &direction_loads[i];
+                indices.push_back(direction_dofs[i]);
               }
             // K S_j = l_j (the loads are self-equilibrated), so the energy
             // products are the loads' work: (S_i, S_j) = l_j . S_i.
@@ -813,6 +817,31 @@ namespace coulomb_adapt
                                mask);
           }
       };
+    // The work W(m, j) of the face's traction basis j (its nodal
+    // polynomials, then the bubble), with the cell's orientation eta, on
+    // monomial m of the cell's local problem.
+    const auto face_work =
+      [&](const unsigned int slot, const FaceData &face, FullMatrix<double> &W) {
+        const unsigned int n   = face.nodes.size();
+        const unsigned int M   = local.n_coefficients() / 2;
+        const double       eta = face.plus == static_cast<int>(slot) ? 1 : -1;
+        W.reinit(M, n + 1);
+        for (unsigned int q = 0; q < edge_rule.size(); ++q)
+          {
+            const double s   = edge_rule.point(q)[0];
+            const auto   phi = face_shape_values(face.s, s);
+            const double L   = edge_bubble(p + 1, s);
+            const double w   = eta * edge_rule.weight(q) * face.length;
+            const auto & values =
+              local.monomial_values(face.v0 + s * (face.v1 - face.v0));
+            for (unsigned int m = 0; m < M; ++m)
+              {
+                for (unsigned int j = 0; j < n; ++j)
+                  W(m, j) += phi[j] * values[m] * w;
+                W(m, n) += L * values[m] * w;
+              }
+          }
+      };
     // ... and the whole load of a cell: the body force, eta F where the
     // moments were solved for, the prescribed data elsewhere, and the
     // contact traction. local must be reinit'ed on the cell.
@@ -863,7 +892,7 @@ namespace coulomb_adapt
                                local,
                                u_kinematic,
                                cell_load,
-                               add_face_load,
+                               face_work,
                                // A bubble of degree p + 1 needs local
                                // problems of degree p + 3 to be resolved:
                                // with p + 2 the minimisation finds the

@@ -189,6 +189,15 @@ namespace coulomb_adapt
 
 
 
+  const std::vector<double> &
+  LocalNeumannProblem::monomial_values(const Point<2> &x) const
+  {
+    evaluate(x);
+    return values;
+  }
+
+
+
   void
   LocalNeumannProblem::add_traction(Vector<double> &           load,
                                     const Point<2> &           x,

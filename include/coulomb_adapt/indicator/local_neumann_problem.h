@@ -53,6 +53,12 @@ namespace coulomb_adapt
     const Vector<double> &
     body_force_load() const;
 
+    /** The values of the scalar basis functions (monomials) at @p x: the
+     * work of a traction t at x is t_c times these in block c. Valid until
+     * the next call of a member function. */
+    const std::vector<double> &
+    monomial_values(const Point<2> &x) const;
+
     /** Add the work of the traction @p t at @p x with weight @p w to
      * @p load, on the components marked in @p components. */
     void
