@@ -748,8 +748,20 @@ namespace coulomb_adapt
   {
     const auto &a = parameters.adaptation;
     std::ostringstream s;
+    // An over-refined mesh is optimised again only while a further cycle
+    // could still refine it should the coarser one miss the target.
+    const bool over_refined =
+      a.strategy == "remesh" && error_estimate &&
+      error_estimate->epsilon < a.over_refinement_ratio * a.target_error &&
+      cycle + 2 < a.n_cycles && n_dofs < a.max_dofs;
+    if (over_refined && error_estimate->epsilon <= a.target_error)
+      pcout << "  over-refined: epsilon = " << std::setprecision(4)
+            << 100 * error_estimate->epsilon << " % < "
+            << a.over_refinement_ratio << " epsilon_0: optimising again"
+            << std::endl;
     if (a.target_error > 0 && error_estimate &&
-        error_estimate->epsilon <= a.target_error && cycle + 1 >= a.min_cycles)
+        error_estimate->epsilon <= a.target_error && cycle + 1 >= a.min_cycles &&
+        !over_refined)
       s << "target reached: epsilon = " << std::setprecision(4)
         << 100 * error_estimate->epsilon << " % <= epsilon_0 = "
         << 100 * a.target_error << " %";

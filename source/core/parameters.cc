@@ -461,6 +461,17 @@ namespace coulomb_adapt
                           "target, run 'Number of cycles' cycles (required "
                           "> 0 by 'remesh' and by 'Refinement criterion = "
                           "size ratio', which aim at it).");
+        prm.declare_entry("Over-refinement ratio",
+                          "0",
+                          Patterns::Double(0, 1),
+                          "With 'remesh' and a target: a mesh whose epsilon "
+                          "is below this fraction of epsilon_0 counts as "
+                          "over-refined, and is optimised again (coarser) "
+                          "instead of stopping, as long as two cycles are "
+                          "left. An overestimating estimator (cre) plans too "
+                          "fine from a coarse mesh; 0.8 brings it close to "
+                          "the optimal mesh at the cost of cycles. 0: stop "
+                          "at any epsilon <= epsilon_0.");
         prm.declare_entry("Target safety factor",
                           "0.95",
                           Patterns::Double(0.5, 1),
@@ -558,6 +569,7 @@ namespace coulomb_adapt
         strategy             = prm.get("Strategy");
         n_cycles             = prm.get_integer("Number of cycles");
         min_cycles           = prm.get_integer("Minimum number of cycles");
+        over_refinement_ratio = prm.get_double("Over-refinement ratio");
         require_parameter(min_cycles <= n_cycles,
                           path + "Minimum number of cycles",
                           min_cycles,

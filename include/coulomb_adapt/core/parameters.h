@@ -149,6 +149,9 @@ namespace coulomb_adapt
       unsigned int n_cycles;
       /** Cycles run even if the target is met earlier. */
       unsigned int min_cycles;
+      /** remesh: below this fraction of epsilon_0 a mesh is optimised
+       * again rather than accepted (0: never). */
+      double       over_refinement_ratio;
       /** epsilon_0 as a fraction (the file gives percent); 0: no target. */
       double       target_error;
       /** The optimal mesh is planned for this fraction of epsilon_0
