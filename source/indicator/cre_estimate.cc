@@ -42,8 +42,7 @@ namespace coulomb_adapt
                      const double                              mu,
                      const unsigned int                        degree_increase,
                      const parameters::LinearSolver &          solver_parameters,
-                     TimerOutput *                             timer,
-                     const CorrectedContactSolution *          known_correction)
+                     const ErrorEstimateOptions &              options)
   {
     ErrorEstimate estimate;
     estimate.estimator   = ErrorEstimator::cre;
@@ -59,10 +58,10 @@ namespace coulomb_adapt
     if (estimate.has_contact)
       {
         {
-          const OptionalTimerSection section(timer, "error indicator: correction");
+          const OptionalTimerSection section(options.timer, "error indicator: correction");
           estimate.correction =
-            known_correction != nullptr ?
-              *known_correction :
+            options.known_correction != nullptr ?
+              *options.known_correction :
               correct_contact_solution(
                 *bodies[0], *bodies[1], *contact_solver, mu, solver_parameters);
           equilibrium =
@@ -73,7 +72,7 @@ namespace coulomb_adapt
                                      solver_parameters,
                                      ContactLoadForm::consistent);
         }
-        const OptionalTimerSection section(timer, "error indicator: contributions");
+        const OptionalTimerSection section(options.timer, "error indicator: contributions");
         estimate.contact =
           integrate_contact_error(contact_solver->mortar_interface(),
                                   estimate.correction.fields,
@@ -92,7 +91,7 @@ namespace coulomb_adapt
     double                normalisation_squared = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
-        const OptionalTimerSection section(timer, "error indicator: equilibration");
+        const OptionalTimerSection section(options.timer, "error indicator: equilibration");
         EquilibratedStressErrors errors =
           equilibrated_stress_errors(*bodies[b],
                                      equilibrium.displacement(b),
@@ -110,7 +109,7 @@ namespace coulomb_adapt
           std::max(estimate.local_problem_defect, errors.local_problem_defect);
       }
 
-    const OptionalTimerSection section(timer, "error indicator: contributions");
+    const OptionalTimerSection section(options.timer, "error indicator: contributions");
     finish_error_estimate(bodies, volume_squared, normalisation_squared, estimate);
     return estimate;
   }
