@@ -1,9 +1,9 @@
 #include <deal.II/base/utilities.h>
 
+#include <coulomb_adapt/app/finiteness.h>
 #include <coulomb_adapt/app/preflight_checks.h>
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/bodies/elasticity_errors.h>
-#include <coulomb_adapt/core/finiteness.h>
 #include <coulomb_adapt/indicator/exact_error.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 
