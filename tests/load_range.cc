@@ -12,7 +12,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <coulomb_adapt/app/two_body_problem.h>
-#include <coulomb_adapt/core/finiteness.h>
+#include <coulomb_adapt/app/finiteness.h>
 
 #include "test_utilities.h"
 

@@ -128,6 +128,107 @@ namespace coulomb_adapt
             }
         }
     }
+
+
+
+    // Read the parameter file @p file into @p prm, with messages that
+    // name the file.
+    void
+    read_parameter_file(const std::string &file, ParameterHandler &prm)
+    {
+      // What stands at the path, if not a file: a directory, a FIFO or
+      // a device (/dev/null) would otherwise be reported as "not found"
+      // or read as an empty file.
+      std::error_code error;
+      const auto      status = std::filesystem::status(file, error);
+      if (!std::filesystem::exists(status))
+        throw ParameterError("parameter file '" + file + "' not found");
+      if (!std::filesystem::is_regular_file(status))
+        throw ParameterError(
+          "parameter file '" + file + "' is " +
+          (std::filesystem::is_directory(status) ? "a directory" :
+           std::filesystem::is_fifo(status)      ? "a FIFO (named pipe)" :
+           std::filesystem::is_character_file(status) ||
+               std::filesystem::is_block_file(status) ?
+                                                   "a device" :
+                                                   "not a regular file") +
+          ", not a parameter file (give a .prm file)");
+      std::ifstream in(file);
+      if (!in)
+        throw ParameterError("parameter file '" + file +
+                             "' cannot be read (" +
+                             std::strerror(errno) + ")");
+      std::string text((std::istreambuf_iterator<char>(in)),
+                       std::istreambuf_iterator<char>());
+      // Editors on some systems start UTF-8 files with a byte-order mark,
+      // which deal.II's parser would report as an unknown character on
+      // the first line.
+      if (text.compare(0, 3, "\xEF\xBB\xBF") == 0)
+        text.erase(0, 3);
+      reject_repeated_entries(text, file);
+      try
+        {
+          std::istringstream input(text);
+          prm.parse_input(input, file);
+        }
+      catch (const std::exception &e)
+        {
+          throw ParameterError("in parameter file '" + file +
+                               "': " + user_message(e));
+        }
+    }
+
+
+
+    // Apply one -s "Path/Entry=value" option.
+    void
+    apply_override(const std::string &path,
+                   const std::string &value,
+                   ParameterHandler & prm)
+    {
+      std::vector<std::string> sections =
+        Utilities::split_string_list(path, '/');
+      const std::string entry = sections.back();
+      sections.pop_back();
+      unsigned int depth = 0;
+      // Name the first subsection on the path that does not exist
+      // (deal.II would only say that the entry is not declared).
+      std::vector<std::string> existing;
+      for (const auto &section : sections)
+        {
+          std::vector<std::string> next = existing;
+          next.push_back(section);
+          if (!prm.subsection_path_exists(next))
+            {
+              std::string parent;
+              for (const auto &e : existing)
+                parent += (parent.empty() ? "" : "/") + e;
+              throw ParameterError(
+                "in option -s \"" + path + "=" + value + "\": there is "
+                "no subsection '" + section + "' " +
+                (parent.empty() ? std::string("at the top level") :
+                                  "in '" + parent + "'") +
+                " (--print-parameters lists them)");
+            }
+          existing = next;
+        }
+      try
+        {
+          for (const auto &s : sections)
+            {
+              prm.enter_subsection(s);
+              ++depth;
+            }
+          prm.set(entry, value);
+        }
+      catch (const std::exception &e)
+        {
+          throw ParameterError("in option -s \"" + path + "=" + value +
+                               "\": " + user_message(e));
+        }
+      for (; depth > 0; --depth)
+        prm.leave_subsection();
+    }
   } // namespace
 
 
@@ -135,96 +236,10 @@ namespace coulomb_adapt
   void
   read_parameters(const CommandLine &command_line, ParameterHandler &prm)
   {
-    const std::string &file = command_line.parameter_file;
-    if (!file.empty())
-      {
-        // What stands at the path, if not a file: a directory, a FIFO or
-        // a device (/dev/null) would otherwise be reported as "not found"
-        // or read as an empty file.
-        std::error_code error;
-        const auto      status = std::filesystem::status(file, error);
-        if (!std::filesystem::exists(status))
-          throw ParameterError("parameter file '" + file + "' not found");
-        if (!std::filesystem::is_regular_file(status))
-          throw ParameterError(
-            "parameter file '" + file + "' is " +
-            (std::filesystem::is_directory(status) ? "a directory" :
-             std::filesystem::is_fifo(status)      ? "a FIFO (named pipe)" :
-             std::filesystem::is_character_file(status) ||
-                 std::filesystem::is_block_file(status) ?
-                                                     "a device" :
-                                                     "not a regular file") +
-            ", not a parameter file (give a .prm file)");
-        std::ifstream in(file);
-        if (!in)
-          throw ParameterError("parameter file '" + file +
-                               "' cannot be read (" +
-                               std::strerror(errno) + ")");
-        std::string text((std::istreambuf_iterator<char>(in)),
-                         std::istreambuf_iterator<char>());
-        // Editors on some systems start UTF-8 files with a byte-order mark,
-        // which deal.II's parser would report as an unknown character on
-        // the first line.
-        if (text.compare(0, 3, "\xEF\xBB\xBF") == 0)
-          text.erase(0, 3);
-        reject_repeated_entries(text, file);
-        try
-          {
-            std::istringstream input(text);
-            prm.parse_input(input, file);
-          }
-        catch (const std::exception &e)
-          {
-            throw ParameterError("in parameter file '" + file +
-                                 "': " + user_message(e));
-          }
-      }
-
+    if (!command_line.parameter_file.empty())
+      read_parameter_file(command_line.parameter_file, prm);
     for (const auto &[path, value] : command_line.overrides)
-      {
-        std::vector<std::string> sections =
-          Utilities::split_string_list(path, '/');
-        const std::string entry = sections.back();
-        sections.pop_back();
-        unsigned int depth = 0;
-        // Name the first subsection on the path that does not exist
-        // (deal.II would only say that the entry is not declared).
-        std::vector<std::string> existing;
-        for (const auto &section : sections)
-          {
-            std::vector<std::string> next = existing;
-            next.push_back(section);
-            if (!prm.subsection_path_exists(next))
-              {
-                std::string parent;
-                for (const auto &e : existing)
-                  parent += (parent.empty() ? "" : "/") + e;
-                throw ParameterError(
-                  "in option -s \"" + path + "=" + value + "\": there is "
-                  "no subsection '" + section + "' " +
-                  (parent.empty() ? std::string("at the top level") :
-                                    "in '" + parent + "'") +
-                  " (--print-parameters lists them)");
-              }
-            existing = next;
-          }
-        try
-          {
-            for (const auto &s : sections)
-              {
-                prm.enter_subsection(s);
-                ++depth;
-              }
-            prm.set(entry, value);
-          }
-        catch (const std::exception &e)
-          {
-            throw ParameterError("in option -s \"" + path + "=" + value +
-                                 "\": " + user_message(e));
-          }
-        for (; depth > 0; --depth)
-          prm.leave_subsection();
-      }
+      apply_override(path, value, prm);
   }
 
 

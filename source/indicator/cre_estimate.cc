@@ -43,8 +43,7 @@ namespace coulomb_adapt
                      const unsigned int                        degree_increase,
                      const bool                                optimise_tractions,
                      const parameters::LinearSolver &          solver_parameters,
-                     TimerOutput *                             timer,
-                     const CorrectedContactSolution *          known_correction)
+                     const ErrorEstimateOptions &              options)
   {
     ErrorEstimate estimate;
     estimate.estimator   = ErrorEstimator::cre;
@@ -60,10 +59,10 @@ namespace coulomb_adapt
     if (estimate.has_contact)
       {
         {
-          const OptionalTimerSection section(timer, "error indicator: correction");
+          const OptionalTimerSection section(options.timer, "error indicator: correction");
           estimate.correction =
-            known_correction != nullptr ?
-              *known_correction :
+            options.known_correction != nullptr ?
+              *options.known_correction :
               correct_contact_solution(
                 *bodies[0], *bodies[1], *contact_solver, mu, solver_parameters);
           equilibrium =
@@ -74,7 +73,7 @@ namespace coulomb_adapt
                                      solver_parameters,
                                      ContactLoadForm::consistent);
         }
-        const OptionalTimerSection section(timer, "error indicator: contributions");
+        const OptionalTimerSection section(options.timer, "error indicator: contributions");
         estimate.contact =
           integrate_contact_error(contact_solver->mortar_interface(),
                                   estimate.correction.fields,
@@ -93,7 +92,7 @@ namespace coulomb_adapt
     double                normalisation_squared = 0, before_squared = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
-        const OptionalTimerSection section(timer, "error indicator: equilibration");
+        const OptionalTimerSection section(options.timer, "error indicator: equilibration");
         EquilibratedStressErrors errors =
           equilibrated_stress_errors(*bodies[b],
                                      equilibrium.displacement(b),
@@ -114,7 +113,7 @@ namespace coulomb_adapt
           std::max(estimate.local_problem_defect, errors.local_problem_defect);
       }
 
-    const OptionalTimerSection section(timer, "error indicator: contributions");
+    const OptionalTimerSection section(options.timer, "error indicator: contributions");
     finish_error_estimate(bodies, volume_squared, normalisation_squared, estimate);
     // With the same normalisation D (that of the optimised sigma^).
     estimate.epsilon_before_optimisation =

@@ -116,8 +116,7 @@ namespace coulomb_adapt
                  const ErrorEstimator                      estimator,
                  const parameters::ErrorIndicator &        indicator_parameters,
                  const parameters::LinearSolver &          solver_parameters,
-                 TimerOutput *                             timer,
-                 const CorrectedContactSolution *          known_correction)
+                 const ErrorEstimateOptions &              options)
   {
     if (estimator == ErrorEstimator::cre)
       return estimate_error_cre(bodies,
@@ -126,8 +125,7 @@ namespace coulomb_adapt
                                 indicator_parameters.cre_degree_increase,
                                 indicator_parameters.cre_traction_optimisation,
                                 solver_parameters,
-                                timer,
-                                known_correction);
+                                options);
     ErrorEstimate estimate =
       estimate_error(bodies,
                      contact_solver,
@@ -136,8 +134,7 @@ namespace coulomb_adapt
                        StressRecoveryMethod::spr :
                        StressRecoveryMethod::l2_projection,
                      solver_parameters,
-                     timer,
-                     known_correction);
+                     options);
     estimate.estimator = estimator;
     return estimate;
   }
@@ -150,8 +147,7 @@ namespace coulomb_adapt
                  const double                              mu,
                  const StressRecoveryMethod                recovery,
                  const parameters::LinearSolver &          solver_parameters,
-                 TimerOutput *                             timer,
-                 const CorrectedContactSolution *          known_correction)
+                 const ErrorEstimateOptions &              options)
   {
     ErrorEstimate estimate;
     estimate.recovery    = recovery;
@@ -162,15 +158,15 @@ namespace coulomb_adapt
     if (estimate.has_contact)
       {
         {
-          const OptionalTimerSection section(timer,
+          const OptionalTimerSection section(options.timer,
                                              "error indicator: correction");
           estimate.correction =
-            known_correction != nullptr ?
-              *known_correction :
+            options.known_correction != nullptr ?
+              *options.known_correction :
               correct_contact_solution(
                 *bodies[0], *bodies[1], *contact, mu, solver_parameters);
         }
-        const OptionalTimerSection section(timer,
+        const OptionalTimerSection section(options.timer,
                                            "error indicator: contributions");
         estimate.contact =
           integrate_contact_error(contact->mortar_interface(),
@@ -189,7 +185,7 @@ namespace coulomb_adapt
         // and the volume terms.
         std::unique_ptr<const QuadratureStress> raw_stress;
         {
-          const OptionalTimerSection section(timer,
+          const OptionalTimerSection section(options.timer,
                                              "error indicator: smoothing");
           raw_stress = std::make_unique<const QuadratureStress>(
             *bodies[b], estimate.correction.displacement(b));
@@ -197,7 +193,7 @@ namespace coulomb_adapt
             std::make_unique<RecoveredStress>(*bodies[b]);
           estimate.recovered[b]->recover(*raw_stress, recovery);
         }
-        const OptionalTimerSection section(timer,
+        const OptionalTimerSection section(options.timer,
                                            "error indicator: contributions");
         normalisation_squared +=
           volume_terms(*raw_stress,
@@ -208,7 +204,7 @@ namespace coulomb_adapt
           bodies[b]->triangulation().get_communicator());
       }
 
-    const OptionalTimerSection section(timer,
+    const OptionalTimerSection section(options.timer,
                                        "error indicator: contributions");
     finish_error_estimate(bodies, volume_squared, normalisation_squared, estimate);
     return estimate;

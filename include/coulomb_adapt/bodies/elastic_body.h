@@ -18,7 +18,7 @@
 
 #include <deal.II/base/quadrature.h>
 
-#include <coulomb_adapt/bodies/elastic_material.h>
+#include <coulomb_adapt/core/elastic_material.h>
 #include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 #include <coulomb_adapt/scenes/scene.h>

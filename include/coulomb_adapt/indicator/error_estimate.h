@@ -55,6 +55,27 @@ namespace coulomb_adapt
   };
 
   /**
+   * How an estimate is computed, not what: the options every estimator
+   * (estimate_error(), estimate_error_cre()) takes after its inputs.
+   */
+  struct ErrorEstimateOptions
+  {
+    /** With a timer, the three phases are timed in its sections
+     * "error indicator: correction" (the corrected contact fields),
+     * "error indicator: smoothing" (sigma_c at the quadrature points, the
+     * stress space and the recovery; for cre "error indicator:
+     * equilibration") and "error indicator: contributions" (volume and contact terms, epsilon
+     * and epsilon_E). */
+    TimerOutput *timer = nullptr;
+    /** The seed's corrected solution of this same contact solution if
+     * another estimator has already computed it (`Compare estimators`);
+     * it is then copied instead of solved again. */
+    const CorrectedContactSolution *known_correction = nullptr;
+  };
+
+
+
+  /**
    * Correct the contact fields (if there is a contact interface), recover
    * sigma~ from sigma_c on each body and sum the element contributions
    *
@@ -64,15 +85,8 @@ namespace coulomb_adapt
    * into epsilon_E = e_E / D and epsilon (theory.md 3.4, 3.5). @p contact
    * (the solved contact interface) may be null (no contact zone).
    *
-   * With a @p timer, the three phases are timed in its sections
-   * "error indicator: correction" (the corrected contact fields),
-   * "error indicator: smoothing" (sigma_c at the quadrature points, the
-   * stress space and the recovery) and "error indicator: contributions"
-   * (volume and contact terms, epsilon and epsilon_E).
-   *
-   * @p known_correction: the seed's corrected solution of this same
-   * contact solution if another estimator has already computed it
-   * (`Compare estimators`); it is then copied instead of solved again.
+   * @p options: the timer and a correction already computed
+   * (ErrorEstimateOptions); neither changes what is computed.
    */
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
@@ -80,8 +94,7 @@ namespace coulomb_adapt
                  const double                              friction_coefficient,
                  const StressRecoveryMethod                recovery,
                  const parameters::LinearSolver &          solver_parameters,
-                 TimerOutput *                             timer = nullptr,
-                 const CorrectedContactSolution *known_correction = nullptr);
+                 const ErrorEstimateOptions &options = {});
 
   /**
    * The estimator @p estimator (zz, spr or cre) for the current solution:
@@ -95,8 +108,7 @@ namespace coulomb_adapt
                  const ErrorEstimator                      estimator,
                  const parameters::ErrorIndicator &        indicator_parameters,
                  const parameters::LinearSolver &          solver_parameters,
-                 TimerOutput *                             timer = nullptr,
-                 const CorrectedContactSolution *known_correction = nullptr);
+                 const ErrorEstimateOptions &options = {});
 
   /**
    * The error in constitutive relation (theory.md section 7): the
@@ -117,8 +129,7 @@ namespace coulomb_adapt
                      const unsigned int                        degree_increase,
                      const bool                                optimise_tractions,
                      const parameters::LinearSolver &          solver_parameters,
-                     TimerOutput *                             timer = nullptr,
-                     const CorrectedContactSolution *known_correction = nullptr);
+                     const ErrorEstimateOptions &options = {});
 
   /** The common end of every estimator: the contact term added to the
    * contact cells of each side (the factor 2 of (3-10)), the seed's

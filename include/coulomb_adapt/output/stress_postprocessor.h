@@ -3,7 +3,7 @@
 
 #include <deal.II/numerics/data_postprocessor.h>
 
-#include <coulomb_adapt/bodies/elastic_material.h>
+#include <coulomb_adapt/core/elastic_material.h>
 
 namespace coulomb_adapt
 {

@@ -1,7 +1,7 @@
 #ifndef coulomb_adapt_scenes_manufactured_h
 #define coulomb_adapt_scenes_manufactured_h
 
-#include <coulomb_adapt/bodies/elastic_material.h>
+#include <coulomb_adapt/core/elastic_material.h>
 #include <coulomb_adapt/scenes/scene.h>
 
 namespace coulomb_adapt

@@ -10,6 +10,7 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <coulomb_adapt/core/elastic_material.h>
 #include <coulomb_adapt/core/parameters.h>
 
 #include <array>
@@ -22,28 +23,6 @@
 
 namespace coulomb_adapt
 {
-  /**
-   * Isotropic linear elastic material constants of one body.
-   */
-  struct MaterialConstants
-  {
-    /** Young's modulus E (MPa). */
-    double youngs_modulus;
-    /** Poisson's ratio nu (dimensionless). */
-    double poissons_ratio;
-
-    /** Declare `Young's modulus` and `Poisson's ratio` in the current
-     * subsection, with the scene's defaults. */
-    static void
-    declare_parameters(ParameterHandler &prm,
-                       const double      default_youngs_modulus,
-                       const double      default_poissons_ratio);
-
-    /** Read and check them; @p path names the subsection for messages. */
-    void
-    parse_parameters(ParameterHandler &prm, const std::string &path);
-  };
-
   /** Declare the subsections `Body 1` and `Body 2` with their materials,
    * in the current subsection (a scene's). */
   void

@@ -1,13 +1,37 @@
-#ifndef coulomb_adapt_bodies_elastic_material_h
-#define coulomb_adapt_bodies_elastic_material_h
+#ifndef coulomb_adapt_core_elastic_material_h
+#define coulomb_adapt_core_elastic_material_h
 
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <coulomb_adapt/core/parameters.h>
-#include <coulomb_adapt/scenes/scene.h>
+
+#include <string>
 
 namespace coulomb_adapt
 {
+  /**
+   * Isotropic linear elastic material constants of one body.
+   */
+  struct MaterialConstants
+  {
+    /** Young's modulus E (MPa). */
+    double youngs_modulus;
+    /** Poisson's ratio nu (dimensionless). */
+    double poissons_ratio;
+
+    /** Declare `Young's modulus` and `Poisson's ratio` in the current
+     * subsection, with the scene's defaults. */
+    static void
+    declare_parameters(ParameterHandler &prm,
+                       const double      default_youngs_modulus,
+                       const double      default_poissons_ratio);
+
+    /** Read and check them; @p path names the subsection for messages. */
+    void
+    parse_parameters(ParameterHandler &prm, const std::string &path);
+  };
+
   /**
    * Hooke's law of an isotropic body reduced to 2D. Both reductions have
    * the form sigma = lambda tr(eps) I + 2 mu eps with an effective lambda:

@@ -1,5 +1,5 @@
-#ifndef coulomb_adapt_core_finiteness_h
-#define coulomb_adapt_core_finiteness_h
+#ifndef coulomb_adapt_app_finiteness_h
+#define coulomb_adapt_app_finiteness_h
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/contact_solver.h>

@@ -1,6 +1,6 @@
 #include <deal.II/base/mpi.h>
 
-#include <coulomb_adapt/core/finiteness.h>
+#include <coulomb_adapt/app/finiteness.h>
 
 #include <cmath>
 #include <limits>

@@ -1,9 +1,49 @@
-#include <coulomb_adapt/bodies/elastic_material.h>
+#include <coulomb_adapt/core/elastic_material.h>
+#include <coulomb_adapt/core/parameter_error.h>
 
 #include <cmath>
 
 namespace coulomb_adapt
 {
+  void
+  MaterialConstants::declare_parameters(ParameterHandler &prm,
+                                        const double default_youngs_modulus,
+                                        const double default_poissons_ratio)
+  {
+    prm.declare_entry("Young's modulus",
+                      Patterns::Tools::Convert<double>::to_string(
+                        default_youngs_modulus),
+                      Patterns::Double(),
+                      "Young's modulus E of this body (MPa), E > 0.");
+    prm.declare_entry("Poisson's ratio",
+                      Patterns::Tools::Convert<double>::to_string(
+                        default_poissons_ratio),
+                      Patterns::Double(),
+                      "Poisson's ratio nu of this body (dimensionless), "
+                      "-1 < nu < 0.5.");
+  }
+
+
+
+  void
+  MaterialConstants::parse_parameters(ParameterHandler &prm,
+                                      const std::string &path)
+  {
+    youngs_modulus = prm.get_double("Young's modulus");
+    poissons_ratio = prm.get_double("Poisson's ratio");
+    require_parameter(youngs_modulus > 0,
+                      path + "/Young's modulus",
+                      youngs_modulus,
+                      "Young's modulus must be > 0 (MPa)");
+    require_parameter(poissons_ratio > -1 && poissons_ratio < 0.5,
+                      path + "/Poisson's ratio",
+                      poissons_ratio,
+                      "Poisson's ratio must lie in the open interval "
+                      "(-1, 0.5)");
+  }
+
+
+
   ElasticMaterial::ElasticMaterial(const MaterialConstants &constants,
                                    const PlaneModel         plane_model)
     : constants(constants)

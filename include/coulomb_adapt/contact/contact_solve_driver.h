@@ -1,0 +1,125 @@
+#ifndef coulomb_adapt_contact_contact_solve_driver_h
+#define coulomb_adapt_contact_contact_solve_driver_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/contact_solver.h>
+#include <coulomb_adapt/contact/contact_state.h>
+#include <coulomb_adapt/contact/nested_iteration.h>
+#include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/scenes/scene.h>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /** Whether the nested iteration of a first cycle ran, and what each
+   * coarser mesh did, or why it was skipped. */
+  struct NestedIterationRecord
+  {
+    std::vector<NestedIterationLevel> levels;
+    /** Empty if the coarser solves ran. */
+    std::string skipped;
+  };
+
+  /** What a contact solve of one cycle did, from its start to its last
+   * load step, for the log and summary.json (CycleReport). */
+  struct ContactSolveOutcome
+  {
+    /** The solver that converged: its node states, multipliers and mortar
+     * interface are those of the bodies' solutions. */
+    std::unique_ptr<ContactSolver> solver;
+    /** Its report, with the Newton steps summed over the load steps. */
+    ContactSolverReport report;
+    bool                warm_start = false;
+    /** Set when nested iteration was considered (first meshes of a static
+     * problem without warm start). */
+    std::optional<NestedIterationRecord> nested_iteration;
+    /** The summary keys of the restarts taken, in order. */
+    std::vector<std::string> restarts;
+    /** Newton steps of the starts that stopped with a diagnosis. */
+    unsigned int newton_iterations_of_stopped_starts = 0;
+    unsigned int n_load_steps                        = 1;
+    /** Largest overlap and largest clearance of the initial gap (mm). */
+    double             initial_overlap   = 0;
+    double             initial_clearance = 0;
+    LinearSolverReport linear_solver;
+  };
+
+  /**
+   * The contact solve of one cycle around the ContactSolver's Newton
+   * iteration: where the first Newton step takes its sets from (the
+   * previous cycle's sets, the coarser meshes' sets, or the initial gap),
+   * where a static solve goes on when it stops with a diagnosis (the
+   * restarts), and the scene's load path (one step for the static problem,
+   * several for a quasi-static one). Progress goes to the log as it
+   * happens; the outcome is returned for the cycle's report.
+   */
+  class ContactSolveDriver
+  {
+  public:
+    ContactSolveDriver(const MPI_Comm                            mpi_communicator,
+                       const Scene &                             scene,
+                       const std::array<ElasticBody *, 2> &      bodies,
+                       const Parameters &                        parameters,
+                       const ConditionalOStream &                pcout);
+
+    /**
+     * Solve the contact problem on the bodies' current (assembled) systems.
+     * @p previous_states are the previous cycle's sets (empty if none);
+     * @p first_meshes says the bodies still have the scene's meshes with
+     * 'Mesh/Global refinements', whose coarser versions the nested
+     * iteration solves. Throws the last ContactDiagnosis when every start
+     * stopped.
+     */
+    ContactSolveOutcome
+    solve(const std::vector<ContactNodeState> &previous_states,
+          const bool                           first_meshes) const;
+
+  private:
+    /** One more start of a static solve that stopped with a diagnosis. */
+    struct Restart
+    {
+      parameters::Contact contact;
+      bool                from_predicted_sets;
+      std::string         description;
+      std::string         summary_key;
+    };
+
+    /** A new solver with contact parameters @p c, from the initial gap or
+     * from @p predicted_sets. */
+    std::unique_ptr<ContactSolver>
+    new_solver(const parameters::Contact &          c,
+               const std::vector<ContactNodeState> *predicted_sets) const;
+    /** The restarts a static solve may take, in order. */
+    std::vector<Restart>
+    restarts(const bool predicted_start) const;
+    /** Nested iteration: the sets predicted on the coarser meshes in
+     * @p predicted_sets and true, or false with the reason in @p record. */
+    bool
+    start_from_coarser_meshes(std::vector<ContactNodeState> &predicted_sets,
+                              NestedIterationRecord &        record) const;
+    /** The load steps of the scene, each restarted as @p restarts allow. */
+    void
+    solve_load_steps(const std::vector<Restart> &         restarts,
+                     const std::vector<ContactNodeState> &predicted_sets,
+                     ContactSolveOutcome &                outcome) const;
+    /** Largest overlap and clearance of the initial gap. */
+    void
+    measure_initial_gap(ContactSolveOutcome &outcome) const;
+
+    const MPI_Comm                     mpi_communicator;
+    const Scene &                      scene;
+    const std::array<ElasticBody *, 2> bodies;
+    const Parameters &                 parameters;
+    const ConditionalOStream &         pcout;
+  };
+} // namespace coulomb_adapt
+
+#endif

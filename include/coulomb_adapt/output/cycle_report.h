@@ -1,0 +1,159 @@
+#ifndef coulomb_adapt_output_cycle_report_h
+#define coulomb_adapt_output_cycle_report_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/table_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <coulomb_adapt/adaptation/mesh_adaptation.h>
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/bodies/elasticity_errors.h>
+#include <coulomb_adapt/contact/contact_solve_driver.h>
+#include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/indicator/error_estimate.h>
+#include <coulomb_adapt/indicator/exact_error.h>
+#include <coulomb_adapt/output/run_summary.h>
+#include <coulomb_adapt/solvers/linear_solver.h>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * What the program tells about its cycles: the log lines a user watches
+   * (on rank 0) and the machine-readable record of each cycle in
+   * summary.json (RunSummary), from the same numbers, and the table of all
+   * cycles at the end. The program hands it the reports of its phases as
+   * they finish; each record_*() writes the phase's log lines and its
+   * entries of the cycle's record.
+   */
+  class CycleReport
+  {
+  public:
+    /** @p timer is the program's: its sections' wall times go into each
+     * cycle's record. */
+    CycleReport(const MPI_Comm            mpi_communicator,
+                const ConditionalOStream &pcout,
+                const TimerOutput &       timer,
+                const std::string &       summary_file,
+                const std::string &       scene,
+                const std::string &       parameter_file);
+
+    /** A top-level entry of summary.json (not per cycle). */
+    void
+    set_run_entry(const std::string &key, const nlohmann::json &value);
+
+    /** Start the record and the clock of cycle @p cycle. */
+    void
+    begin_cycle(const unsigned int cycle);
+
+    /** The adaptation that makes the meshes of this cycle (logged when it
+     * is done, recorded with the meshes it made). */
+    void
+    record_mesh_adaptation(const MeshAdaptationReport &  report,
+                           const parameters::Adaptation &parameters,
+                           const unsigned int            degree,
+                           const double                  calibration);
+
+    /** The meshes of this cycle; @p last_adaptation the adaptation that
+     * made them (null on the first cycle). */
+    void
+    record_meshes(const std::array<const ElasticBody *, 2> &bodies,
+                  const std::string &                       strategy,
+                  const MeshAdaptationReport *              last_adaptation,
+                  const double                              calibration);
+
+    /** Both bodies' DoFs in this cycle (after record_meshes()). */
+    types::global_dof_index
+    n_dofs() const;
+
+    void
+    record_contact_solve(const ContactSolveOutcome &outcome);
+
+    /** One body solved on its own (no contact interface). */
+    void
+    record_linear_solve(const ElasticBody &       body,
+                        const LinearSolverReport &report,
+                        const double              wall_time);
+
+    /** The driving estimate and the compared ones ('Compare
+     * estimators'). */
+    void
+    record_error_estimate(const ErrorEstimate &                     estimate,
+                          const std::vector<const ErrorEstimate *> &compared,
+                          const unsigned int cre_degree_increase);
+
+    /** Announce the reference solution of @p refinements refinements
+     * before it is computed (it takes a while). */
+    void
+    announce_reference_solution(const unsigned int refinements);
+
+    /** The exact error against the reference @p reference: the driving
+     * estimator's comparison first, then the compared estimators' (each
+     * against the exact error of its own corrected solution). */
+    void
+    record_exact_error(
+      const std::string &reference,
+      const std::vector<std::pair<ErrorEstimator, ExactErrorComparison>>
+        &comparisons);
+
+    /** The reference solution's own error and the energy check
+     * epsilon_energy (from the strain energies @p energy of the solution
+     * and @p reference_energy of the reference). */
+    void
+    record_reference_solution(const ReferenceSolutionStress &reference,
+                              const double                   energy,
+                              const double                   reference_energy,
+                              const double                   epsilon_energy);
+
+    /** Body @p b's error against its exact displacement. */
+    void
+    record_body_error(const unsigned int      b,
+                      const ElasticBody &     body,
+                      const ElasticityErrors &errors);
+
+    void
+    record_strain_energy(const unsigned int b, const double energy);
+
+    /** Close the cycle: wall and phase times, memory, the cycle's record
+     * appended to summary.json, the per-cycle log line and the table's
+     * row. */
+    void
+    end_cycle(const ErrorEstimate &estimate, const bool has_contact);
+
+    /** Why the adaptation stops after cycle @p cycle. */
+    void
+    record_stop(const unsigned int cycle, const std::string &reason);
+
+    /** The table of all cycles. */
+    void
+    print_table();
+
+  private:
+    void
+    record_correction(const CorrectedContactSolution &correction);
+
+    const MPI_Comm            mpi_communicator;
+    const ConditionalOStream &pcout;
+    const TimerOutput &       timer;
+    RunSummary                summary;
+
+    unsigned int                  cycle = 0;
+    Timer                         cycle_timer;
+    std::map<std::string, double> times_before;
+    nlohmann::json                record;
+    nlohmann::json                body_records;
+    types::global_dof_index       n_dofs_of_cycle = 0;
+    /** One row per cycle, printed at the end. */
+    TableHandler table;
+  };
+} // namespace coulomb_adapt
+
+#endif

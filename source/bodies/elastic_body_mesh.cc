@@ -1,0 +1,228 @@
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/distributed/fully_distributed_tria.h>
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/fe/mapping_q.h>
+
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria_description.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparsity_tools.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/bodies/rigid_motion_gram.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace coulomb_adapt
+{
+  // The meshes of a body: built from the scene's coarse mesh, refined,
+  // adapted or replaced by a remeshed one, each checked for cells that
+  // would make a singular stiffness matrix.
+
+  // A cell with a non-finite vertex, or with no area (a repeated node, a
+  // zero-area triangle), makes a singular or
+  // non-finite stiffness matrix: the solver then reports garbage (a
+  // MUMPS dump, "body 1 is not held") or a wrong equilibrium. Every rank
+  // holds the serial mesh, so every rank stops alike.
+  void
+  check_mesh_cells(const Triangulation<2> &mesh,
+                   const std::string &     name,
+                   const unsigned int      body_index)
+  {
+    for (const auto &cell : mesh.active_cell_iterators())
+      {
+        std::vector<Point<2>> polygon;
+        if (cell->n_vertices() == 3)
+          polygon = {cell->vertex(0), cell->vertex(1), cell->vertex(2)};
+        else
+          polygon = {cell->vertex(0),
+                     cell->vertex(1),
+                     cell->vertex(3),
+                     cell->vertex(2)};
+        std::ostringstream where;
+        where << "the mesh of body " << body_index + 1 << " (" << name
+              << ") has a cell with the vertices";
+        bool   finite   = true;
+        double diameter = 0, area = 0;
+        for (unsigned int v = 0; v < polygon.size(); ++v)
+          {
+            const Point<2> &a = polygon[v];
+            const Point<2> &b = polygon[(v + 1) % polygon.size()];
+            where << (v == 0 ? " (" : ", (") << a[0] << ", " << a[1] << ")";
+            finite = finite && std::isfinite(a[0]) && std::isfinite(a[1]);
+            for (const auto &c : polygon)
+              diameter = std::max(diameter, a.distance(c));
+            area += a[0] * b[1] - b[0] * a[1];
+          }
+        area /= 2;
+        if (!finite)
+          throw std::runtime_error(where.str() +
+                                   ": a coordinate is not a finite "
+                                   "number");
+        // Well below the round-off of the diameter squared there is no
+        // area (either orientation: gmsh's triangles may run clockwise).
+        if (!(std::abs(area) > 1e-12 * diameter * diameter))
+          throw std::runtime_error(
+            where.str() +
+            ": it has no area (a repeated node, or its vertices on one "
+            "line)" +
+            "; the stiffness matrix of such a cell is singular. Fix the "
+            "mesh");
+      }
+  }
+
+
+
+  // Builds the distributed mesh. Quadrilaterals: p4est from the coarse mesh,
+  // refined in place. Triangles: the serial mesh is refined, partitioned
+  // and handed to a fully distributed triangulation (each rank keeps its
+  // cells and a ghost layer).
+  void
+  ElasticBody::create_mesh(const unsigned int n_refinements)
+  {
+    Triangulation<2> serial;
+    create_scene_coarse_mesh(serial);
+    if (remeshed)
+      {
+        // Keep the scene's manifolds: the remesher copied their ids.
+        Triangulation<2> remeshed_tria;
+        remeshed->create_triangulation(remeshed_tria);
+        for (const auto id : serial.get_manifold_ids())
+          if (id != numbers::flat_manifold_id)
+            remeshed_tria.set_manifold(id, serial.get_manifold(id));
+        serial.clear();
+        serial.copy_triangulation(remeshed_tria);
+      }
+    simplex = !serial.all_reference_cells_are_hyper_cube();
+    check_mesh_cells(serial, body_description.name, body_index);
+
+    std::unique_ptr<parallel::TriangulationBase<2>> new_tria;
+    if (!simplex)
+      {
+        auto t = std::make_unique<parallel::distributed::Triangulation<2>>(
+          mpi_communicator);
+        t->copy_triangulation(serial);
+        // The scene's grading first, so that global refinements divide its
+        // element sizes too.
+        scene.refine_initial_mesh(body_index, *t);
+        t->refine_global(n_refinements);
+        new_tria = std::move(t);
+      }
+    else
+      {
+        serial.refine_global(n_refinements);
+        GridTools::partition_triangulation(
+          Utilities::MPI::n_mpi_processes(mpi_communicator), serial);
+        const auto description = TriangulationDescription::Utilities::
+          create_description_from_triangulation(serial, mpi_communicator);
+        auto t = std::make_unique<parallel::fullydistributed::Triangulation<2>>(
+          mpi_communicator);
+        for (const auto id : serial.get_manifold_ids())
+          if (id != numbers::flat_manifold_id)
+            t->set_manifold(id, serial.get_manifold(id));
+        t->create_triangulation(description);
+        new_tria = std::move(t);
+      }
+    // The DoFHandler must let go of the old mesh before it is destroyed.
+    dofs.reinit(*new_tria);
+    tria = std::move(new_tria);
+  }
+
+
+
+  void
+  ElasticBody::refine_uniformly()
+  {
+    ++n_global_refinements;
+    if (simplex)
+      create_mesh(n_global_refinements);
+    else
+      tria->refine_global(1);
+  }
+
+
+
+  void
+  ElasticBody::refine_and_coarsen(const std::vector<signed char> &decisions)
+  {
+    AssertThrow(!simplex,
+                ExcMessage("local refinement needs quadrilaterals (deal.II "
+                           "9.4 refines triangles only globally)"));
+    // Cells to refine again after this round, by CellId (p4est may move
+    // the children to another rank when it repartitions).
+    std::map<CellId, int> again;
+    for (const auto &cell : tria->active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const signed char d = decisions[cell->active_cell_index()];
+          if (d > 0)
+            cell->set_refine_flag();
+          else if (d < 0)
+            cell->set_coarsen_flag();
+          if (d > 1)
+            again[cell->id()] = d - 1;
+        }
+    tria->prepare_coarsening_and_refinement();
+    tria->execute_coarsening_and_refinement();
+
+    while (true)
+      {
+        std::map<CellId, int> all;
+        for (const auto &part : Utilities::MPI::all_gather(
+               mpi_communicator,
+               std::vector<std::pair<CellId, int>>(again.begin(), again.end())))
+          all.insert(part.begin(), part.end());
+        if (all.empty())
+          break;
+        again.clear();
+        for (const auto &cell : tria->active_cell_iterators())
+          if (cell->is_locally_owned() && cell->level() > 0)
+            {
+              const auto parent = all.find(cell->parent()->id());
+              if (parent == all.end())
+                continue;
+              cell->set_refine_flag();
+              if (parent->second > 1)
+                again[cell->id()] = parent->second - 1;
+            }
+        tria->prepare_coarsening_and_refinement();
+        tria->execute_coarsening_and_refinement();
+      }
+  }
+
+
+
+  void
+  ElasticBody::replace_mesh(const CoarseMeshData &mesh)
+  {
+    AssertThrow(simplex,
+                ExcMessage("remeshing produces triangles; this body has "
+                           "quadrilaterals"));
+    remeshed             = mesh;
+    n_global_refinements = 0;
+    create_mesh(0);
+  }
+
+
+
+  void
+  ElasticBody::create_scene_coarse_mesh(Triangulation<2> &serial) const
+  {
+    scene.create_coarse_mesh(body_index, cell_type, serial);
+  }
+} // namespace coulomb_adapt

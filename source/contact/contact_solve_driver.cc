@@ -1,0 +1,278 @@
+#include <deal.II/base/patterns.h>
+
+#include <coulomb_adapt/contact/contact_diagnosis.h>
+#include <coulomb_adapt/contact/contact_solve_driver.h>
+#include <coulomb_adapt/core/parameter_error.h>
+
+#include <iomanip>
+
+namespace coulomb_adapt
+{
+  ContactSolveDriver::ContactSolveDriver(
+    const MPI_Comm                      mpi_communicator,
+    const Scene &                       scene,
+    const std::array<ElasticBody *, 2> &bodies,
+    const Parameters &                  parameters,
+    const ConditionalOStream &          pcout)
+    : mpi_communicator(mpi_communicator)
+    , scene(scene)
+    , bodies(bodies)
+    , parameters(parameters)
+    , pcout(pcout)
+  {}
+
+
+
+  // The start: the previous cycle's sets (warm start), else on the first
+  // meshes the sets of the coarser meshes (nested iteration), else the
+  // initial gap. Load paths (quasi-static scenes) always start from the
+  // initial gap: their stick/slip history lives in the solver.
+  ContactSolveOutcome
+  ContactSolveDriver::solve(const std::vector<ContactNodeState> &previous_states,
+                            const bool first_meshes) const
+  {
+    pcout << "  contact: " << (parameters.contact.friction_coefficient > 0 ?
+                                 "Coulomb friction, mu = " +
+                                   Patterns::Tools::Convert<double>::to_string(
+                                     parameters.contact.friction_coefficient) :
+                                 std::string("frictionless (mu = 0): no "
+                                             "stick/slip sets"))
+          << std::endl;
+    ContactSolveOutcome outcome;
+    const bool static_problem = scene.n_load_steps() == 1;
+    outcome.warm_start = parameters.adaptation.warm_start &&
+                         !previous_states.empty() && static_problem;
+    std::vector<ContactNodeState> predicted_sets;
+    if (outcome.warm_start)
+      predicted_sets = previous_states;
+    bool nested = false;
+    if (!outcome.warm_start && static_problem && first_meshes)
+      {
+        outcome.nested_iteration.emplace();
+        nested = start_from_coarser_meshes(predicted_sets,
+                                           *outcome.nested_iteration);
+      }
+    const bool predicted_start = outcome.warm_start || nested;
+    outcome.solver = new_solver(parameters.contact,
+                                predicted_start ? &predicted_sets : nullptr);
+    pcout << "  contact: Newton starts from "
+          << (outcome.warm_start ?
+                "the previous cycle's contact sets (warm start)" :
+              nested ? "the sets of the coarser meshes (nested iteration)" :
+                       "the initial gap")
+          << std::endl;
+
+    solve_load_steps(restarts(predicted_start), predicted_sets, outcome);
+    measure_initial_gap(outcome);
+    outcome.linear_solver = outcome.solver->last_linear_solver_report();
+    return outcome;
+  }
+
+
+
+  std::unique_ptr<ContactSolver>
+  ContactSolveDriver::new_solver(
+    const parameters::Contact &          c,
+    const std::vector<ContactNodeState> *predicted_sets) const
+  {
+    auto solver = std::make_unique<ContactSolver>(
+      *bodies[0], *bodies[1], c, parameters.linear_solver, pcout);
+    if (predicted_sets != nullptr)
+      solver->warm_start_from(*predicted_sets);
+    return solver;
+  }
+
+
+
+  // Where a static solve goes on when it stops with a diagnosis (a
+  // ContactDiagnosis; other errors end the run). Sets predicted on another
+  // mesh (warm start, nested iteration) can start the iteration on the
+  // wrong side of a diagnosis (an all-slip first step), which is not the
+  // problem's failure: first the initial gap. Then, if the user scaled
+  // c_n = c_t, the natural constants, from the predicted sets and from the
+  // initial gap: the solution does not depend on c, only the path of the
+  // active set iteration does, and an extreme scale can keep the sets from
+  // settling. A quasi-static path is not restarted: its stick/slip history
+  // lives in the solver.
+  std::vector<ContactSolveDriver::Restart>
+  ContactSolveDriver::restarts(const bool predicted_start) const
+  {
+    std::vector<Restart> restarts;
+    if (scene.n_load_steps() != 1)
+      return restarts;
+    if (predicted_start)
+      restarts.push_back({parameters.contact,
+                          false,
+                          "from the initial gap",
+                          "retried_from_initial_gap"});
+    if (parameters.contact.complementarity_scale != 1.)
+      {
+        parameters::Contact natural   = parameters.contact;
+        natural.complementarity_scale = 1.;
+        const std::string constants =
+          "with the natural constants c = E_c/h ('Contact/Complementarity "
+          "scale' = 1 instead of " +
+          Patterns::Tools::Convert<double>::to_string(
+            parameters.contact.complementarity_scale) +
+          "), from ";
+        if (predicted_start)
+          restarts.push_back({natural,
+                              true,
+                              constants + "the predicted sets",
+                              "retried_with_natural_complementarity_scale"});
+        restarts.push_back({natural,
+                            false,
+                            constants + "the initial gap",
+                            "retried_with_natural_complementarity_scale"});
+      }
+    return restarts;
+  }
+
+
+
+  // Nested iteration (contact/nested_iteration.h) on the first cycle: the
+  // bodies are still the scene's meshes with 'Global refinements', so the
+  // coarser ones are the same meshes with fewer. Whether it runs, and why
+  // not, goes to the log and the record.
+  bool
+  ContactSolveDriver::start_from_coarser_meshes(
+    std::vector<ContactNodeState> &predicted_sets,
+    NestedIterationRecord &        record) const
+  {
+    const auto &c = parameters.contact;
+    const types::global_dof_index n_dofs =
+      bodies[0]->dof_handler().n_dofs() + bodies[1]->dof_handler().n_dofs();
+    const unsigned int n_levels =
+      std::min(c.nested_iteration_levels, parameters.mesh.global_refinements);
+    if (c.nested_iteration_levels == 0)
+      record.skipped = "switched off ('Contact/Nested iteration levels' = 0)";
+    else if (n_levels == 0)
+      record.skipped = "no coarser mesh ('Mesh/Global refinements' = 0)";
+    else if (n_dofs <= c.nested_iteration_min_dofs)
+      record.skipped = std::to_string(n_dofs) +
+                       " DoFs <= 'Contact/Nested iteration minimum DoFs' (" +
+                       std::to_string(c.nested_iteration_min_dofs) + ")";
+    if (!record.skipped.empty())
+      {
+        pcout << "  contact: nested iteration skipped: " << record.skipped
+              << std::endl;
+        return false;
+      }
+
+    try
+      {
+        predicted_sets =
+          predict_contact_sets_on_coarser_meshes(mpi_communicator,
+                                                 scene,
+                                                 parameters.mesh.cell_type,
+                                                 parameters.mesh.global_refinements,
+                                                 n_levels,
+                                                 parameters.finite_elements,
+                                                 parameters.contact,
+                                                 parameters.linear_solver,
+                                                 record.levels);
+      }
+    catch (const std::exception &e)
+      {
+        // A coarse mesh that does not converge says nothing about the fine
+        // one: the fine solve starts cold and decides for itself.
+        const std::string what = user_message(e);
+        pcout << "  contact: nested iteration abandoned, a coarser solve "
+                 "failed: "
+              << what << std::endl;
+        record.levels.clear();
+        record.skipped = "a coarser solve failed: " + what;
+        return false;
+      }
+    for (const NestedIterationLevel &l : record.levels)
+      pcout << "  contact: nested iteration, " << l.global_refinements
+            << " global refinements: " << l.n_dofs << " DoFs, "
+            << l.newton_iterations << " Newton steps, " << l.n_active
+            << " active nodes, " << std::setprecision(3) << l.wall_time
+            << " s" << std::endl;
+    return true;
+  }
+
+
+
+  // The scene's load path: one step for the static problem, several for a
+  // quasi-static one (the solver keeps the stick/slip history). A start
+  // that stops with a diagnosis is followed by the next restart; the last
+  // one's diagnosis ends the run.
+  void
+  ContactSolveDriver::solve_load_steps(
+    const std::vector<Restart> &         restarts,
+    const std::vector<ContactNodeState> &predicted_sets,
+    ContactSolveOutcome &                outcome) const
+  {
+    const unsigned int n_steps   = scene.n_load_steps();
+    unsigned int total_newton_iterations = 0;
+    for (unsigned int step = 1; step <= n_steps; ++step)
+      {
+        if (n_steps > 1)
+          {
+            pcout << "  load step " << step << "/" << n_steps << std::endl;
+            scene.set_load_step(step);
+            // Dirichlet data may follow the load path: new constraints.
+            for (ElasticBody *body : bodies)
+              {
+                body->setup_system();
+                body->assemble_system();
+              }
+          }
+        for (unsigned int attempt = 0;; ++attempt)
+          try
+            {
+              outcome.report = outcome.solver->solve();
+              break;
+            }
+          catch (const ContactDiagnosis &e)
+            {
+              outcome.newton_iterations_of_stopped_starts += e.newton_steps;
+              if (attempt == restarts.size())
+                {
+                  if (attempt == 0)
+                    throw;
+                  throw ContactDiagnosis(
+                    std::string(e.what()) + " (This was the last of " +
+                      std::to_string(attempt + 1) +
+                      " starts; the log shows how the others stopped.)",
+                    e.newton_steps);
+                }
+              const Restart &restart = restarts[attempt];
+              pcout << "  contact: the solve stopped after " << e.newton_steps
+                    << " Newton steps (" << std::string(e.what()).substr(0, 160)
+                    << " ...); solving again " << restart.description
+                    << std::endl;
+              outcome.restarts.push_back(restart.summary_key);
+              outcome.solver =
+                new_solver(restart.contact,
+                           restart.from_predicted_sets ? &predicted_sets :
+                                                         nullptr);
+            }
+        total_newton_iterations += outcome.report.newton_iterations;
+      }
+    outcome.report.newton_iterations = total_newton_iterations;
+    outcome.n_load_steps             = n_steps;
+  }
+
+
+
+  // The initial gap where the bodies face each other: an interference
+  // (press) fit starts with an overlap (negative gap), a clearance fit with
+  // a positive one. (The solver builds the mortar interface when it
+  // solves.)
+  void
+  ContactSolveDriver::measure_initial_gap(ContactSolveOutcome &outcome) const
+  {
+    const MortarInterface &mortar = outcome.solver->mortar_interface();
+    for (unsigned int j = 0; j < mortar.slave_nodes().size(); ++j)
+      if (mortar.is_covered(j))
+        {
+          const double g =
+            mortar.weighted_initial_gaps()[j] / mortar.slave_weights()[j];
+          outcome.initial_overlap   = std::max(outcome.initial_overlap, -g);
+          outcome.initial_clearance = std::max(outcome.initial_clearance, g);
+        }
+  }
+} // namespace coulomb_adapt

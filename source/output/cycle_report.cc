@@ -1,0 +1,497 @@
+#include <deal.II/base/utilities.h>
+
+#include <coulomb_adapt/adaptation/optimal_size.h>
+#include <coulomb_adapt/output/cycle_report.h>
+
+#include <cmath>
+#include <iomanip>
+
+namespace coulomb_adapt
+{
+  namespace
+  {
+    nlohmann::json
+    element_effectivity_record(const ExactErrorComparison &c)
+    {
+      return {{"mean", c.element_effectivity_mean},
+              {"std", c.element_effectivity_std},
+              {"min", c.element_effectivity_min},
+              {"max", c.element_effectivity_max},
+              {"n_elements", c.n_elements}};
+    }
+  } // namespace
+
+
+
+  CycleReport::CycleReport(const MPI_Comm            mpi_communicator,
+                           const ConditionalOStream &pcout,
+                           const TimerOutput &       timer,
+                           const std::string &       summary_file,
+                           const std::string &       scene,
+                           const std::string &       parameter_file)
+    : mpi_communicator(mpi_communicator)
+    , pcout(pcout)
+    , timer(timer)
+    , summary(mpi_communicator, summary_file, scene, parameter_file)
+  {}
+
+
+
+  void
+  CycleReport::set_run_entry(const std::string &key, const nlohmann::json &value)
+  {
+    summary.set(key, value);
+  }
+
+
+
+  void
+  CycleReport::begin_cycle(const unsigned int cycle)
+  {
+    this->cycle = cycle;
+    cycle_timer.restart();
+    times_before    = timer.get_summary_data(TimerOutput::total_wall_time);
+    record          = {{"cycle", cycle}};
+    body_records    = nlohmann::json::array();
+    n_dofs_of_cycle = 0;
+  }
+
+
+
+  // The plan (the optimal mesh for epsilon_0 and how the size ratios were
+  // bounded) for the size-ratio strategies, the flags for refine.
+  void
+  CycleReport::record_mesh_adaptation(const MeshAdaptationReport &  r,
+                                      const parameters::Adaptation &a,
+                                      const unsigned int            degree,
+                                      const double                  calibration)
+  {
+    pcout << "  adapt (" << r.strategy;
+    if (r.strategy == "refine")
+      pcout << ", " << a.refinement_criterion;
+    pcout << "): ";
+    if (r.predicted_n_cells >= 0)
+      pcout << "optimal mesh for epsilon_0 = " << 100 * a.target_error
+            << " %, planned for " << std::setprecision(3)
+            << 100 * r.aimed_epsilon << " % (safety factor "
+            << a.target_safety_factor << ", measured/predicted "
+            << calibration << "): N* = " << std::llround(r.predicted_n_cells)
+            << " cells, predicted epsilon " << std::setprecision(3)
+            << 100 * r.predicted_epsilon << " % (r_E bounded to ["
+            << a.min_size_ratio << " ("
+            << lowest_size_ratio(a.min_size_ratio, true)
+            << " at singular points), " << a.max_size_ratio << "]: "
+            << r.n_at_min_ratio << " cells at the lower, " << r.n_at_max_ratio
+            << " at the upper bound; q reduced to "
+            << std::min<double>(degree, a.singular_rate) << " in "
+            << r.n_singular_cells << " cells at singular points)";
+    if (r.limited_by_max_dofs)
+      pcout << "; more cells than 'Maximum number of DoFs' = " << a.max_dofs
+            << " allows: the optimal mesh of that size instead (predicted "
+               "epsilon above epsilon_0)";
+    if (r.strategy == "refine")
+      pcout << (r.predicted_n_cells >= 0 ? "; " : "") << r.n_refine_flags
+            << " cells flagged for refinement, " << r.n_coarsen_flags
+            << " for coarsening";
+    if (r.strategy == "uniform")
+      pcout << "every cell refined once";
+    pcout << std::endl;
+  }
+
+
+
+  void
+  CycleReport::record_meshes(const std::array<const ElasticBody *, 2> &bodies,
+                             const std::string &                       strategy,
+                             const MeshAdaptationReport *last_adaptation,
+                             const double                calibration)
+  {
+    pcout << "Cycle " << cycle << std::endl;
+    record["strategy"] = strategy;
+    for (const ElasticBody *body : bodies)
+      {
+        const auto n_cells     = body->triangulation().n_global_active_cells();
+        const auto n_vertices  = body->n_vertices();
+        const auto n_body_dofs = body->dof_handler().n_dofs();
+        n_dofs_of_cycle += n_body_dofs;
+        pcout << "  " << body->name() << ": " << n_cells << " cells, "
+              << n_vertices << " vertices, " << n_body_dofs << " DoFs ("
+              << body->dof_handler().get_fe().get_name() << ")" << std::endl;
+        body_records.push_back({{"name", body->name()},
+                                {"n_cells", n_cells},
+                                {"n_vertices", n_vertices},
+                                {"n_dofs", n_body_dofs}});
+      }
+    if (last_adaptation == nullptr)
+      return;
+    const MeshAdaptationReport &a = *last_adaptation;
+    if (a.predicted_n_cells >= 0)
+      {
+        const double obtained =
+          bodies[0]->triangulation().n_global_active_cells() +
+          bodies[1]->triangulation().n_global_active_cells();
+        pcout << "  cells: " << std::llround(obtained) << " obtained, N* = "
+              << std::llround(a.predicted_n_cells) << " predicted ("
+              << std::showpos << std::setprecision(3)
+              << 100 * (obtained / a.predicted_n_cells - 1) << std::noshowpos
+              << " %)" << std::endl;
+        record["adaptation"] = {{"predicted_n_cells", a.predicted_n_cells},
+                                {"predicted_epsilon", a.predicted_epsilon},
+                                {"aimed_epsilon", a.aimed_epsilon},
+                                {"calibration", calibration},
+                                {"obtained_n_cells", obtained},
+                                {"singular_cells", a.n_singular_cells},
+                                {"limited_by_max_dofs", a.limited_by_max_dofs}};
+      }
+    if (a.strategy == "refine")
+      {
+        record["adaptation"]["refine_flags"]  = a.n_refine_flags;
+        record["adaptation"]["coarsen_flags"] = a.n_coarsen_flags;
+      }
+  }
+
+
+
+  types::global_dof_index
+  CycleReport::n_dofs() const
+  {
+    return n_dofs_of_cycle;
+  }
+
+
+
+  void
+  CycleReport::record_contact_solve(const ContactSolveOutcome &outcome)
+  {
+    const ContactSolverReport &report = outcome.report;
+    record["warm_start"] = outcome.warm_start;
+    if (outcome.nested_iteration)
+      {
+        nlohmann::json nested = {{"levels", nlohmann::json::array()}};
+        if (!outcome.nested_iteration->skipped.empty())
+          nested["skipped"] = outcome.nested_iteration->skipped;
+        for (const NestedIterationLevel &l : outcome.nested_iteration->levels)
+          nested["levels"].push_back(
+            {{"global_refinements", l.global_refinements},
+             {"n_dofs", l.n_dofs},
+             {"newton_iterations", l.newton_iterations},
+             {"active_nodes", l.n_active},
+             {"wall_time_s", l.wall_time}});
+        record["nested_iteration"] = nested;
+      }
+    for (const std::string &key : outcome.restarts)
+      record[key] = true;
+    record["load_steps"] = outcome.n_load_steps;
+
+    pcout << "  contact: initial gap: largest overlap "
+          << outcome.initial_overlap << " mm, largest clearance "
+          << outcome.initial_clearance << " mm" << std::endl;
+    record["initial_overlap"]   = outcome.initial_overlap;
+    record["initial_clearance"] = outcome.initial_clearance;
+    record["linear_solver"]     = {
+      {{"method", outcome.linear_solver.method},
+       {"iterations", outcome.linear_solver.n_iterations}}};
+    pcout << "  contact: " << report.newton_iterations << " Newton steps, "
+          << report.n_active << " active nodes, "
+          << "contact force (" << report.contact_force[0] << ", "
+          << report.contact_force[1] << ") N/mm, max pressure "
+          << report.max_contact_pressure << " MPa" << std::endl;
+    record["newton_iterations"] = report.newton_iterations;
+    if (outcome.newton_iterations_of_stopped_starts > 0)
+      record["newton_iterations_of_stopped_starts"] =
+        outcome.newton_iterations_of_stopped_starts;
+    record["converged"]    = report.converged;
+    record["active_nodes"] = report.n_active;
+    record["stick_nodes"]  = report.n_stick;
+    record["slip_nodes"]   = report.n_slip;
+    record["contact_force"] = {report.contact_force[0],
+                               report.contact_force[1]};
+    record["max_contact_pressure"] = report.max_contact_pressure;
+    record["frictionless"]         = report.frictionless;
+    if (report.slave_rotation_free)
+      record["body_1_rotation_free"] = true;
+    record["residual_history"]         = report.residual_history;
+    record["residual_round_off_floor"] = report.residual_round_off_floor;
+  }
+
+
+
+  void
+  CycleReport::record_linear_solve(const ElasticBody &       body,
+                                   const LinearSolverReport &report,
+                                   const double              wall_time)
+  {
+    pcout << "  " << body.name() << ": solved by " << report.method;
+    if (report.method == "cg+amg")
+      pcout << " (" << report.n_iterations << " iterations)";
+    pcout << " in " << std::setprecision(3) << wall_time << " s" << std::endl;
+    if (!record["linear_solver"].is_array())
+      record["linear_solver"] = nlohmann::json::array();
+    record["linear_solver"].push_back(
+      {{"method", report.method}, {"iterations", report.n_iterations}});
+  }
+
+
+
+  // The correction of the contact fields (theory.md section 3): the
+  // nodal reactions projected onto the Coulomb cone, or skipped.
+  void
+  CycleReport::record_correction(const CorrectedContactSolution &c)
+  {
+    if (c.skipped)
+      pcout << "  correction: skipped, the FE reactions are in the "
+               "Coulomb cone (corrected fields = FE fields)";
+    else
+      pcout << "  correction: " << c.n_projected_nodes
+            << " nodal reactions projected onto the Coulomb cone, "
+               "relative change "
+            << std::scientific << std::setprecision(3) << c.relative_change
+            << std::defaultfloat << "; corrected problem solved";
+    if (c.max_penetration > 0)
+      pcout << "; penetration up to " << std::setprecision(3)
+            << c.max_penetration << " mm clipped";
+    pcout << std::endl;
+    record["correction"] = {{"skipped", c.skipped},
+                            {"relative_change", c.relative_change},
+                            {"projected_nodes", c.n_projected_nodes},
+                            {"max_penetration_clipped", c.max_penetration}};
+  }
+
+
+
+  void
+  CycleReport::record_error_estimate(
+    const ErrorEstimate &                     e,
+    const std::vector<const ErrorEstimate *> &compared,
+    const unsigned int                        cre_degree_increase)
+  {
+    if (e.has_contact)
+      record_correction(e.correction);
+    if (e.estimator == ErrorEstimator::cre)
+      pcout << "  cre: equilibrated stress of degree p + "
+            << cre_degree_increase
+            << (e.has_contact ? " from the solution under the consistent "
+                                "contact load (solved: the mortar's "
+                                "dual-basis traction is not in the cone "
+                                "between the nodes)" :
+                                "")
+            << "; node systems' defect " << std::scientific
+            << std::setprecision(1) << e.node_system_defect
+            << ", local problems' rigid-motion load " << e.local_problem_defect
+            << std::defaultfloat << std::endl;
+    auto log_epsilon = [&](const ErrorEstimate &estimate) {
+      pcout << "  error indicator (" << to_string(estimate.estimator)
+            << "): epsilon = " << std::fixed << std::setprecision(3)
+            << 100 * estimate.epsilon << " % (volume: body 1 "
+            << 100 * estimate.epsilon_volume[0] << " %, body 2 "
+            << 100 * estimate.epsilon_volume[1] << " %; contact "
+            << 100 * estimate.epsilon_contact << " %)" << std::defaultfloat
+            << (&estimate == &e ? "" : " [compared, not driving]")
+            << std::endl;
+    };
+    log_epsilon(e);
+    for (const ErrorEstimate *other : compared)
+      log_epsilon(*other);
+
+    record["epsilon"]         = e.epsilon;
+    record["epsilon_volume"]  = {e.epsilon_volume[0], e.epsilon_volume[1]};
+    record["epsilon_contact"] = e.epsilon_contact;
+    record["estimator"]       = to_string(e.estimator);
+    if (e.estimator != ErrorEstimator::cre)
+      record["recovery"] = to_string(e.recovery);
+    else
+      record["cre"] = {{"degree_increase", cre_degree_increase},
+                       {"node_system_defect", e.node_system_defect},
+                       {"local_problem_defect", e.local_problem_defect}};
+    if (compared.empty())
+      return;
+    auto record_of = [](const ErrorEstimate &estimate) {
+      return nlohmann::json{
+        {"epsilon", estimate.epsilon},
+        {"epsilon_volume",
+         {estimate.epsilon_volume[0], estimate.epsilon_volume[1]}},
+        {"epsilon_contact", estimate.epsilon_contact},
+        {"normalisation_squared", estimate.normalisation_squared}};
+    };
+    nlohmann::json estimators;
+    estimators[to_string(e.estimator)] = record_of(e);
+    for (const ErrorEstimate *other : compared)
+      estimators[to_string(other->estimator)] = record_of(*other);
+    record["estimators"] = estimators;
+  }
+
+
+
+  void
+  CycleReport::announce_reference_solution(const unsigned int r)
+  {
+    pcout << "  exact error: solving the reference problem (this cycle's "
+             "meshes refined "
+          << r << " times) and, for its own error, "
+          << (r > 1 ? "the same refined " + std::to_string(r - 1) + " times" :
+                      std::string("comparing it with this cycle's solution"))
+          << std::endl;
+  }
+
+
+
+  void
+  CycleReport::record_exact_error(
+    const std::string &reference,
+    const std::vector<std::pair<ErrorEstimator, ExactErrorComparison>>
+      &comparisons)
+  {
+    const ExactErrorComparison &c = comparisons.front().second;
+    pcout << "  exact error (" << reference
+          << "): epsilon_exact = " << std::fixed << std::setprecision(3)
+          << 100 * c.epsilon_exact << " %, effectivity " << c.effectivity
+          << " (elements: mean " << c.element_effectivity_mean << ", std "
+          << c.element_effectivity_std << ", min "
+          << c.element_effectivity_min << ", max "
+          << c.element_effectivity_max << ")" << std::defaultfloat
+          << std::endl;
+    record["epsilon_exact"]         = c.epsilon_exact;
+    record["effectivity"]           = c.effectivity;
+    record["element_effectivity"]   = element_effectivity_record(c);
+    record["exact_error_reference"] = reference;
+    if (comparisons.size() == 1)
+      return;
+    for (const auto &[estimator, x] : comparisons)
+      {
+        record["estimators"][to_string(estimator)].update(
+          {{"epsilon_exact", x.epsilon_exact},
+           {"effectivity", x.effectivity},
+           {"element_effectivity", element_effectivity_record(x)}});
+        pcout << "  exact error of " << to_string(estimator)
+              << "'s corrected solution: " << std::fixed
+              << std::setprecision(3) << 100 * x.epsilon_exact
+              << " %, effectivity " << x.effectivity << std::defaultfloat
+              << std::endl;
+      }
+  }
+
+
+
+  void
+  CycleReport::record_reference_solution(
+    const ReferenceSolutionStress &reference,
+    const double                   energy,
+    const double                   reference_energy,
+    const double                   epsilon_energy)
+  {
+    pcout << "  exact error: reference's own error " << std::fixed
+          << std::setprecision(3) << 100 * reference.own_error()
+          << " % (from the energies " << 100 * reference.own_error_from_energy()
+          << " %); energy check: epsilon_energy = " << 100 * epsilon_energy
+          << " % (strain energy " << std::scientific << energy
+          << ", reference " << reference_energy << ")" << std::defaultfloat
+          << std::endl;
+    record["exact_error_reference_error"] = reference.own_error();
+    record["exact_error_reference_error_energy"] =
+      reference.own_error_from_energy();
+    record["exact_error_reference_dofs"] = reference.n_dofs();
+    record["reference_strain_energy"]    = {reference.strain_energy(0),
+                                            reference.strain_energy(1)};
+    record["epsilon_energy"]             = epsilon_energy;
+  }
+
+
+
+  void
+  CycleReport::record_body_error(const unsigned int      b,
+                                 const ElasticBody &     body,
+                                 const ElasticityErrors &e)
+  {
+    pcout << "  " << body.name() << ": error against the exact solution: L2 "
+          << std::scientific << std::setprecision(3) << e.l2 << " mm, energy "
+          << e.energy << " (relative " << e.energy / e.energy_of_exact << ")"
+          << std::defaultfloat << std::endl;
+    body_records[b]["exact_error"] = {{"l2", e.l2},
+                                      {"energy", e.energy},
+                                      {"relative_energy",
+                                       e.energy / e.energy_of_exact}};
+  }
+
+
+
+  void
+  CycleReport::record_strain_energy(const unsigned int b, const double energy)
+  {
+    body_records[b]["strain_energy"] = energy;
+  }
+
+
+
+  void
+  CycleReport::end_cycle(const ErrorEstimate &estimate, const bool has_contact)
+  {
+    cycle_timer.stop();
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    record["bodies"]      = body_records;
+    record["n_dofs"]      = n_dofs_of_cycle;
+    record["wall_time_s"] = cycle_timer.wall_time();
+    // Per-phase wall times of this cycle (rank 0's clock).
+    nlohmann::json timings;
+    for (const auto &[section, total] :
+         timer.get_summary_data(TimerOutput::total_wall_time))
+      {
+        const auto before = times_before.find(section);
+        timings[section] =
+          total - (before == times_before.end() ? 0. : before->second);
+      }
+    record["timings_s"] = timings;
+    // Peak resident memory so far: largest rank, and all ranks together.
+    record["peak_memory_MiB"] =
+      Utilities::MPI::max(memory.VmHWM / 1024., mpi_communicator);
+    record["peak_memory_total_MiB"] =
+      Utilities::MPI::sum(memory.VmHWM / 1024., mpi_communicator);
+    summary.add_cycle(record);
+
+    // The per-cycle line a user watches, and the final table's row.
+    const unsigned int newton = record.value("newton_iterations", 0u);
+    pcout << "Cycle " << cycle << ": " << n_dofs_of_cycle
+          << " DoFs, epsilon = " << std::fixed << std::setprecision(3)
+          << 100 * estimate.epsilon << " %, epsilon_contact = "
+          << 100 * estimate.epsilon_contact << " %" << std::defaultfloat;
+    if (has_contact)
+      pcout << ", " << newton << " Newton steps";
+    pcout << ", " << std::setprecision(3) << cycle_timer.wall_time() << " s"
+          << std::endl;
+    table.add_value("cycle", cycle);
+    table.add_value("cells 1", body_records[0]["n_cells"].get<unsigned int>());
+    table.add_value("cells 2", body_records[1]["n_cells"].get<unsigned int>());
+    table.add_value("DoFs", n_dofs_of_cycle);
+    table.add_value("eps %", 100 * estimate.epsilon);
+    table.add_value("eps_c %", 100 * estimate.epsilon_contact);
+    if (has_contact)
+      table.add_value("Newton", newton);
+    table.add_value("time s", cycle_timer.wall_time());
+  }
+
+
+
+  void
+  CycleReport::record_stop(const unsigned int cycle, const std::string &reason)
+  {
+    pcout << "Adaptation stops after cycle " << cycle << ": " << reason
+          << std::endl;
+    summary.set("stop_reason", reason);
+  }
+
+
+
+  void
+  CycleReport::print_table()
+  {
+    for (const std::string column : {"eps %", "eps_c %", "time s"})
+      table.set_precision(column, 3);
+    for (const std::string column : {"eps %", "eps_c %"})
+      table.set_scientific(column, false);
+    if (pcout.is_active())
+      {
+        pcout.get_stream() << std::endl;
+        table.write_text(pcout.get_stream(), TableHandler::org_mode_table);
+      }
+  }
+} // namespace coulomb_adapt
