@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -48,6 +49,47 @@ namespace coulomb_adapt
 
 
 
+      // Why body 1, free of Dirichlet data, has no active node. The
+      // iteration starts with the nodes nearest to body 2 closed among
+      // those that face it (ContactSolver::initialize_sets), so none at the
+      // first step means that no node of body 1's contact curve lies
+      // opposite body 2's: the curves can never touch, whatever the load.
+      // Later the solve has said which nodes face body 2, and the ones
+      // that do have opened: the load pulls body 1 away, or body 2 gives
+      // way (body 2 is checked after body 1, so a floating body 2 that
+      // moves with it shows here too).
+      std::string
+      unheld_message(const std::vector<ContactNodeState> &states,
+                     const unsigned int                   step)
+      {
+        unsigned int n_facing = 0;
+        double       smallest_gap = std::numeric_limits<double>::max();
+        for (const auto &s : states)
+          if (s.facing_master)
+            {
+              ++n_facing;
+              smallest_gap = std::min(smallest_gap, s.gap);
+            }
+        std::ostringstream m;
+        m << std::setprecision(3) << "has no active contact node and no "
+          << "Dirichlet support: nothing holds it. ";
+        if (step == 1 || n_facing == 0)
+          m << "None of the " << states.size() << " nodes of its contact "
+            << "curve lies opposite body 2's contact curve: the two curves "
+            << "do not face each other and cannot touch. Check where the "
+            << "contact curves lie and which curves the contact groups "
+            << "name.";
+        else
+          m << "The " << n_facing << " of its contact nodes that face body "
+            << "2 have all opened (smallest gap " << smallest_gap
+            << " mm): its load pulls it away from body 2 (is it loaded "
+            << "towards body 2?), or body 2 gives way under it (are body "
+            << "2's Dirichlet data enough to hold it?).";
+        return m.str();
+      }
+
+
+
       // Up to ten positions of the nodes in @p changed.
       std::string
       node_positions(const std::vector<ContactNodeState> &states,
@@ -83,9 +125,7 @@ namespace coulomb_adapt
       const std::string where =
         newton_step(step) + ": body 1 (" + body_name + ") ";
       if (n_active == 0 && !support.holds_all_rigid_motions())
-        throw ContactDiagnosis(where + "has no active contact node and no "
-                                       "Dirichlet support: nothing holds it "
-                                       "(is it loaded towards body 2?).",
+        throw ContactDiagnosis(where + unheld_message(states, step),
                                step - 1);
       if (n_stick == 0 && n_active > 0)
         {
