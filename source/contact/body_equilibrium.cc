@@ -99,10 +99,27 @@ namespace coulomb_adapt
 
 
 
+  // Balanced to round-off is a statement only while the round-off is below the
+  // forces that balance: a body that nothing holds shows an imbalance of the
+  // size of its load, and a bound above that size would accept it. Where the
+  // bound lies follows from the solve. In a regular system the terms of K u
+  // are at most the condition number times the forces, and the bound is the
+  // number of terms times eps times that: far below the forces unless the
+  // condition number approaches 1 / (terms eps), about 1e14, where the contact
+  // pressures, differences of the same nodal forces, have lost their digits
+  // too (why body 1 may be at most 1e8 times stiffer than body 2). In a
+  // singular system (the sets do not hold the body) the direct solver's pivot
+  // along the free motion is itself round-off, eps times the entries of K, so
+  // the displacement along it is the load over eps |K|, the terms of K u are
+  // the forces over eps, and the bound is the number of terms times the forces
+  // or more. The comparison with the forces needs no threshold of its own.
+  // A mode along which nothing acts (no load, no contact force, no stress)
+  // balances exactly.
   bool
   BodyEquilibrium::balanced() const
   {
-    return imbalance <= round_off && round_off <= 1e-1 * force_scale;
+    return imbalance <= round_off &&
+           (round_off < force_scale || round_off == 0);
   }
 
 
@@ -267,9 +284,9 @@ namespace coulomb_adapt
       << e.contact_force[1] << ") N/mm with moment " << e.contact_moment
       << " N: out of balance by " << e.imbalance
       << " N/mm, where round-off allows " << e.round_off << " N/mm";
-    if (e.round_off > 1e-1 * e.force_scale)
-      s << " (and round-off of that size means a singular system: the "
-           "contact sets do not hold the body)";
+    if (e.round_off >= e.force_scale && e.round_off > 0)
+      s << " (a round-off as large as the forces themselves: the system "
+           "is singular, the contact sets do not hold the body)";
     s << ". The contact does not hold the body: it slides or tips (the "
       << "imbalance is mostly a " << (e.tips ? "moment" : "force")
       << "): no static equilibrium exists for this load and geometry (a "

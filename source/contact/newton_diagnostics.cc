@@ -4,7 +4,9 @@
 #include <coulomb_adapt/core/parameter_error.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -48,6 +50,70 @@ namespace coulomb_adapt
 
 
 
+      // Why body 1, free of Dirichlet data, has no active node. The
+      // iteration starts with the nodes nearest to body 2 closed among
+      // those that face it (ContactSolver::initialize_sets), so none at the
+      // first step means that no node of body 1's contact curve lies
+      // opposite body 2's: the curves can never touch, whatever the load.
+      // Later the solve has said which nodes face body 2, and the ones
+      // that do have opened: the load pulls body 1 away, or body 2 gives
+      // way (body 2 is checked after body 1, so a floating body 2 that
+      // moves with it shows here too).
+      std::string
+      unheld_message(const std::vector<ContactNodeState> &states,
+                     const unsigned int                   step)
+      {
+        unsigned int n_facing = 0;
+        double       smallest_gap = std::numeric_limits<double>::max();
+        for (const auto &s : states)
+          if (s.facing_master)
+            {
+              ++n_facing;
+              smallest_gap = std::min(smallest_gap, s.gap);
+            }
+        // A node that still touches (its gap at round-off against the
+        // others') while all have opened: the body turns about it, pressed
+        // down elsewhere by a load that the contact cannot hold there.
+        double largest_gap = 0;
+        const ContactNodeState *pivot = nullptr;
+        for (const auto &s : states)
+          if (s.facing_master)
+            {
+              largest_gap = std::max(largest_gap, std::abs(s.gap));
+              if (pivot == nullptr || s.gap < pivot->gap)
+                pivot = &s;
+            }
+        std::ostringstream m;
+        m << std::setprecision(3) << "has no active contact node and no "
+          << "Dirichlet support: nothing holds it. ";
+        if (step > 1 && n_facing > 0 && pivot != nullptr &&
+            pivot->gap <= 1e-10 * largest_gap)
+          m << "Its contact nodes have all opened, but the one at ("
+            << pivot->position[0] << ", " << pivot->position[1]
+            << ") still touches body 2 (gap " << pivot->gap
+            << " mm, up to " << largest_gap << " mm elsewhere): the body "
+            << "turns about that point, away from body 2. Its load tips "
+            << "it: the load acts outside the zone the contact can "
+            << "support (over an edge), and no static equilibrium exists "
+            << "for it. Check where the load acts and where the bodies "
+            << "touch.";
+        else if (step == 1 || n_facing == 0)
+          m << "None of the " << states.size() << " nodes of its contact "
+            << "curve lies opposite body 2's contact curve: the two curves "
+            << "do not face each other and cannot touch. Check where the "
+            << "contact curves lie and which curves the contact groups "
+            << "name.";
+        else
+          m << "The " << n_facing << " of its contact nodes that face body "
+            << "2 have all opened (smallest gap " << smallest_gap
+            << " mm): its load pulls it away from body 2 (is it loaded "
+            << "towards body 2?), or body 2 gives way under it (are body "
+            << "2's Dirichlet data enough to hold it?).";
+        return m.str();
+      }
+
+
+
       // Up to ten positions of the nodes in @p changed.
       std::string
       node_positions(const std::vector<ContactNodeState> &states,
@@ -83,9 +149,7 @@ namespace coulomb_adapt
       const std::string where =
         newton_step(step) + ": body 1 (" + body_name + ") ";
       if (n_active == 0 && !support.holds_all_rigid_motions())
-        throw ContactDiagnosis(where + "has no active contact node and no "
-                                       "Dirichlet support: nothing holds it "
-                                       "(is it loaded towards body 2?).",
+        throw ContactDiagnosis(where + unheld_message(states, step),
                                step - 1);
       if (n_stick == 0 && n_active > 0)
         {
@@ -177,6 +241,45 @@ namespace coulomb_adapt
       std::ostringstream residuals;
       for (const double r : residual_history)
         residuals << r << ' ';
+      // The residual after a set change compares the gaps it opens with
+      // the displacements the pressures make: of order 1 (up to the ratio
+      // of the element sizes) in a regular system. Sets that do not hold
+      // body 1 leave its motion to round-off, and the residual grows by
+      // 1 / eps. Above the geometric mean of the two, 1 / sqrt(eps), some
+      // sets of the cycle cannot hold the body: the iteration alternates
+      // between sets that hold it and sets that do not because no set
+      // holds it in equilibrium, which no complementarity constant changes.
+      std::vector<unsigned int> singular_steps;
+      double                    largest = 0;
+      for (unsigned int k = repeated + 1;
+           k <= std::min<std::size_t>(step, residual_history.size());
+           ++k)
+        if (residual_history[k - 1] >
+            1 / std::sqrt(std::numeric_limits<double>::epsilon()))
+          {
+            singular_steps.push_back(k);
+            largest = std::max(largest, residual_history[k - 1]);
+          }
+      if (!singular_steps.empty())
+        {
+          std::ostringstream s;
+          s << std::setprecision(3)
+            << "The semismooth Newton iteration cycles: after step " << step
+            << " the contact sets repeat those of step " << repeated
+            << ". Last residuals: " << residuals.str() << "; in step(s)";
+          for (const unsigned int k : singular_steps)
+            s << ' ' << k;
+          s << " of the cycle the residual reached " << largest
+            << ": those sets did not hold body 1 (a singular system, whose "
+               "solution is round-off). No contact set holds it in "
+               "equilibrium: the load has no static equilibrium on these "
+               "contact curves (a load outside the zone the contact can "
+               "support tips the body over an edge; a tangential load above "
+               "mu times the normal load makes it slide), and another "
+               "'Contact/Complementarity scale' does not change that. Check "
+               "where the load acts and where the bodies touch.";
+          return ContactDiagnosis(s.str(), step);
+        }
       return ContactDiagnosis(
         "The semismooth Newton iteration cycles: after step " +
           std::to_string(step) + " the contact sets repeat those of step " +

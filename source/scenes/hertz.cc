@@ -58,7 +58,8 @@ namespace coulomb_adapt
                           "units of the Hertz half-width a (0.1: 20 "
                           "elements across the contact width). 0 disables "
                           "the grading. Global refinements divide it "
-                          "further.");
+                          "further. Refused when the graded meshes would "
+                          "exceed 'Adaptation/Maximum number of DoFs'.");
         prm.declare_entry("Refined zone size",
                           "1.5",
                           Patterns::Double(0),
@@ -100,9 +101,9 @@ namespace coulomb_adapt
 
 
     Hertz::Hertz(ParameterHandler &prm,
-                 const PlaneModel  plane_model,
+                 const Parameters &parameters,
                  const bool        cattaneo)
-      : plane_model(plane_model)
+      : plane_model(parameters.finite_elements.plane_model)
       , cattaneo(cattaneo)
       , normal_displacement(0)
       , tangential_displacement(0)
@@ -148,6 +149,82 @@ namespace coulomb_adapt
         materials = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
+      check_graded_mesh_size(parameters);
+    }
+
+
+
+    // The graded meshes' size follows from the sizes alone: the refined
+    // zone of radius z a around the origin is a half disc in each body,
+    // filled with elements of size h = c a, so each body gets about
+    // (pi / 2) (z / c)^2 cells of area h^2 whatever a is (gmsh's triangles
+    // of edge h have the area sqrt(3) / 4 h^2: 4 / sqrt(3) times as many).
+    // Local refinement halves the coarse cells until their edges are at
+    // most h, so the quadrilaterals' edges end between h / 2 and h: the
+    // edge they reach follows from the coarse cell at the origin. The
+    // cells outside the zone are left out, so the count is a lower bound:
+    // a run it lets through may still reach the limit, one it refuses
+    // would exceed it. Each global refinement multiplies the cells by 4;
+    // a cell carries about 2 p^2 DoFs (quadrilaterals) or p^2 (triangles).
+    // Before: 0.001 printed nothing and grew to 6.7 GB in 55 s.
+    void
+    Hertz::check_graded_mesh_size(const Parameters &parameters) const
+    {
+      if (contact_mesh_factor == 0)
+        return;
+      const bool quadrilaterals =
+        parameters.mesh.cell_type == CellType::quadrilateral;
+      const double a    = contact_half_width();
+      const double h    = contact_mesh_size();
+      const double zone = refined_zone_factor * a;
+      const double p    = parameters.finite_elements.degree;
+      double       n_dofs = 0;
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          double edge = h;
+          if (quadrilaterals)
+            {
+              Triangulation<2> coarse;
+              create_coarse_mesh(b, CellType::quadrilateral, coarse);
+              double coarse_edge = 0;
+              for (const auto &cell : coarse.active_cell_iterators())
+                if (cell->point_inside(Point<2>()) ||
+                    cell->center().distance(Point<2>()) <
+                      zone + cell->diameter())
+                  for (const auto &face : cell->face_iterators())
+                    coarse_edge = std::max(coarse_edge, face->measure());
+              while (coarse_edge > h)
+                coarse_edge /= 2;
+              edge = coarse_edge > 0 ? coarse_edge : h;
+            }
+          const double cells = numbers::PI / 2 * (zone / edge) *
+                               (zone / edge) *
+                               (quadrilaterals ? 1. : 4. / std::sqrt(3.));
+          n_dofs += cells * (quadrilaterals ? 2. : 1.) * p * p;
+        }
+      n_dofs *= std::pow(4., parameters.mesh.global_refinements);
+      if (n_dofs <= parameters.adaptation.max_dofs)
+        return;
+      // The count goes as 1 / c^2 (in steps of 4 for quadrilaterals).
+      const double smallest =
+        contact_mesh_factor * std::sqrt(n_dofs / parameters.adaptation.max_dofs);
+      std::ostringstream s;
+      s << std::setprecision(3) << "the graded meshes would have at least "
+        << n_dofs << " DoFs (elements of " << h << " mm in a zone of "
+        << zone << " mm around the first contact point, "
+        << (quadrilaterals ? "quadrilaterals" : "triangles") << " of degree "
+        << p << ", " << parameters.mesh.global_refinements
+        << " global refinements), above 'Adaptation/Maximum number of "
+           "DoFs' ("
+        << parameters.adaptation.max_dofs
+        << "). Allowed: 0 (no grading) or at least about " << smallest
+        << " with these settings; or a smaller 'Scene/Hertz/Refined zone "
+           "size', or a larger 'Adaptation/Maximum number of DoFs' if the "
+           "machine has the memory (about 1 kB per DoF)";
+      throw ParameterError("Scene/Hertz/Contact mesh size",
+                           Patterns::Tools::Convert<double>::to_string(
+                             contact_mesh_factor),
+                           s.str());
     }
 
 

@@ -45,9 +45,9 @@ namespace coulomb_adapt
           else if (name == "patch")
             scene = std::make_unique<Patch>(prm, model);
           else if (name == "hertz")
-            scene = std::make_unique<Hertz>(prm, model);
+            scene = std::make_unique<Hertz>(prm, parameters);
           else if (name == "cattaneo")
-            scene = std::make_unique<Hertz>(prm, model, true);
+            scene = std::make_unique<Hertz>(prm, parameters, true);
           else if (name == "punch")
             scene = std::make_unique<Punch>(prm, model);
           else if (name == "gmsh")

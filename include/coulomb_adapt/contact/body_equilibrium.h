@@ -50,11 +50,12 @@ namespace coulomb_adapt
      * than a force (it slides). */
     bool         tips = false;
 
-    /** Balanced to round-off, and the round-off itself below 0.1 of the
-     * forces: a singular system's round-off is many times the load (50 to
-     * 300 times in the bad_input cases), a regular one's far below it
-     * (3.8e-4 in contact_stagnation's stalled iteration, 1e-9 on the
-     * seed's blocks). */
+    /** Balanced to round-off, and the round-off itself below the forces
+     * (@p force_scale), without which the balance says nothing: a
+     * regular system's round-off is the number of terms times eps times
+     * its condition number times the forces, a singular one's (a body the
+     * contact sets do not hold) the number of terms times the forces or
+     * more. */
     bool
     balanced() const;
   };

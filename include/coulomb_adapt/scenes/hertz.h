@@ -1,6 +1,7 @@
 #ifndef coulomb_adapt_scenes_hertz_h
 #define coulomb_adapt_scenes_hertz_h
 
+#include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 #include <coulomb_adapt/scenes/scene.h>
 
@@ -33,10 +34,13 @@ namespace coulomb_adapt
       declare_parameters(ParameterHandler &prm);
 
       /** With @p cattaneo, the scene `cattaneo`: the same geometry, then a
-       * tangential load after the normal one (subsection `Cattaneo`). */
-      Hertz(ParameterHandler &prm,
-            const PlaneModel  plane_model,
-            const bool        cattaneo = false);
+       * tangential load after the normal one (subsection `Cattaneo`).
+       * @p parameters: the cell type, degree and global refinements of the
+       * first meshes, and the DoF limit they must keep to (a `Contact mesh
+       * size` whose meshes would exceed it is refused before meshing). */
+      Hertz(ParameterHandler & prm,
+            const Parameters & parameters,
+            const bool         cattaneo = false);
 
       std::string
       name() const override;
@@ -77,6 +81,11 @@ namespace coulomb_adapt
       peak_pressure() const;
 
     private:
+      /** Refuse a `Contact mesh size` whose graded meshes would exceed
+       * `Adaptation/Maximum number of DoFs`. */
+      void
+      check_graded_mesh_size(const Parameters &parameters) const;
+
       /** Both bodies meshed by gmsh with triangles (made once). */
       const std::array<CoarseMeshData, 2> &
       triangle_meshes() const;
