@@ -103,11 +103,11 @@ namespace coulomb_adapt
     Hertz::Hertz(ParameterHandler &prm,
                  const Parameters &parameters,
                  const bool        cattaneo)
-      : plane_model(parameters.finite_elements.plane_model)
-      , cattaneo(cattaneo)
+      : cattaneo(cattaneo)
       , normal_displacement(0)
       , tangential_displacement(0)
       , n_tangential_steps(0)
+      , plane_model(parameters.finite_elements.plane_model)
     {
       if (cattaneo)
         {
