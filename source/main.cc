@@ -20,8 +20,8 @@ main(int argc, char *argv[])
 {
   using namespace coulomb_adapt;
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm comm    = MPI_COMM_WORLD;
-  const bool     is_root = Utilities::MPI::this_mpi_process(comm) == 0;
+  const MPI_Comm                   comm = MPI_COMM_WORLD;
+  const bool is_root = Utilities::MPI::this_mpi_process(comm) == 0;
 
   try
     {

@@ -82,7 +82,7 @@ namespace
   void
   check_finest_cells(const TwoBodyProblem &problem,
                      const double          max_distance,
-                     ConditionalOStream &  out)
+                     ConditionalOStream   &out)
   {
     for (unsigned int b = 0; b < 2; ++b)
       {
@@ -91,16 +91,16 @@ namespace
         for (const auto &cell : tria.active_cell_iterators())
           if (cell->is_locally_owned())
             h_min = std::min(h_min, cell->diameter());
-        h_min = Utilities::MPI::min(h_min, MPI_COMM_WORLD);
+        h_min           = Utilities::MPI::min(h_min, MPI_COMM_WORLD);
         double farthest = 0;
         for (const auto &cell : tria.active_cell_iterators())
           if (cell->is_locally_owned() && cell->diameter() <= 1.01 * h_min)
-            farthest = std::max(farthest,
-                                distance_to_contact_zone_ends(cell->center()));
+            farthest =
+              std::max(farthest, distance_to_contact_zone_ends(cell->center()));
         farthest = Utilities::MPI::max(farthest, MPI_COMM_WORLD);
-        out << "    body " << b + 1 << ": finest cells (diameter "
-            << h_min << " mm) at most " << farthest
-            << " mm from a contact zone end" << std::endl;
+        out << "    body " << b + 1 << ": finest cells (diameter " << h_min
+            << " mm) at most " << farthest << " mm from a contact zone end"
+            << std::endl;
         AssertThrow(farthest <= max_distance,
                     ExcMessage("the finest cells are not at the ends of the "
                                "contact zone"));
@@ -110,7 +110,7 @@ namespace
   // @p max_adaptation_steps: 0 for no limit (the fixed-fraction and
   // optimize criteria, which do not aim at epsilon_0).
   void
-  run_loop(const Settings &    settings,
+  run_loop(const Settings     &settings,
            const double        target,
            const bool          check_finest,
            const bool          check_prediction,
@@ -119,7 +119,7 @@ namespace
   {
     const ProgramRun      run(settings);
     const nlohmann::json &summary = run.summary;
-    const auto &          cycles  = summary["cycles"];
+    const auto           &cycles  = summary["cycles"];
     for (const auto &c : cycles)
       {
         out << "    cycle " << c["cycle"].get<unsigned int>() << ": cells "
@@ -136,8 +136,7 @@ namespace
             const double obtained =
               c["adaptation"]["obtained_n_cells"].get<double>();
             out << ", N* " << std::lround(predicted) << " planned for "
-                << 100 * c["adaptation"]["aimed_epsilon"].get<double>()
-                << " %";
+                << 100 * c["adaptation"]["aimed_epsilon"].get<double>() << " %";
             if (check_prediction && c["cycle"].get<unsigned int>() == 1)
               AssertThrow(std::abs(obtained / predicted - 1) <= 0.25,
                           ExcMessage("remeshing missed N* by more than 25 %"));
@@ -147,9 +146,9 @@ namespace
     const double epsilon = cycles.back()["epsilon"].get<double>();
     AssertThrow(epsilon <= target,
                 ExcMessage("the loop did not reach epsilon_0"));
-    AssertThrow(summary["stop_reason"].get<std::string>().rfind(
-                  "target reached", 0) == 0,
-                ExcMessage("the loop stopped for another reason"));
+    AssertThrow(
+      summary["stop_reason"].get<std::string>().rfind("target reached", 0) == 0,
+      ExcMessage("the loop stopped for another reason"));
     AssertThrow(cycles.size() > 1, ExcMessage("nothing was adapted"));
     AssertThrow(max_adaptation_steps == 0 ||
                   cycles.size() - 1 <= max_adaptation_steps,
@@ -181,20 +180,20 @@ main(int argc, char **argv)
     settings.push_back({"Adaptation/Number of cycles", "1"});
     const ProgramRun      run(settings);
     const TwoBodyProblem &problem = *run.problem;
-    const ErrorEstimate & e       = problem.last_error_estimate();
+    const ErrorEstimate  &e       = problem.last_error_estimate();
     for (unsigned int b = 0; b < 2; ++b)
       {
         std::pair<double, double> best = {-1, 0}; // density, distance
-        for (const auto &cell : problem.body(b).triangulation().active_cell_iterators())
+        for (const auto &cell :
+             problem.body(b).triangulation().active_cell_iterators())
           if (cell->is_locally_owned() &&
               e.density[b](cell->active_cell_index()) > best.first)
             best = {e.density[b](cell->active_cell_index()),
                     distance_to_contact_zone_ends(cell->center())};
         const auto all = Utilities::MPI::all_gather(MPI_COMM_WORLD, best);
         best           = *std::max_element(all.begin(), all.end());
-        out << "Initial mesh, body " << b + 1
-            << ": largest epsilon_E density " << best.first
-            << " /mm^2, cell centre " << best.second
+        out << "Initial mesh, body " << b + 1 << ": largest epsilon_E density "
+            << best.first << " /mm^2, cell centre " << best.second
             << " mm from a contact zone end" << std::endl;
         // Within half an initial cell (33 mm) of a contact zone end.
         AssertThrow(best.second < 15,
@@ -204,13 +203,25 @@ main(int argc, char **argv)
 
   out << "remesh, P1, epsilon_0 = 5 %" << std::endl;
   run_loop(blocks("triangle", "remesh", "2, 2", "4, 4", "5", "output-r5"),
-           0.05, false, false, 2, out);
+           0.05,
+           false,
+           false,
+           2,
+           out);
   out << "remesh, P1, epsilon_0 = 2 %" << std::endl;
   run_loop(blocks("triangle", "remesh", "3, 3", "6, 7", "2", "output-r2"),
-           0.02, true, true, 2, out);
+           0.02,
+           true,
+           true,
+           2,
+           out);
   out << "remesh, P1, epsilon_0 = 1 %" << std::endl;
   run_loop(blocks("triangle", "remesh", "3, 3", "6, 7", "1", "output-r1"),
-           0.01, true, false, 2, out);
+           0.01,
+           true,
+           false,
+           2,
+           out);
   {
     out << "remesh (gmsh Delaunay), P1, epsilon_0 = 2 %" << std::endl;
     auto settings =
@@ -220,17 +231,28 @@ main(int argc, char **argv)
   }
   out << "refine (size ratio), Q1, epsilon_0 = 5 %" << std::endl;
   run_loop(blocks("quadrilateral", "refine", "2, 2", "4, 4", "5", "output-q5"),
-           0.05, false, false, 2, out);
+           0.05,
+           false,
+           false,
+           2,
+           out);
   out << "refine (size ratio), Q1, epsilon_0 = 2 %" << std::endl;
   run_loop(blocks("quadrilateral", "refine", "2, 2", "4, 4", "2", "output-q2"),
-           0.02, true, false, 2, out);
+           0.02,
+           true,
+           false,
+           2,
+           out);
   for (const std::string strategy : {"refine", "remesh"})
     {
-      out << strategy << ", epsilon_0 = 0.01 %, at most 3000 DoFs"
-          << std::endl;
+      out << strategy << ", epsilon_0 = 0.01 %, at most 3000 DoFs" << std::endl;
       auto settings =
         blocks(strategy == "refine" ? "quadrilateral" : "triangle",
-               strategy, "2, 2", "4, 4", "0.01", "output-cap-" + strategy);
+               strategy,
+               "2, 2",
+               "4, 4",
+               "0.01",
+               "output-cap-" + strategy);
       settings.push_back({"Adaptation/Maximum number of DoFs", "3000"});
       settings.push_back({"Adaptation/Number of cycles", "4"});
       const ProgramRun run(settings);
@@ -259,7 +281,8 @@ main(int argc, char **argv)
     }
   {
     out << "refine (optimize), Q1, epsilon_0 = 2 %" << std::endl;
-    auto settings = blocks("quadrilateral", "refine", "2, 2", "4, 4", "2", "output-o2");
+    auto settings =
+      blocks("quadrilateral", "refine", "2, 2", "4, 4", "2", "output-o2");
     settings.push_back({"Adaptation/Refinement criterion", "optimize"});
     run_loop(settings, 0.02, false, false, 0, out);
   }

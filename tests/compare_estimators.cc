@@ -34,7 +34,7 @@ namespace
   // The first cycle's record of a run of blocks with @p extra settings.
   nlohmann::json
   run_cycle(const std::vector<std::pair<std::string, std::string>> &extra,
-            const std::string &directory)
+            const std::string                                      &directory)
   {
     std::vector<std::pair<std::string, std::string>> settings = {
       {"Scene/Name", "blocks"},
@@ -51,7 +51,9 @@ namespace
   }
 
   void
-  check_equal(const double compared, const double alone, const std::string &what)
+  check_equal(const double       compared,
+              const double       alone,
+              const std::string &what)
   {
     AssertThrow(std::abs(compared - alone) <= 1e-12 * std::abs(alone),
                 ExcMessage(what + ": the compared value differs from the "
@@ -66,7 +68,7 @@ main(int argc, char **argv)
   auto                             out = testing::root_output();
   out << std::setprecision(10);
 
-  const std::vector<std::string> names = {"zz", "spr", "cre"};
+  const std::vector<std::string>        names = {"zz", "spr", "cre"};
   std::map<std::string, nlohmann::json> alone;
   for (const auto &name : names)
     alone[name] =
@@ -109,10 +111,10 @@ main(int argc, char **argv)
           AssertThrow(std::abs(theta - c["epsilon"].get<double>() / exact) <=
                         1e-12 * theta,
                       ExcMessage("effectivity is not epsilon / exact"));
-          out << "  " << name << ": epsilon = "
-              << 100 * c["epsilon"].get<double>() << " % (alone "
-              << 100 * a["epsilon"].get<double>() << " %), contact "
-              << 100 * c["epsilon_contact"].get<double>()
+          out << "  " << name
+              << ": epsilon = " << 100 * c["epsilon"].get<double>()
+              << " % (alone " << 100 * a["epsilon"].get<double>()
+              << " %), contact " << 100 * c["epsilon_contact"].get<double>()
               << std::setprecision(4) << " %, exact " << 100 * exact
               << " %, effectivity " << theta << std::setprecision(10)
               << std::endl;

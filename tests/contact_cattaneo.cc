@@ -25,12 +25,18 @@ main(int argc, char *argv[])
   const auto scene = scenes::create_scene(parameters, prm);
   std::array<std::unique_ptr<ElasticBody>, 2> bodies;
   for (unsigned int b = 0; b < 2; ++b)
-    bodies[b] = std::make_unique<ElasticBody>(MPI_COMM_WORLD, *scene, b,
-                                              parameters.mesh.cell_type, 0,
+    bodies[b] = std::make_unique<ElasticBody>(MPI_COMM_WORLD,
+                                              *scene,
+                                              b,
+                                              parameters.mesh.cell_type,
+                                              0,
                                               parameters.finite_elements);
-  ConditionalOStream quiet(std::cout, false);
-  ContactSolver solver(*bodies[0], *bodies[1], parameters.contact,
-                       parameters.linear_solver, quiet);
+  ConditionalOStream  quiet(std::cout, false);
+  ContactSolver       solver(*bodies[0],
+                       *bodies[1],
+                       parameters.contact,
+                       parameters.linear_solver,
+                       quiet);
   ContactSolverReport report;
   for (unsigned int step = 1; step <= scene->n_load_steps(); ++step)
     {
@@ -44,14 +50,14 @@ main(int argc, char *argv[])
     }
 
   const double mu = parameters.contact.friction_coefficient;
-  const double P  = report.contact_force[1], Q = -report.contact_force[0];
+  const double P = report.contact_force[1], Q = -report.contact_force[0];
   // Hertz's a for the measured P' (a grows with sqrt(P')).
-  const auto & hertz = dynamic_cast<const scenes::Hertz &>(*scene);
-  const double a  = hertz.contact_half_width() * std::sqrt(P / 1000.);
-  const double p0 = 2 * P / (numbers::PI * a);
-  const double c  = a * std::sqrt(1 - Q / (mu * P));
+  const auto  &hertz = dynamic_cast<const scenes::Hertz &>(*scene);
+  const double a     = hertz.contact_half_width() * std::sqrt(P / 1000.);
+  const double p0    = 2 * P / (numbers::PI * a);
+  const double c     = a * std::sqrt(1 - Q / (mu * P));
 
-  const auto &states = solver.node_states();
+  const auto &states     = solver.node_states();
   double      stick_edge = 0;
   for (unsigned int j = 0; j + 1 < states.size(); ++j)
     for (const int d : {0, 1})
@@ -69,8 +75,9 @@ main(int argc, char *argv[])
       const double x = std::abs(s.position[0]);
       double       q = 0;
       if (x < a)
-        q = mu * p0 / a *
-            (std::sqrt(a * a - x * x) - (x < c ? std::sqrt(c * c - x * x) : 0.));
+        q =
+          mu * p0 / a *
+          (std::sqrt(a * a - x * x) - (x < c ? std::sqrt(c * c - x * x) : 0.));
       error2 += s.weight * std::pow(s.tangential_traction - q, 2);
       norm2 += s.weight * q * q;
     }

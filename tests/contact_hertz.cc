@@ -22,15 +22,15 @@ using namespace coulomb_adapt;
 
 struct HertzNumbers
 {
-  double peak, half_width, l2_error;
+  double              peak, half_width, l2_error;
   std::vector<double> pressures;
-  double max_tangential;
+  double              max_tangential;
 };
 
 HertzNumbers
 evaluate(const testing::SolvedContactProblem &problem)
 {
-  const auto &hertz = dynamic_cast<const scenes::Hertz &>(*problem.scene);
+  const auto  &hertz = dynamic_cast<const scenes::Hertz &>(*problem.scene);
   const double a = hertz.contact_half_width(), p0 = hertz.peak_pressure();
   HertzNumbers n{0, 0, 0, {}, 0};
   // Least squares for p^2 = c0 + c1 x^2 over the active nodes.
@@ -39,17 +39,22 @@ evaluate(const testing::SolvedContactProblem &problem)
     {
       const double x = s.position[0];
       n.pressures.push_back(s.pressure);
-      n.peak           = std::max(n.peak, s.pressure);
+      n.peak = std::max(n.peak, s.pressure);
       if (std::abs(x) < 0.5 * a)
         n.max_tangential =
           std::max(n.max_tangential, std::abs(s.tangential_traction));
-      const double exact = std::abs(x) < a ? p0 * std::sqrt(1 - x * x / (a * a)) : 0;
+      const double exact =
+        std::abs(x) < a ? p0 * std::sqrt(1 - x * x / (a * a)) : 0;
       error2 += s.weight * std::pow(s.pressure - exact, 2);
       norm2 += s.weight * exact * exact;
       if (s.status != ContactStatus::open)
         {
           const double X = x * x, Y = s.pressure * s.pressure;
-          s00 += 1; s01 += X; s11 += X * X; r0 += Y; r1 += X * Y;
+          s00 += 1;
+          s01 += X;
+          s11 += X * X;
+          r0 += Y;
+          r1 += X * Y;
         }
     }
   const double det = s00 * s11 - s01 * s01;
@@ -69,10 +74,10 @@ main(int argc, char *argv[])
   std::vector<double> l2_errors;
   for (const std::string refinements : {"0", "1"})
     {
-      const auto frictionless = testing::solve_contact(
-        {{"Scene/Name", "hertz"},
-         {"Mesh/Global refinements", refinements},
-         {"Contact/Friction coefficient", "0"}});
+      const auto frictionless =
+        testing::solve_contact({{"Scene/Name", "hertz"},
+                                {"Mesh/Global refinements", refinements},
+                                {"Contact/Friction coefficient", "0"}});
       const auto &hertz =
         dynamic_cast<const scenes::Hertz &>(*frictionless->scene);
       const double a = hertz.contact_half_width(), p0 = hertz.peak_pressure();
@@ -82,10 +87,12 @@ main(int argc, char *argv[])
       const double peak_error  = std::abs(h.peak - p0) / p0;
       const double width_error = std::abs(h.half_width - a) / a;
       const double imbalance =
-        (frictionless->report.contact_force + Tensor<1, 2>({0., -1000.})).norm() /
+        (frictionless->report.contact_force + Tensor<1, 2>({0., -1000.}))
+          .norm() /
         1000.;
-      out << "hertz, " << refinements << " global refinement(s), mu = 0: "
-          << frictionless->report.n_active << " active nodes" << std::endl
+      out << "hertz, " << refinements
+          << " global refinement(s), mu = 0: " << frictionless->report.n_active
+          << " active nodes" << std::endl
           << "  p0 within 2 %: " << (peak_error < 0.02 ? "yes" : "no")
           << ", a within 2 %: " << (width_error < 0.02 ? "yes" : "no")
           << ", equilibrium to 1e-8: " << (imbalance < 1e-8 ? "yes" : "no")
@@ -95,14 +102,15 @@ main(int argc, char *argv[])
                              ", a error " + std::to_string(width_error) +
                              ", imbalance " + std::to_string(imbalance)));
 
-      const auto friction = testing::solve_contact(
-        {{"Scene/Name", "hertz"},
-         {"Mesh/Global refinements", refinements},
-         {"Contact/Friction coefficient", "0.3"}});
-      const HertzNumbers f = evaluate(*friction);
-      double difference = 0;
+      const auto friction =
+        testing::solve_contact({{"Scene/Name", "hertz"},
+                                {"Mesh/Global refinements", refinements},
+                                {"Contact/Friction coefficient", "0.3"}});
+      const HertzNumbers f          = evaluate(*friction);
+      double             difference = 0;
       for (unsigned int j = 0; j < f.pressures.size(); ++j)
-        difference = std::max(difference, std::abs(f.pressures[j] - h.pressures[j]));
+        difference =
+          std::max(difference, std::abs(f.pressures[j] - h.pressures[j]));
       out << "  mu = 0.3, identical materials: pressure = frictionless "
              "within 5e-3 p0: "
           << (difference < 5e-3 * p0 ? "yes" : "no")

@@ -27,7 +27,7 @@ main(int argc, char *argv[])
   settings.insert(settings.end(),
                   {{"Mesh/Global refinements", "1"},
                    {"Contact/Friction coefficient", "1.5"}});
-  const auto p = testing::solve_contact(settings);
+  const auto   p  = testing::solve_contact(settings);
   const double mu = 1.5;
 
   AssertThrow(p->report.converged, ExcMessage("not converged"));
@@ -52,8 +52,8 @@ main(int argc, char *argv[])
                                      1e-8);
 
   out << "blocks, E1/E2 = 1e3, nu = 0.499, mu = 1.5: converged in "
-      << p->report.newton_iterations << " Newton steps ("
-      << p->report.n_stick << " stick, " << p->report.n_slip
+      << p->report.newton_iterations << " Newton steps (" << p->report.n_stick
+      << " stick, " << p->report.n_slip
       << " slip), residual above the tolerance 1e-10 but at the round-off "
          "floor: yes; contact force = load (1e-8): yes; tractions in the "
          "cone, slip nodes on its edge, open nodes free (1e-8 p_max): yes"

@@ -21,16 +21,18 @@ struct Snapshot
 };
 
 Snapshot
-run(const std::string &cell_type, const std::string &pressure, const std::string &scale)
+run(const std::string &cell_type,
+    const std::string &pressure,
+    const std::string &scale)
 {
-  const auto problem = testing::solve_contact(
-    {{"Scene/Name", "blocks"},
-     {"Mesh/Cell type", cell_type},
-     {"Mesh/Global refinements", "2"},
-     {"Scene/Blocks/Pressure", pressure},
-     {"Contact/Complementarity scale", scale}});
+  const auto problem =
+    testing::solve_contact({{"Scene/Name", "blocks"},
+                            {"Mesh/Cell type", cell_type},
+                            {"Mesh/Global refinements", "2"},
+                            {"Scene/Blocks/Pressure", pressure},
+                            {"Contact/Complementarity scale", scale}});
   Snapshot s;
-  s.states  = problem->solver->node_states();
+  s.states = problem->solver->node_states();
   // (l2_norm() of a ghosted vector is not defined in parallel.)
   double squares = 0;
   for (const auto i : problem->bodies[0]->locally_owned_dof_set())
@@ -38,9 +40,9 @@ run(const std::string &cell_type, const std::string &pressure, const std::string
   s.u1_norm = std::sqrt(Utilities::MPI::sum(squares, MPI_COMM_WORLD));
   for (const auto &n : s.states)
     s.sets += to_string(n.status)[0];
-  const double p       = std::stod(pressure);
+  const double       p = std::stod(pressure);
   const Tensor<1, 2> applied({0., -p * 100.});
-  const double imbalance =
+  const double       imbalance =
     (problem->report.contact_force + applied).norm() / applied.norm();
   AssertThrow(imbalance < 1e-8,
               ExcMessage("imbalance " + std::to_string(imbalance)));
@@ -59,10 +61,11 @@ difference(const Snapshot &a, const Snapshot &b, const double factor)
   for (unsigned int j = 0; j < a.states.size(); ++j)
     {
       p = std::max(p, a.states[j].pressure);
-      d = std::max({d,
-                    std::abs(a.states[j].pressure - factor * b.states[j].pressure),
-                    std::abs(a.states[j].tangential_traction -
-                             factor * b.states[j].tangential_traction)});
+      d = std::max(
+        {d,
+         std::abs(a.states[j].pressure - factor * b.states[j].pressure),
+         std::abs(a.states[j].tangential_traction -
+                  factor * b.states[j].tangential_traction)});
     }
   return d / p;
 }
@@ -75,8 +78,8 @@ main(int argc, char *argv[])
 
   for (const std::string cell_type : {"quadrilateral", "triangle"})
     {
-      const Snapshot base = run(cell_type, "10", "1");
-      unsigned int n_stick = 0, n_slip = 0;
+      const Snapshot base    = run(cell_type, "10", "1");
+      unsigned int   n_stick = 0, n_slip = 0;
       for (const auto &s : base.states)
         {
           n_stick += s.status == ContactStatus::stick;
@@ -95,8 +98,8 @@ main(int argc, char *argv[])
           const double   d      = difference(base, scaled, 1. / factor);
           const double   du =
             std::abs(scaled.u1_norm / factor - base.u1_norm) / base.u1_norm;
-          out << "  loads x " << factor << ": same sets: "
-              << (scaled.sets == base.sets ? "yes" : "no")
+          out << "  loads x " << factor
+              << ": same sets: " << (scaled.sets == base.sets ? "yes" : "no")
               << ", multipliers and displacements scale to 1e-8: "
               << (d < 1e-8 && du < 1e-8 ? "yes" : "no") << std::endl;
           AssertThrow(scaled.sets == base.sets && d < 1e-8 && du < 1e-8,
@@ -112,21 +115,22 @@ main(int argc, char *argv[])
             std::abs(other.u1_norm - base.u1_norm) / base.u1_norm;
           out << "  complementarity scale " << scale
               << ": same solution to 1e-8: "
-              << (d < 1e-8 && du < 1e-8 && other.sets == base.sets ? "yes" : "no")
+              << (d < 1e-8 && du < 1e-8 && other.sets == base.sets ? "yes" :
+                                                                     "no")
               << std::endl;
           AssertThrow(d < 1e-8 && du < 1e-8 && other.sets == base.sets,
                       ExcMessage("scale dependence: " + std::to_string(d)));
         }
 
       // Mirror symmetry: node j and node n-1-j (sorted along x).
-      double       p = 0, asymmetry = 0;
-      const auto & s = base.states;
-      const auto   n = s.size();
+      double      p = 0, asymmetry = 0;
+      const auto &s = base.states;
+      const auto  n = s.size();
       for (unsigned int j = 0; j < n; ++j)
         {
           p = std::max(p, s[j].pressure);
-          AssertThrow(std::abs(s[j].position[0] + s[n - 1 - j].position[0] - 200) <
-                        1e-10,
+          AssertThrow(std::abs(s[j].position[0] + s[n - 1 - j].position[0] -
+                               200) < 1e-10,
                       ExcMessage("slave nodes not symmetric"));
           asymmetry = std::max({asymmetry,
                                 std::abs(s[j].pressure - s[n - 1 - j].pressure),

@@ -46,8 +46,8 @@ namespace
   }
 
   void
-  compare(const std::string &name,
-          const Settings &   settings,
+  compare(const std::string  &name,
+          const Settings     &settings,
           ConditionalOStream &out)
   {
     const auto direct = testing::solve_contact(with_solver(settings, "direct"));
@@ -61,14 +61,13 @@ namespace
                            " (direct) and " +
                            std::to_string(amg->report.newton_iterations) +
                            " (amg)"));
-    const auto &last_solve = amg->solver->last_linear_solver_report();
-    const std::string method = last_solve.method;
+    const auto       &last_solve = amg->solver->last_linear_solver_report();
+    const std::string method     = last_solve.method;
 
     out << name << ": " << amg->report.n_active << " active ("
-        << amg->report.n_stick << " stick, " << amg->report.n_slip
-        << " slip), " << amg->report.newton_iterations
-        << " Newton steps with either solver, " << method
-        << ": same sets, tractions and displacements within 1e-8"
+        << amg->report.n_stick << " stick, " << amg->report.n_slip << " slip), "
+        << amg->report.newton_iterations << " Newton steps with either solver, "
+        << method << ": same sets, tractions and displacements within 1e-8"
         << (last_solve.preconditioner_reused ?
               "; last step with the previous step's AMG hierarchy" :
               "; last step with a new AMG hierarchy")
@@ -88,17 +87,17 @@ namespace
                                {"Contact/Tolerance", "1e-12"}};
     const auto direct = testing::solve_contact(with_solver(settings, "direct"));
     const auto amg    = testing::solve_contact(with_solver(settings, "amg"));
-    testing::assert_same_contact_solution("tighter Krylov solve", *direct,
+    testing::assert_same_contact_solution("tighter Krylov solve",
+                                          *direct,
                                           *amg);
     const double residual = amg->report.residual_history.back();
     AssertThrow(amg->report.converged && residual <= 1e-12 &&
                   amg->report.n_tighter_linear_solves == 1,
-                ExcMessage("tighter Krylov solve: converged " +
-                           std::to_string(amg->report.converged) +
-                           ", residual " + Utilities::to_string(residual) +
-                           ", tighter solves " +
-                           std::to_string(
-                             amg->report.n_tighter_linear_solves)));
+                ExcMessage(
+                  "tighter Krylov solve: converged " +
+                  std::to_string(amg->report.converged) + ", residual " +
+                  Utilities::to_string(residual) + ", tighter solves " +
+                  std::to_string(amg->report.n_tighter_linear_solves)));
     out << "hertz Q1, mu = 0.3, Contact/Tolerance = 1e-12: one tighter "
            "Krylov solve of the converged sets, residual below 1e-12, same "
            "solution as direct within 1e-8"
@@ -132,8 +131,8 @@ namespace
           out << "patch, degree " << degree << ", " << cell_type << ", "
               << problem->solver->last_linear_solver_report().method
               << ": pressure = p at all "
-              << problem->solver->node_states().size()
-              << " slave nodes (1e-8)" << std::endl;
+              << problem->solver->node_states().size() << " slave nodes (1e-8)"
+              << std::endl;
         }
   }
 
@@ -145,7 +144,7 @@ namespace
     const Settings settings = {{"Scene/Name", "hertz"},
                                {"Scene/Hertz/Hold axis", "true"},
                                {"Mesh/Global refinements", "1"}};
-    const double mu = 0.3;
+    const double   mu       = 0.3;
     std::array<std::array<TrilinosWrappers::MPI::Vector, 2>, 2> corrected;
     unsigned int                                                n_projected = 0;
     for (const unsigned int k : {0u, 1u})
@@ -168,8 +167,8 @@ namespace
                                                 mu,
                                                 p->parameters.linear_solver);
         AssertThrow(!c.skipped, ExcMessage("correction skipped"));
-        corrected[k]  = c.corrected_displacement;
-        n_projected   = c.n_projected_nodes;
+        corrected[k] = c.corrected_displacement;
+        n_projected  = c.n_projected_nodes;
       }
     const double difference =
       testing::relative_difference(corrected[0], corrected[1]);

@@ -21,32 +21,32 @@ using namespace coulomb_adapt;
 namespace
 {
   void
-  compare(const std::string &                                      name,
+  compare(const std::string                                      &name,
           const std::vector<std::pair<std::string, std::string>> &settings,
-          const unsigned int                                       n_levels,
-          ConditionalOStream &                                     out)
+          const unsigned int                                      n_levels,
+          ConditionalOStream                                     &out)
   {
     const auto cold = testing::solve_contact(settings);
 
     // The same problem again, its sets predicted on n_levels coarser meshes.
-    auto nested        = testing::solve_contact_setup(settings);
+    auto        nested = testing::solve_contact_setup(settings);
     const auto &p      = nested->parameters;
     std::vector<NestedIterationLevel> levels;
-    nested->solver->warm_start_from(predict_contact_sets_on_coarser_meshes(
-      MPI_COMM_WORLD,
-      *nested->scene,
-      p.mesh.cell_type,
-      p.mesh.global_refinements,
-      n_levels,
-      p.finite_elements,
-      p.contact,
-      p.linear_solver,
-      levels));
+    nested->solver->warm_start_from(
+      predict_contact_sets_on_coarser_meshes(MPI_COMM_WORLD,
+                                             *nested->scene,
+                                             p.mesh.cell_type,
+                                             p.mesh.global_refinements,
+                                             n_levels,
+                                             p.finite_elements,
+                                             p.contact,
+                                             p.linear_solver,
+                                             levels));
     nested->report = nested->solver->solve();
 
     AssertThrow(levels.size() == n_levels, ExcInternalError());
     testing::assert_same_contact_solution(name, *cold, *nested);
-    const auto &a = cold->solver->node_states();
+    const auto        &a        = cold->solver->node_states();
     const unsigned int n_cold   = cold->report.newton_iterations;
     const unsigned int n_nested = nested->report.newton_iterations;
     AssertThrow(n_nested < n_cold && n_nested <= 4,
@@ -54,9 +54,9 @@ namespace
                            std::to_string(n_cold) + ", nested " +
                            std::to_string(n_nested)));
 
-    out << name << ": " << a.size() << " slave nodes, "
-        << cold->report.n_active << " active; Newton steps on the fine mesh: "
-        << n_cold << " from the initial gap, " << n_nested
+    out << name << ": " << a.size() << " slave nodes, " << cold->report.n_active
+        << " active; Newton steps on the fine mesh: " << n_cold
+        << " from the initial gap, " << n_nested
         << " after nested iteration (coarser meshes:";
     for (const auto &l : levels)
       out << " " << l.n_dofs << " DoFs " << l.newton_iterations << " steps;";
@@ -68,11 +68,11 @@ namespace
   // The program: nested iteration on the first cycle, or the reason why not.
   void
   check_log(const std::vector<std::pair<std::string, std::string>> &settings,
-            const std::string &                                      expected,
-            ConditionalOStream &                                     out)
+            const std::string                                      &expected,
+            ConditionalOStream                                     &out)
   {
-    ParameterHandler   prm;
-    const Parameters   parameters = testing::make_parameters(prm, settings);
+    ParameterHandler prm;
+    const Parameters parameters = testing::make_parameters(prm, settings);
     prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
     std::ostringstream log;
     TwoBodyProblem     problem(MPI_COMM_WORLD, parameters, prm, "test", log);

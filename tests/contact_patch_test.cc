@@ -18,33 +18,33 @@ main(int argc, char *argv[])
   const double                     p = 2.5, width = 10;
 
   for (const std::string degree : {"1", "2"})
-  for (const std::string cell_type : {"quadrilateral", "triangle"})
-    for (const std::string mu : {"0", "0.3"})
-      {
-        const auto problem = testing::solve_contact(
-          {{"Scene/Name", "patch"},
-           {"Mesh/Cell type", cell_type},
-           {"Finite elements/Polynomial degree", degree},
-           {"Scene/Patch/Pressure", "2.5"},
-           {"Scene/Patch/Upper body subdivisions", "3, 2"},
-           {"Scene/Patch/Lower body subdivisions", "10, 4"},
-           {"Contact/Friction coefficient", mu}});
-        double worst = 0;
-        for (const auto &s : problem->solver->node_states())
-          worst = std::max(worst, std::abs(s.pressure - p) / p);
-        out << "patch, degree " << degree << ", " << cell_type
-            << ", mu = " << mu << ": "
-            << problem->solver->node_states().size()
-            << " slave nodes, all active: "
-            << (problem->report.n_active ==
-                    problem->solver->node_states().size() ?
-                  "yes" :
-                  "no")
-            << ", pressure = p to 1e-8: " << (worst < 1e-8 ? "yes" : "no")
-            << std::endl;
-        AssertThrow(worst < 1e-8,
-                    ExcMessage("pressure error " + std::to_string(worst)));
-      }
+    for (const std::string cell_type : {"quadrilateral", "triangle"})
+      for (const std::string mu : {"0", "0.3"})
+        {
+          const auto problem = testing::solve_contact(
+            {{"Scene/Name", "patch"},
+             {"Mesh/Cell type", cell_type},
+             {"Finite elements/Polynomial degree", degree},
+             {"Scene/Patch/Pressure", "2.5"},
+             {"Scene/Patch/Upper body subdivisions", "3, 2"},
+             {"Scene/Patch/Lower body subdivisions", "10, 4"},
+             {"Contact/Friction coefficient", mu}});
+          double worst = 0;
+          for (const auto &s : problem->solver->node_states())
+            worst = std::max(worst, std::abs(s.pressure - p) / p);
+          out << "patch, degree " << degree << ", " << cell_type
+              << ", mu = " << mu << ": "
+              << problem->solver->node_states().size()
+              << " slave nodes, all active: "
+              << (problem->report.n_active ==
+                      problem->solver->node_states().size() ?
+                    "yes" :
+                    "no")
+              << ", pressure = p to 1e-8: " << (worst < 1e-8 ? "yes" : "no")
+              << std::endl;
+          AssertThrow(worst < 1e-8,
+                      ExcMessage("pressure error " + std::to_string(worst)));
+        }
 
   for (const std::string cell_type : {"quadrilateral", "triangle"})
     {
@@ -64,9 +64,9 @@ main(int argc, char *argv[])
       out << "patch, " << cell_type
           << ", mu = 0.3, nu = 0.4 on 0.1: contact force = applied load to "
              "1e-8: "
-          << (imbalance < 1e-8 ? "yes" : "no") << " (" << problem->report.n_stick
-          << " stick, " << problem->report.n_slip << " slip nodes)"
-          << std::endl;
+          << (imbalance < 1e-8 ? "yes" : "no") << " ("
+          << problem->report.n_stick << " stick, " << problem->report.n_slip
+          << " slip nodes)" << std::endl;
       AssertThrow(imbalance < 1e-8,
                   ExcMessage("imbalance " + std::to_string(imbalance)));
     }

@@ -29,7 +29,7 @@ namespace
 
   struct NodeRow
   {
-    double pressure, traction, slip;
+    double      pressure, traction, slip;
     std::string status;
   };
 
@@ -48,15 +48,17 @@ namespace
         std::stringstream        s(line);
         for (std::string v; std::getline(s, v, ',');)
           c.push_back(v);
-        rows.push_back(
-          {std::stod(c.at(5)), std::stod(c.at(6)), std::stod(c.at(8)), c.at(9)});
+        rows.push_back({std::stod(c.at(5)),
+                        std::stod(c.at(6)),
+                        std::stod(c.at(8)),
+                        c.at(9)});
       }
     return rows;
   }
 
   void
-  run(const std::string &tangential_displacement,
-      const std::string &tangential_steps,
+  run(const std::string  &tangential_displacement,
+      const std::string  &tangential_steps,
       ConditionalOStream &out)
   {
     ParameterHandler prm;
@@ -74,13 +76,14 @@ namespace
     TwoBodyProblem     problem(MPI_COMM_WORLD, parameters, prm, "test", log);
     problem.run(); // throws with a diagnosis if it does not converge
     const ErrorEstimate &e = problem.last_error_estimate();
-    const bool damped = log.str().find("damped set changes") != std::string::npos;
+    const bool           damped =
+      log.str().find("damped set changes") != std::string::npos;
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
       return;
 
-    const double mu   = 0.3;
-    const auto   rows = read_contact_csv();
-    double p_max = 0, cone = 0, edge = 0, total_slip = 0;
+    const double mu    = 0.3;
+    const auto   rows  = read_contact_csv();
+    double       p_max = 0, cone = 0, edge = 0, total_slip = 0;
     unsigned int n_stick = 0, n_slip = 0;
     for (const auto &r : rows)
       p_max = std::max(p_max, r.pressure);
@@ -90,16 +93,19 @@ namespace
         if (r.status == "slip")
           {
             ++n_slip;
-            edge = std::max(edge, std::abs(std::abs(r.traction) - mu * r.pressure));
+            edge =
+              std::max(edge, std::abs(std::abs(r.traction) - mu * r.pressure));
           }
         n_stick += (r.status == "stick");
         if (r.status != "open")
           total_slip = std::max(total_slip, std::abs(r.slip));
       }
     AssertThrow(cone <= 1e-8 * p_max,
-                ExcMessage("traction outside the cone: " + std::to_string(cone)));
+                ExcMessage("traction outside the cone: " +
+                           std::to_string(cone)));
     AssertThrow(edge <= 1e-8 * p_max,
-                ExcMessage("slip node off the cone's edge: " + std::to_string(edge)));
+                ExcMessage("slip node off the cone's edge: " +
+                           std::to_string(edge)));
     double increment = 0;
     for (const auto &f : e.correction.fields)
       increment = std::max(increment, std::abs(f.slip));

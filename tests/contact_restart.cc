@@ -25,9 +25,9 @@
 
 #include <coulomb_adapt/app/two_body_problem.h>
 
-#include <nlohmann/json.hpp>
-
 #include "contact_test_utilities.h"
+
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 
@@ -110,17 +110,17 @@ main(int argc, char *argv[])
                          std::to_string(scaled->report.newton_iterations) +
                          "): the test no longer needs a restart"));
 
-  std::string log;
-  const nlohmann::json cycle = run_program(
-    with(case_241, {{"Contact/Maximum Newton iterations", "20"}}), log);
+  std::string          log;
+  const nlohmann::json cycle =
+    run_program(with(case_241, {{"Contact/Maximum Newton iterations", "20"}}),
+                log);
   assert_in_log(log, "did not converge in 20 steps");
   assert_in_log(log,
                 "solving again with the natural constants c = E_c/h "
                 "('Contact/Complementarity scale' = 1 instead of 1000), "
                 "from the initial gap");
   AssertThrow(cycle["converged"].get<bool>(), ExcInternalError());
-  AssertThrow(cycle.value("retried_with_natural_complementarity_scale",
-                          false),
+  AssertThrow(cycle.value("retried_with_natural_complementarity_scale", false),
               ExcMessage("summary.json does not record the restart"));
   AssertThrow(!cycle.contains("retried_from_initial_gap"),
               ExcMessage("a cold start was restarted from the initial gap"));
@@ -133,7 +133,7 @@ main(int argc, char *argv[])
   const double p_max = r.max_contact_pressure;
   const double p_diff =
     std::abs(cycle["max_contact_pressure"].get<double>() - p_max) / p_max;
-  const double load = std::abs(r.contact_force[1]);
+  const double load   = std::abs(r.contact_force[1]);
   double       f_diff = 0;
   for (unsigned int d = 0; d < 2; ++d)
     f_diff = std::max(f_diff,
@@ -164,7 +164,7 @@ main(int argc, char *argv[])
     }
   catch (const std::exception &e)
     {
-      stopped = true;
+      stopped                = true;
       const std::string what = e.what();
       AssertThrow(what.find("can slide freely") != std::string::npos,
                   ExcMessage("unexpected stop: " + what));
@@ -177,22 +177,25 @@ main(int argc, char *argv[])
 
   if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     return 0;
-  const nlohmann::json full = run_program(
-    with(case_241,
-         {{"Mesh/Global refinements", "1"}, {"Contact/Nested iteration minimum DoFs", "0"}}),
-    log);
-  assert_in_log(log, "contact: Newton starts from the sets of the coarser "
-                     "meshes (nested iteration)");
+  const nlohmann::json full =
+    run_program(with(case_241,
+                     {{"Mesh/Global refinements", "1"},
+                      {"Contact/Nested iteration minimum DoFs", "0"}}),
+                log);
+  assert_in_log(log,
+                "contact: Newton starts from the sets of the coarser "
+                "meshes (nested iteration)");
   assert_in_log(log, "solving again from the initial gap");
-  assert_in_log(log, "solving again with the natural constants c = E_c/h "
-                     "('Contact/Complementarity scale' = 1 instead of 1000), "
-                     "from the predicted sets");
-  AssertThrow(full["converged"].get<bool>() &&
-                full.value("retried_from_initial_gap", false) &&
-                full.value("retried_with_natural_complementarity_scale",
-                           false) &&
-                full["newton_iterations_of_stopped_starts"].get<unsigned int>() == 80,
-              ExcMessage("case 241: " + full.dump()));
+  assert_in_log(log,
+                "solving again with the natural constants c = E_c/h "
+                "('Contact/Complementarity scale' = 1 instead of 1000), "
+                "from the predicted sets");
+  AssertThrow(
+    full["converged"].get<bool>() &&
+      full.value("retried_from_initial_gap", false) &&
+      full.value("retried_with_natural_complementarity_scale", false) &&
+      full["newton_iterations_of_stopped_starts"].get<unsigned int>() == 80,
+    ExcMessage("case 241: " + full.dump()));
   AssertThrow(full["active_nodes"].get<unsigned int>() == 47 &&
                 full["stick_nodes"].get<unsigned int>() == 11 &&
                 full["slip_nodes"].get<unsigned int>() == 36,

@@ -31,11 +31,11 @@ using namespace coulomb_adapt;
 namespace
 {
   void
-  check(const std::string &name,
-        const std::string &mesh_size,
-        const std::string &hold_axis,
-        const std::string &line_load,
-        const bool         expect_free,
+  check(const std::string  &name,
+        const std::string  &mesh_size,
+        const std::string  &hold_axis,
+        const std::string  &line_load,
+        const bool          expect_free,
         ConditionalOStream &out)
   {
     const auto p =
@@ -60,8 +60,8 @@ main(int argc, char *argv[])
 
   check("hertz, contact mesh 5 a, no hold", "5", "false", "1000", true, out);
   check("hertz, contact mesh 5 a, axis held", "5", "true", "1000", false, out);
-  check("hertz, contact mesh 0.5 a, no hold", "0.5", "false", "1000", false,
-        out);
+  check(
+    "hertz, contact mesh 0.5 a, no hold", "0.5", "false", "1000", false, out);
   check("hertz, line load 1e-7, no hold", "0.1", "false", "1e-7", false, out);
 
   // Only the held axis: rows (1, 0, -(y - y0)) for the axis nodes.
@@ -73,7 +73,7 @@ main(int argc, char *argv[])
   for (const Point<2> centre :
        {Point<2>(0, 0), Point<2>(0, 50), Point<2>(-30, 50), Point<2>(40, -20)})
     {
-      FullMatrix<double> gram = p->bodies[0]->support_gram(centre);
+      FullMatrix<double>       gram = p->bodies[0]->support_gram(centre);
       const FullMatrix<double> moved =
         move_rotation_centre(about_origin, centre - Point<2>());
       for (unsigned int a = 0; a < 3; ++a)

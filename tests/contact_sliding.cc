@@ -20,17 +20,17 @@ main(int argc, char *argv[])
   auto                             out = testing::root_output();
 
   {
-    const auto problem = testing::solve_contact(
-      {{"Scene/Name", "patch"},
-       {"Scene/Patch/Shear traction", "0.1"},
-       {"Scene/Patch/Hold upper body", "false"}});
+    const auto problem =
+      testing::solve_contact({{"Scene/Name", "patch"},
+                              {"Scene/Patch/Shear traction", "0.1"},
+                              {"Scene/Patch/Hold upper body", "false"}});
     const double Q         = 0.1 * 10;
     const double imbalance = std::abs(problem->report.contact_force[0] + Q) / Q;
     out << "Q = 0.33 mu N: converged, all " << problem->report.n_active
         << " active nodes stick: "
         << (problem->report.n_stick == problem->report.n_active ? "yes" : "no")
-        << ", tangential force = Q to 1e-8: " << (imbalance < 1e-8 ? "yes" : "no")
-        << std::endl;
+        << ", tangential force = Q to 1e-8: "
+        << (imbalance < 1e-8 ? "yes" : "no") << std::endl;
     AssertThrow(problem->report.n_stick == problem->report.n_active &&
                   imbalance < 1e-8,
                 ExcMessage("sticking block"));
@@ -74,15 +74,15 @@ main(int argc, char *argv[])
           }
         p.report = p.solver->solve();
       }
-    const double mu = 0.3;
+    const double mu    = 0.3;
     double       p_max = 0, worst = 0;
     for (const auto &s : p.solver->node_states())
       p_max = std::max(p_max, s.pressure);
     for (const auto &s : p.solver->node_states())
       if (s.status != ContactStatus::open)
-        worst = std::max(worst,
-                         std::abs(std::abs(s.tangential_traction) -
-                                  mu * s.pressure));
+        worst =
+          std::max(worst,
+                   std::abs(std::abs(s.tangential_traction) - mu * s.pressure));
     // Resultants along the nodal normals and tangents (on the curved disc
     // the x and y components mix them).
     double P = 0, Q = 0;

@@ -59,11 +59,11 @@ main(int argc, char *argv[])
   // component (body 1 holds no Dirichlet data: K has no constrained rows).
   Tensor<1, 2> round_off;
   {
-    const auto &body = *p->bodies[0];
-    const auto &K    = body.system_matrix();
-    const auto &f    = body.system_rhs();
-    const auto &u    = body.solution();
-    const auto &fe   = body.dof_handler().get_fe();
+    const auto                          &body = *p->bodies[0];
+    const auto                          &K    = body.system_matrix();
+    const auto                          &f    = body.system_rhs();
+    const auto                          &u    = body.solution();
+    const auto                          &fe   = body.dof_handler().get_fe();
     std::vector<unsigned int>            component(body.dof_handler().n_dofs());
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : body.dof_handler().active_cell_iterators())
@@ -78,9 +78,8 @@ main(int argc, char *argv[])
         unsigned int n_terms   = 0;
         for (auto e = K.begin(i); e != K.end(i); ++e, ++n_terms)
           magnitude += std::abs(e->value() * u(e->column()));
-        round_off[component[i]] += (n_terms + 1) *
-                                   std::numeric_limits<double>::epsilon() *
-                                   magnitude;
+        round_off[component[i]] +=
+          (n_terms + 1) * std::numeric_limits<double>::epsilon() * magnitude;
       }
   }
   const Tensor<1, 2> applied({0., -10. * 100.});
@@ -133,9 +132,8 @@ main(int argc, char *argv[])
   out << "blocks 16x16 on 2x2, triangles, E1/E2 = 1e3, nu = 0.499, mu = 0.3: "
          "converged: yes, in 10-40 Newton steps: "
       << (n_steps >= 10 && n_steps <= 40 ? "yes" : "no") << " ("
-      << p->report.n_active << " active, " << p->report.n_stick
-      << " stick, " << p->report.n_slip << " slip, p_max = "
-      << std::setprecision(4) << p_max
+      << p->report.n_active << " active, " << p->report.n_stick << " stick, "
+      << p->report.n_slip << " slip, p_max = " << std::setprecision(4) << p_max
       << " MPa); contact force = load to the round-off of body 1's nodal "
          "forces: yes; tractions in the cone, "
          "slip nodes on its edge, open nodes free (1e-8 p_max): yes; same "

@@ -6,9 +6,8 @@
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/contact_solver.h>
-#include <coulomb_adapt/scenes/scene_factory.h>
-
 #include <coulomb_adapt/indicator/error_estimate.h>
+#include <coulomb_adapt/scenes/scene_factory.h>
 
 #include "test_utilities.h"
 
@@ -47,13 +46,13 @@ namespace coulomb_adapt
       p->scene      = scenes::create_scene(p->parameters, p->prm);
       for (unsigned int b = 0; b < 2; ++b)
         {
-          p->bodies[b] = std::make_unique<ElasticBody>(
-            MPI_COMM_WORLD,
-            *p->scene,
-            b,
-            p->parameters.mesh.cell_type,
-            p->parameters.mesh.global_refinements,
-            p->parameters.finite_elements);
+          p->bodies[b] =
+            std::make_unique<ElasticBody>(MPI_COMM_WORLD,
+                                          *p->scene,
+                                          b,
+                                          p->parameters.mesh.cell_type,
+                                          p->parameters.mesh.global_refinements,
+                                          p->parameters.finite_elements);
           p->bodies[b]->setup_system();
           p->bodies[b]->assemble_system();
         }
@@ -92,10 +91,10 @@ namespace coulomb_adapt
               difference += std::pow(a[k][i] - b[k][i], 2);
               norm += std::pow(a[k][i], 2);
             }
-          worst = std::max(
-            worst,
-            std::sqrt(Utilities::MPI::sum(difference, MPI_COMM_WORLD) /
-                      Utilities::MPI::sum(norm, MPI_COMM_WORLD)));
+          worst =
+            std::max(worst,
+                     std::sqrt(Utilities::MPI::sum(difference, MPI_COMM_WORLD) /
+                               Utilities::MPI::sum(norm, MPI_COMM_WORLD)));
         }
       return worst;
     }
@@ -132,12 +131,12 @@ namespace coulomb_adapt
      * pressure and tangential traction to 1e-8 of the largest pressure,
      * displacements to 1e-8 relative. Throws with @p name otherwise. */
     inline void
-    assert_same_contact_solution(const std::string &         name,
+    assert_same_contact_solution(const std::string          &name,
                                  const SolvedContactProblem &a,
                                  const SolvedContactProblem &b)
     {
-      const auto &s = a.solver->node_states();
-      const auto &t = b.solver->node_states();
+      const auto &s         = a.solver->node_states();
+      const auto &t         = b.solver->node_states();
       const auto  signature = [](const std::vector<ContactNodeState> &states) {
         std::string result;
         for (const auto &n : states)
@@ -145,16 +144,16 @@ namespace coulomb_adapt
         return result;
       };
       AssertThrow(signature(s) == signature(t),
-                  ExcMessage(name + ": sets differ:\n" + signature(s) +
-                             "\n" + signature(t)));
+                  ExcMessage(name + ": sets differ:\n" + signature(s) + "\n" +
+                             signature(t)));
       double p_max = 0, d = 0;
       for (unsigned int j = 0; j < s.size(); ++j)
         {
           p_max = std::max(p_max, s[j].pressure);
-          d     = std::max({d,
-                        std::abs(s[j].pressure - t[j].pressure),
-                        std::abs(s[j].tangential_traction -
-                                 t[j].tangential_traction)});
+          d     = std::max(
+            {d,
+                 std::abs(s[j].pressure - t[j].pressure),
+                 std::abs(s[j].tangential_traction - t[j].tangential_traction)});
         }
       AssertThrow(d <= 1e-8 * p_max,
                   ExcMessage(name + ": tractions differ by " +
@@ -173,7 +172,7 @@ namespace coulomb_adapt
      * not sliding, open nodes free. Throws with
      * @p name and the worst violation of each otherwise. */
     inline void
-    assert_contact_conditions(const std::string &                  name,
+    assert_contact_conditions(const std::string                   &name,
                               const std::vector<ContactNodeState> &states,
                               const double                         mu,
                               const double                         tolerance)
@@ -184,21 +183,21 @@ namespace coulomb_adapt
       double cone = 0, edge = 0, open = 0, negative = 0;
       for (const auto &s : states)
         if (s.status == ContactStatus::open)
-          open = std::max({open,
-                           std::abs(s.pressure),
-                           std::abs(s.tangential_traction)});
+          open = std::max(
+            {open, std::abs(s.pressure), std::abs(s.tangential_traction)});
         else
           {
             negative = std::max(negative, -s.pressure);
-            cone     = std::max(cone,
-                            std::abs(s.tangential_traction) - mu * s.pressure);
+            cone =
+              std::max(cone, std::abs(s.tangential_traction) - mu * s.pressure);
             if (s.status == ContactStatus::slip)
               edge = std::max(edge,
                               std::abs(s.tangential_traction -
                                        mu * s.slip_sign * s.pressure));
           }
       AssertThrow(std::max({cone, edge, open, negative}) <= tolerance * p_max,
-                  ExcMessage(name + ": contact conditions violated (of the "
+                  ExcMessage(name +
+                             ": contact conditions violated (of the "
                              "largest pressure): cone " +
                              std::to_string(cone / p_max) + ", edge " +
                              std::to_string(edge / p_max) + ", open " +
@@ -208,7 +207,7 @@ namespace coulomb_adapt
       // Slip nodes slide along their traction, stick nodes do not move,
       // to @p tolerance of the largest slip increment (static problems:
       // the slip itself).
-      double max_slip = 0, backward = 0, stuck = 0;
+      double       max_slip = 0, backward = 0, stuck = 0;
       unsigned int n_slip = 0;
       for (const auto &s : states)
         if (s.status != ContactStatus::open)
@@ -234,7 +233,7 @@ namespace coulomb_adapt
      * CellId order (so that it does not depend on the partition). */
     inline std::vector<double>
     gathered_indicators(const std::array<const ElasticBody *, 2> &bodies,
-                        const ErrorEstimate &                     e)
+                        const ErrorEstimate                      &e)
     {
       std::vector<std::pair<std::string, double>> local;
       for (unsigned int b = 0; b < 2; ++b)

@@ -33,8 +33,8 @@ namespace
 
   ErrorEstimate
   cre(const std::array<const ElasticBody *, 2> &bodies,
-      const ContactSolver *                     solver,
-      const Parameters &                        parameters,
+      const ContactSolver                      *solver,
+      const Parameters                         &parameters,
       const bool                                optimise_tractions = true,
       const unsigned int                        degree_increase    = 3)
   {
@@ -71,13 +71,12 @@ main(int argc, char **argv)
            {"Scene/Patch/Upper body subdivisions", "3, 2"},
            {"Scene/Patch/Lower body subdivisions", "10, 4"},
            {"Contact/Friction coefficient", mu}});
-        const ErrorEstimate e =
-          cre({{p->bodies[0].get(), p->bodies[1].get()}},
-              p->solver.get(),
-              p->parameters);
-        const double epsilon_squared = e.epsilon * e.epsilon;
-        out << "  " << cell_type << ", mu = " << mu
-            << ": epsilon^2 < 1e-13: " << (epsilon_squared < 1e-13 ? "yes" : "no")
+        const ErrorEstimate e = cre({{p->bodies[0].get(), p->bodies[1].get()}},
+                                    p->solver.get(),
+                                    p->parameters);
+        const double        epsilon_squared = e.epsilon * e.epsilon;
+        out << "  " << cell_type << ", mu = " << mu << ": epsilon^2 < 1e-13: "
+            << (epsilon_squared < 1e-13 ? "yes" : "no")
             << ", node systems and local problems consistent to 1e-12: "
             << (e.node_system_defect < 1e-12 && e.local_problem_defect < 1e-12 ?
                   "yes" :
@@ -140,7 +139,7 @@ main(int argc, char **argv)
               << (c.effectivity <= theta_classical ? "yes" : "no")
               << "; k = 4: " << 100 * resolved << " %, k = 3 within 5 %: "
               << (std::abs(e.epsilon - resolved) < 0.05 * resolved ? "yes" :
-                                                                      "no")
+                                                                     "no")
               << std::endl;
           AssertThrow(c.effectivity >= 1 && c.effectivity <= 2 &&
                         theta_classical >= c.effectivity &&
@@ -157,16 +156,17 @@ main(int argc, char **argv)
   // meshes); triangles are covered against the exact solution above.
   for (const std::string cell_type : {"quadrilateral"})
     {
-      const Settings settings = {{"Scene/Name", "blocks"},
-                                 {"Mesh/Cell type", cell_type},
-                                 {"Scene/Blocks/Upper body subdivisions", "2, 2"},
-                                 {"Scene/Blocks/Lower body subdivisions", "4, 4"},
-                                 {"Scene/Blocks/Hold centre line", "true"},
-                                 {"Contact/Friction coefficient", "0"}};
-      const auto          p = testing::solve_contact(settings);
-      const auto          bodies = std::array<const ElasticBody *, 2>{
+      const Settings settings = {
+        {"Scene/Name", "blocks"},
+        {"Mesh/Cell type", cell_type},
+        {"Scene/Blocks/Upper body subdivisions", "2, 2"},
+        {"Scene/Blocks/Lower body subdivisions", "4, 4"},
+        {"Scene/Blocks/Hold centre line", "true"},
+        {"Contact/Friction coefficient", "0"}};
+      const auto p      = testing::solve_contact(settings);
+      const auto bodies = std::array<const ElasticBody *, 2>{
         {p->bodies[0].get(), p->bodies[1].get()}};
-      const ErrorEstimate e = cre(bodies, p->solver.get(), p->parameters);
+      const ErrorEstimate   e = cre(bodies, p->solver.get(), p->parameters);
       std::array<double, 2> exact;
       for (const unsigned int R : {2u, 3u})
         {
@@ -179,8 +179,8 @@ main(int argc, char **argv)
           << " %, exact (reference R = 3) " << 100 * exact[1]
           << " % (R = 2: " << 100 * exact[0] << " %), effectivity "
           << std::setprecision(2) << e.epsilon / exact[1]
-          << std::setprecision(3) << ", >= 1: "
-          << (e.epsilon >= exact[1] ? "yes" : "no") << std::endl;
+          << std::setprecision(3)
+          << ", >= 1: " << (e.epsilon >= exact[1] ? "yes" : "no") << std::endl;
       AssertThrow(e.epsilon >= exact[1] && exact[1] >= exact[0],
                   ExcMessage("blocks mu = 0: cre below the exact error"));
     }
@@ -200,17 +200,17 @@ main(int argc, char **argv)
       {p1->bodies[0].get(), p1->bodies[1].get()}};
     const auto b2 = std::array<const ElasticBody *, 2>{
       {p2->bodies[0].get(), p2->bodies[1].get()}};
-    const ErrorEstimate e1 = cre(b1, p1->solver.get(), p1->parameters);
-    const ErrorEstimate e2 = cre(b2, p2->solver.get(), p2->parameters);
-    double sum = 0;
+    const ErrorEstimate e1  = cre(b1, p1->solver.get(), p1->parameters);
+    const ErrorEstimate e2  = cre(b2, p2->solver.get(), p2->parameters);
+    double              sum = 0;
     for (unsigned int b = 0; b < 2; ++b)
       sum += e1.contribution_squared[b].l1_norm();
     sum = Utilities::MPI::sum(sum, MPI_COMM_WORLD) / e1.normalisation_squared;
     const double sum_mismatch =
       std::abs(sum - e1.epsilon * e1.epsilon) / (e1.epsilon * e1.epsilon);
-    const auto   i1 = testing::gathered_indicators(b1, e1);
-    const auto   i2 = testing::gathered_indicators(b2, e2);
-    double       largest_change = std::abs(e1.epsilon - e2.epsilon) / e1.epsilon;
+    const auto i1             = testing::gathered_indicators(b1, e1);
+    const auto i2             = testing::gathered_indicators(b2, e2);
+    double     largest_change = std::abs(e1.epsilon - e2.epsilon) / e1.epsilon;
     for (unsigned int i = 0; i < i1.size(); ++i)
       largest_change =
         std::max(largest_change, std::abs(i1[i] - i2[i]) / e1.epsilon);

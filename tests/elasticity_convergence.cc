@@ -20,18 +20,19 @@ check(const std::string &cell_type,
       const std::string &plane_model = "plane strain")
 {
   ParameterHandler prm;
-  const Parameters parameters = testing::make_parameters(
-    prm,
-    {{"Scene/Name", "manufactured"},
-     {"Mesh/Cell type", cell_type},
-     {"Finite elements/Polynomial degree", std::to_string(degree)},
-     {"Finite elements/Plane model", plane_model}});
+  const Parameters parameters =
+    testing::make_parameters(prm,
+                             {{"Scene/Name", "manufactured"},
+                              {"Mesh/Cell type", cell_type},
+                              {"Finite elements/Polynomial degree",
+                               std::to_string(degree)},
+                              {"Finite elements/Plane model", plane_model}});
   const auto scene = scenes::create_scene(parameters, prm);
   auto       out   = testing::root_output();
 
   for (unsigned int b = 0; b < 2; ++b)
     {
-      ElasticBody body(MPI_COMM_WORLD,
+      ElasticBody         body(MPI_COMM_WORLD,
                        *scene,
                        b,
                        parameters.mesh.cell_type,
@@ -39,7 +40,7 @@ check(const std::string &cell_type,
                        parameters.finite_elements);
       ConvergenceTable    table;
       std::vector<double> l2, energy;
-      const unsigned int n_cycles = (degree == 1) ? 5 : 4;
+      const unsigned int  n_cycles = (degree == 1) ? 5 : 4;
       for (unsigned int cycle = 0; cycle < n_cycles; ++cycle)
         {
           if (cycle > 0)
@@ -47,9 +48,11 @@ check(const std::string &cell_type,
           body.setup_system();
           body.assemble_system();
           body.solve(parameters.linear_solver);
-          const ElasticityErrors e = compute_elasticity_errors(
-            body, *body.description().exact_displacement);
-          table.add_value("cells", body.triangulation().n_global_active_cells());
+          const ElasticityErrors e =
+            compute_elasticity_errors(body,
+                                      *body.description().exact_displacement);
+          table.add_value("cells",
+                          body.triangulation().n_global_active_cells());
           table.add_value("dofs", body.dof_handler().n_dofs());
           l2.push_back(e.l2);
           energy.push_back(e.energy);
@@ -61,13 +64,14 @@ check(const std::string &cell_type,
       table.set_precision("L2", 3);
       table.set_precision("energy", 3);
       // h halves from one row to the next.
-      table.evaluate_convergence_rates("L2", ConvergenceTable::reduction_rate_log2);
+      table.evaluate_convergence_rates("L2",
+                                       ConvergenceTable::reduction_rate_log2);
       table.evaluate_convergence_rates("energy",
                                        ConvergenceTable::reduction_rate_log2);
 
       out << (cell_type == "triangle" ? "P" : "Q") << degree << ", "
-          << plane_model << ", body "
-          << b + 1 << " (" << body.name() << ")" << std::endl;
+          << plane_model << ", body " << b + 1 << " (" << body.name() << ")"
+          << std::endl;
       if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
         table.write_text(std::cout);
       out << std::endl;

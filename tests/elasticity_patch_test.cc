@@ -63,19 +63,21 @@ public:
   describe_body(const unsigned int body) const override
   {
     BodyDescription d;
-    d.name     = "body " + std::to_string(body + 1);
-    d.material = {body == 0 ? 1000. : 3000., body == 0 ? 0.3 : 0.45};
-    auto u     = std::make_shared<LinearDisplacement>();
+    d.name               = "body " + std::to_string(body + 1);
+    d.material           = {body == 0 ? 1000. : 3000., body == 0 ? 0.3 : 0.45};
+    auto u               = std::make_shared<LinearDisplacement>();
     d.exact_displacement = u;
     for (const auto id : {boundary_ids::traction_free,
                           boundary_ids::contact,
                           boundary_ids::dirichlet})
       d.dirichlet.push_back({id, ComponentMask(2, true), u});
-    const ElasticMaterial material(d.material, PlaneModel::plane_strain);
-    const SymmetricTensor<2, 2> stress = material.stress(symmetrize(u->gradient_));
-    d.tractions.push_back(
-      {boundary_ids::traction,
-       [stress](const Point<2> &, const Tensor<1, 2> &n) { return stress * n; }});
+    const ElasticMaterial       material(d.material, PlaneModel::plane_strain);
+    const SymmetricTensor<2, 2> stress =
+      material.stress(symmetrize(u->gradient_));
+    d.tractions.push_back({boundary_ids::traction,
+                           [stress](const Point<2> &, const Tensor<1, 2> &n) {
+                             return stress * n;
+                           }});
     return d;
   }
 
@@ -91,21 +93,26 @@ check(const std::string &label, const Scene &scene, const unsigned int n_bodies)
     for (unsigned int b = 0; b < n_bodies; ++b)
       {
         parameters::FiniteElements fe{degree, PlaneModel::plane_strain};
-        parameters::LinearSolver   solver{"direct", 0, "Amesos_Mumps", 1e-12, 100, 0};
-        ElasticBody body(MPI_COMM_WORLD, scene, b, CellType::quadrilateral, 0, fe);
+        parameters::LinearSolver   solver{
+          "direct", 0, "Amesos_Mumps", 1e-12, 100, 0};
+        ElasticBody body(
+          MPI_COMM_WORLD, scene, b, CellType::quadrilateral, 0, fe);
         body.setup_system();
         body.assemble_system();
         body.solve(solver);
         const ElasticityErrors e =
-          compute_elasticity_errors(body, *body.description().exact_displacement);
+          compute_elasticity_errors(body,
+                                    *body.description().exact_displacement);
         const double relative_energy_error = e.energy / e.energy_of_exact;
         out << label << ", degree " << degree << ", body " << b + 1 << ": "
             << body.triangulation().n_global_active_cells()
             << " cells, relative energy error below 1e-12: "
             << (relative_energy_error < 1e-12 ? "yes" : "no") << std::endl;
         AssertThrow(relative_energy_error < 1e-12,
-                    ExcMessage(label + ": patch test failed, relative energy "
-                               "error " + std::to_string(relative_energy_error)));
+                    ExcMessage(label +
+                               ": patch test failed, relative energy "
+                               "error " +
+                               std::to_string(relative_energy_error)));
       }
 }
 
@@ -129,13 +136,14 @@ main(int argc, char *argv[])
   });
   check("distorted quadrilaterals", distorted_quads, 1);
 
-  const auto meshes = read_two_body_gmsh_file(
-    std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/two_squares.geo",
-    CellType::triangle,
-    1.0);
-  const PatchScene gmsh_triangles([&meshes](unsigned int body,
-                                            Triangulation<2> &tria) {
-    meshes[body].create_triangulation(tria);
-  });
+  const auto meshes =
+    read_two_body_gmsh_file(std::string(COULOMB_ADAPT_TEST_DATA_DIR) +
+                              "/two_squares.geo",
+                            CellType::triangle,
+                            1.0);
+  const PatchScene gmsh_triangles(
+    [&meshes](unsigned int body, Triangulation<2> &tria) {
+      meshes[body].create_triangulation(tria);
+    });
   check("gmsh triangles", gmsh_triangles, 2);
 }

@@ -125,7 +125,7 @@ namespace
   std::string
   describe_mesh(const Problem &p)
   {
-    types::global_cell_index n_cells = 0;
+    types::global_cell_index n_cells  = 0;
     double                   smallest = 1e300, largest = 0;
     for (const auto &body : p.bodies)
       {
@@ -172,27 +172,28 @@ main(int argc, char **argv)
                                               p->parameters,
                                               p->pointers(),
                                               2);
-      const StressDifference d = compare_stresses(
-        p->pointers(), p->solutions(), reference, 4);
+      const StressDifference        d =
+        compare_stresses(p->pointers(), p->solutions(), reference, 4);
       // The reference's true error, normalised like its stated one.
       const std::array<const ElasticBody *, 2> reference_bodies = {
         {&reference.body(0), &reference.body(1)}};
-      const StressDifference e_reference = compare_stresses(
-        reference_bodies,
-        {{&reference.body(0).solution(), &reference.body(1).solution()}},
-        exact,
-        1);
-      const double epsilon_true = std::sqrt(e.difference_squared / e.sum_squared);
+      const StressDifference e_reference =
+        compare_stresses(reference_bodies,
+                         {{&reference.body(0).solution(),
+                           &reference.body(1).solution()}},
+                         exact,
+                         1);
+      const double epsilon_true =
+        std::sqrt(e.difference_squared / e.sum_squared);
       const double epsilon_reference =
         std::sqrt(d.difference_squared / d.sum_squared);
-      const double reference_true = std::sqrt(
-        e_reference.difference_squared / e_reference.sum_squared);
+      const double reference_true =
+        std::sqrt(e_reference.difference_squared / e_reference.sum_squared);
       out << "  " << cell_type << " (" << describe_mesh(*p)
           << "): epsilon exact " << epsilon_true << ", against the reference "
-          << epsilon_reference << "; reference error: true "
-          << reference_true << ", stated " << reference.own_error()
-          << " (from the energies " << reference.own_error_from_energy()
-          << ")" << std::endl;
+          << epsilon_reference << "; reference error: true " << reference_true
+          << ", stated " << reference.own_error() << " (from the energies "
+          << reference.own_error_from_energy() << ")" << std::endl;
       // Nested spaces: e^2 = |sigma_R - sigma_h|^2 + |sigma - sigma_R|^2
       // up to the interpolated Dirichlet data (not nested).
       const double pythagoras =

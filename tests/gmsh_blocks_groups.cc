@@ -36,7 +36,7 @@ namespace
   double
   difference(const testing::SolvedContactProblem &a,
              const testing::SolvedContactProblem &b,
-             ConditionalOStream &                 out)
+             ConditionalOStream                  &out)
   {
     const auto &s = a.solver->node_states();
     const auto &t = b.solver->node_states();
@@ -47,23 +47,22 @@ namespace
     double p_max = 0, u_scale = 0;
     for (const auto &n : s)
       p_max = std::max(p_max, n.pressure);
-    double traction = 0, kinematics = 0, position = 0;
+    double       traction = 0, kinematics = 0, position = 0;
     unsigned int n_same_state = 0;
     for (unsigned int j = 0; j < s.size(); ++j)
       {
         position = std::max(position, s[j].position.distance(t[j].position));
         n_same_state += s[j].status == t[j].status;
-        traction =
-          std::max({traction,
-                    std::abs(s[j].pressure - t[j].pressure),
-                    std::abs(s[j].tangential_traction -
-                             t[j].tangential_traction)});
+        traction = std::max(
+          {traction,
+           std::abs(s[j].pressure - t[j].pressure),
+           std::abs(s[j].tangential_traction - t[j].tangential_traction)});
         kinematics = std::max({kinematics,
                                std::abs(s[j].gap - t[j].gap),
                                std::abs(s[j].slip - t[j].slip)});
       }
     double worst = std::max(position / 100, traction / p_max);
-    worst = std::max(worst,
+    worst        = std::max(worst,
                      (a.report.contact_force - b.report.contact_force).norm() /
                        a.report.contact_force.norm());
     for (unsigned int k = 0; k < 2; ++k)
@@ -93,9 +92,9 @@ namespace
       }
     worst = std::max(worst, kinematics / u_scale);
     out << "  " << s.size() << " contact nodes, " << n_same_state
-        << " in the same state; vertical contact force "
-        << std::setprecision(8) << a.report.contact_force[1]
-        << " N/mm, max pressure " << p_max << " MPa" << std::endl;
+        << " in the same state; vertical contact force " << std::setprecision(8)
+        << a.report.contact_force[1] << " N/mm, max pressure " << p_max
+        << " MPa" << std::endl;
     AssertThrow(n_same_state == s.size(), ExcMessage("the sets differ"));
     return worst;
   }
@@ -106,7 +105,7 @@ namespace
   // prm/meshes/blocks_structured.geo.
   void
   write_blocks_msh(const testing::SolvedContactProblem &builtin,
-                   const std::string &                  file_name)
+                   const std::string                   &file_name)
   {
     std::ofstream f(file_name);
     f << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
@@ -122,7 +121,7 @@ namespace
     unsigned int       n_nodes = 0, n_elements = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
-        const auto &tria   = builtin.bodies[b]->triangulation();
+        const auto        &tria   = builtin.bodies[b]->triangulation();
         const unsigned int offset = n_nodes;
         for (const auto &x : tria.get_vertices())
           nodes << ++n_nodes << ' ' << std::setprecision(17) << x[0] << ' '
@@ -163,15 +162,16 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  auto                             out = testing::root_output();
-  const std::string groups_prm = root + "/prm/blocks_gmsh.prm";
+  auto                             out        = testing::root_output();
+  const std::string                groups_prm = root + "/prm/blocks_gmsh.prm";
 
   out << "1. quadrilaterals, prm/blocks_gmsh.prm against Scene/Name = blocks"
       << std::endl;
   {
-    const auto gmsh = testing::solve_contact(
-      {{"Scene/Gmsh/Mesh file", root + "/prm/meshes/blocks_structured.geo"}},
-      groups_prm);
+    const auto gmsh =
+      testing::solve_contact({{"Scene/Gmsh/Mesh file",
+                               root + "/prm/meshes/blocks_structured.geo"}},
+                             groups_prm);
     const auto builtin =
       testing::solve_contact({{"Scene/Name", "blocks"}}, groups_prm);
     const double d = difference(*builtin, *gmsh, out);
@@ -204,20 +204,20 @@ main(int argc, char *argv[])
       << std::endl;
   {
     const std::string geo = root + "/prm/meshes/blocks.geo";
-    const auto        old = testing::solve_contact(
-      {{"Scene/Name", "gmsh"},
-       {"Scene/Gmsh/Mesh file", geo},
-       {"Mesh/Cell type", "triangle"}});
-    const auto grouped = testing::solve_contact(
-      {{"Scene/Name", "gmsh"},
-       {"Scene/Gmsh/Mesh file", geo},
-       {"Scene/Gmsh/Fixed components", "dirichlet: x y"},
-       {"Scene/Gmsh/Tractions", "traction: 0; -10"},
-       {"Scene/Gmsh/Contact pair", "contact, contact"},
-       {"Mesh/Cell type", "triangle"}});
+    const auto        old = testing::solve_contact({{"Scene/Name", "gmsh"},
+                                                    {"Scene/Gmsh/Mesh file", geo},
+                                                    {"Mesh/Cell type", "triangle"}});
+    const auto        grouped =
+      testing::solve_contact({{"Scene/Name", "gmsh"},
+                              {"Scene/Gmsh/Mesh file", geo},
+                              {"Scene/Gmsh/Fixed components", "dirichlet: x y"},
+                              {"Scene/Gmsh/Tractions", "traction: 0; -10"},
+                              {"Scene/Gmsh/Contact pair", "contact, contact"},
+                              {"Mesh/Cell type", "triangle"}});
     const double d = difference(*old, *grouped, out);
-    const double u = testing::relative_difference(testing::displacements(*old),
-                                                  testing::displacements(*grouped));
+    const double u =
+      testing::relative_difference(testing::displacements(*old),
+                                   testing::displacements(*grouped));
     out << "  identical: " << (d == 0 && u == 0 ? "yes" : "no") << std::endl;
     AssertThrow(d == 0 && u == 0,
                 ExcMessage("differ by " + std::to_string(d) + ", " +

@@ -34,46 +34,48 @@ main(int argc, char *argv[])
       settings.emplace_back("Scene/Gmsh/Mesh file", geo);
       return testing::solve_contact(settings, prm);
     };
-  const auto check = [&](const std::string &what, const double error,
-                         const double tolerance) {
-    out << "  " << what << " (within " << tolerance
-        << "): " << (error <= tolerance ? "yes" : "no") << std::endl;
-    AssertThrow(error <= tolerance,
-                ExcMessage(what + ": " + std::to_string(error)));
-  };
+  const auto check =
+    [&](const std::string &what, const double error, const double tolerance) {
+      out << "  " << what << " (within " << tolerance
+          << "): " << (error <= tolerance ? "yes" : "no") << std::endl;
+      AssertThrow(error <= tolerance,
+                  ExcMessage(what + ": " + std::to_string(error)));
+    };
 
   out << "1. normal pressure 10 MPa against the traction (0, -10) MPa"
       << std::endl;
   {
     const auto traction = solve({});
-    const auto pressure = solve({{"Scene/Gmsh/Tractions", ""},
-                                 {"Scene/Gmsh/Normal pressures",
-                                  "loaded top: 10"}});
-    double difference = 0, p_max = 0;
+    const auto pressure =
+      solve({{"Scene/Gmsh/Tractions", ""},
+             {"Scene/Gmsh/Normal pressures", "loaded top: 10"}});
+    double      difference = 0, p_max = 0;
     const auto &s = traction->solver->node_states();
     const auto &t = pressure->solver->node_states();
     for (unsigned int j = 0; j < s.size(); ++j)
       {
         p_max      = std::max(p_max, s[j].pressure);
-        difference = std::max({difference,
-                               std::abs(s[j].pressure - t[j].pressure),
-                               std::abs(s[j].tangential_traction -
-                                        t[j].tangential_traction)});
+        difference = std::max(
+          {difference,
+           std::abs(s[j].pressure - t[j].pressure),
+           std::abs(s[j].tangential_traction - t[j].tangential_traction)});
       }
     check("same contact tractions, relative to max pressure",
-          difference / p_max, 1e-12);
+          difference / p_max,
+          1e-12);
   }
 
-  const auto force_check = [&](const std::string &               name,
+  const auto force_check = [&](const std::string                   &name,
                                const testing::SolvedContactProblem &p,
-                               const Tensor<1, 2> &expected) {
+                               const Tensor<1, 2>                  &expected) {
     out << "  contact force on body 1 (" << std::setprecision(8)
         << (std::abs(p.report.contact_force[0]) < 1e-9 * expected.norm() ?
               0. :
               p.report.contact_force[0])
         << ", " << p.report.contact_force[1] << ") N/mm, expected ("
         << expected[0] << ", " << expected[1] << ")" << std::endl;
-    check(name, (p.report.contact_force - expected).norm() / expected.norm(),
+    check(name,
+          (p.report.contact_force - expected).norm() / expected.norm(),
           1e-10);
   };
 
@@ -98,9 +100,9 @@ main(int argc, char *argv[])
 
   out << "4. prescribed displacement y = -0.01 mm on the top" << std::endl;
   {
-    const auto p = solve({{"Scene/Gmsh/Tractions", ""},
-                          {"Scene/Gmsh/Fixed components",
-                           "base: x y, loaded top: y=-0.01"}});
+    const auto p = solve(
+      {{"Scene/Gmsh/Tractions", ""},
+       {"Scene/Gmsh/Fixed components", "base: x y, loaded top: y=-0.01"}});
     Vector<double> u(2);
     VectorTools::point_value(p->bodies[0]->mapping(),
                              p->bodies[0]->dof_handler(),

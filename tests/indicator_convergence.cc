@@ -19,9 +19,8 @@ using namespace coulomb_adapt;
 
 namespace
 {
-  const std::vector<StressRecoveryMethod> methods = {
-    StressRecoveryMethod::l2_projection,
-    StressRecoveryMethod::spr};
+  const std::vector<StressRecoveryMethod> methods =
+    {StressRecoveryMethod::l2_projection, StressRecoveryMethod::spr};
 
   std::array<const ElasticBody *, 2>
   pointers(const std::array<std::unique_ptr<ElasticBody>, 2> &bodies)
@@ -44,11 +43,12 @@ main(int argc, char **argv)
       for (const std::string refinements : {"3", "4"})
         {
           ParameterHandler prm;
-          const Parameters parameters = testing::make_parameters(
-            prm,
-            {{"Scene/Name", "manufactured"},
-             {"Mesh/Cell type", cell_type},
-             {"Mesh/Global refinements", refinements}});
+          const Parameters parameters =
+            testing::make_parameters(prm,
+                                     {{"Scene/Name", "manufactured"},
+                                      {"Mesh/Cell type", cell_type},
+                                      {"Mesh/Global refinements",
+                                       refinements}});
           const auto scene = scenes::create_scene(parameters, prm);
           std::array<std::unique_ptr<ElasticBody>, 2> bodies;
           for (unsigned int b = 0; b < 2; ++b)
@@ -66,8 +66,10 @@ main(int argc, char **argv)
             }
           const ErrorEstimate e = estimate_error(
             pointers(bodies), nullptr, 0., method, parameters.linear_solver);
-          const ExactErrorComparison c = compare_with_exact_error(
-            pointers(bodies), e, ExactSolutionStress(pointers(bodies)));
+          const ExactErrorComparison c =
+            compare_with_exact_error(pointers(bodies),
+                                     e,
+                                     ExactSolutionStress(pointers(bodies)));
           out << "  " << cell_type << ", " << to_string(method)
               << ", refinements " << refinements << ": epsilon "
               << 100 * e.epsilon << " %, exact " << 100 * c.epsilon_exact
@@ -80,42 +82,40 @@ main(int argc, char **argv)
       << std::endl;
   for (const std::string refinements : {"0", "1"})
     for (const auto method : methods)
-    {
-      const std::vector<std::pair<std::string, std::string>> settings = {
-        {"Scene/Name", "hertz"},
-        {"Scene/Hertz/Contact mesh size", "0.3"},
-        {"Mesh/Global refinements", refinements},
-        {"Contact/Friction coefficient", "0"}};
-      const auto          p = testing::solve_contact(settings);
-      const ErrorEstimate e =
-        estimate_error(pointers(p->bodies),
-                       p->solver.get(),
-                       0.,
-                       method,
-                       p->parameters.linear_solver);
-      const ReferenceSolutionStress reference(
-        *p->scene, p->parameters, pointers(p->bodies), 2, false);
-      const ExactErrorComparison c =
-        compare_with_exact_error(pointers(p->bodies), e, reference);
-      const auto n_dofs = p->bodies[0]->dof_handler().n_dofs() +
-                          p->bodies[1]->dof_handler().n_dofs();
-      out << "  " << n_dofs << " DoFs, " << to_string(method)
-          << ": epsilon " << 100 * e.epsilon
-          << " %, reference " << 100 * c.epsilon_exact << " %, effectivity "
-          << c.effectivity << std::endl;
-      AssertThrow(c.effectivity > 0.7 && c.effectivity < 1.4,
-                  ExcMessage("hertz: effectivity outside 0.7-1.4"));
-    }
+      {
+        const std::vector<std::pair<std::string, std::string>> settings = {
+          {"Scene/Name", "hertz"},
+          {"Scene/Hertz/Contact mesh size", "0.3"},
+          {"Mesh/Global refinements", refinements},
+          {"Contact/Friction coefficient", "0"}};
+        const auto                    p = testing::solve_contact(settings);
+        const ErrorEstimate           e = estimate_error(pointers(p->bodies),
+                                               p->solver.get(),
+                                               0.,
+                                               method,
+                                               p->parameters.linear_solver);
+        const ReferenceSolutionStress reference(
+          *p->scene, p->parameters, pointers(p->bodies), 2, false);
+        const ExactErrorComparison c =
+          compare_with_exact_error(pointers(p->bodies), e, reference);
+        const auto n_dofs = p->bodies[0]->dof_handler().n_dofs() +
+                            p->bodies[1]->dof_handler().n_dofs();
+        out << "  " << n_dofs << " DoFs, " << to_string(method) << ": epsilon "
+            << 100 * e.epsilon << " %, reference " << 100 * c.epsilon_exact
+            << " %, effectivity " << c.effectivity << std::endl;
+        AssertThrow(c.effectivity > 0.7 && c.effectivity < 1.4,
+                    ExcMessage("hertz: effectivity outside 0.7-1.4"));
+      }
 
   out << "Blocks (P1, mu = 0.3) under uniform refinement" << std::endl;
   double previous_epsilon = 0, previous_dofs = 0;
   for (const std::string refinements : {"0", "1", "2", "3"})
     {
-      const auto p = testing::solve_contact(
-        {{"Scene/Name", "blocks"},
-         {"Mesh/Cell type", "triangle"},
-         {"Mesh/Global refinements", refinements},
-         {"Contact/Friction coefficient", "0.3"}});
+      const auto p =
+        testing::solve_contact({{"Scene/Name", "blocks"},
+                                {"Mesh/Cell type", "triangle"},
+                                {"Mesh/Global refinements", refinements},
+                                {"Contact/Friction coefficient", "0.3"}});
       const ErrorEstimate e =
         estimate_error(pointers(p->bodies),
                        p->solver.get(),
@@ -123,7 +123,7 @@ main(int argc, char **argv)
                        StressRecoveryMethod::l2_projection,
                        p->parameters.linear_solver);
       const auto n_dofs = p->bodies[0]->dof_handler().n_dofs() +
-                            p->bodies[1]->dof_handler().n_dofs();
+                          p->bodies[1]->dof_handler().n_dofs();
       out << "  " << std::setw(6) << n_dofs << " DoFs: epsilon "
           << 100 * e.epsilon << " %";
       if (previous_dofs > 0)

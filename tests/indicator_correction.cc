@@ -2,7 +2,8 @@
 // seed's blocks, whose upper body is held by contact alone:
 //  - the FE solution's reactions are in the Coulomb cone: the correction is
 //    skipped and the corrected fields are the FE fields;
-//  - with reactions pushed out of the cone (tangential tractions x 3 + 1.5 mu lambda_n at the
+//  - with reactions pushed out of the cone (tangential tractions x 3 + 1.5 mu
+//  lambda_n at the
 //    stick nodes), the projected reactions lie on the cone's edge with
 //    lambda - lambda_c normal to it, the master body is in equilibrium
 //    under the corrected traction (residual 1e-10), the floating upper
@@ -27,11 +28,11 @@ namespace
   // M^T lambda on the master nodes; zero on constrained rows. Relative to
   // |K u|, the size of the forces in balance.
   std::pair<TrilinosWrappers::MPI::Vector, double>
-  residual(const ElasticBody &                  body,
-           const TrilinosWrappers::MPI::Vector &u,
-           const MortarInterface &              mortar,
+  residual(const ElasticBody                    &body,
+           const TrilinosWrappers::MPI::Vector  &u,
+           const MortarInterface                &mortar,
            const std::vector<ContactNodeFields> &fields,
-           const bool                           slave_side)
+           const bool                            slave_side)
   {
     TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(),
                                         MPI_COMM_WORLD);
@@ -77,7 +78,7 @@ namespace
       {
         TrilinosWrappers::MPI::Vector v(body.locally_owned_dof_set(),
                                         MPI_COMM_WORLD);
-        unsigned int k = 0;
+        unsigned int                  k = 0;
         for (const auto i : body.locally_owned_dof_set())
           v(i) = values[k++];
         v.compress(VectorOperation::insert);
@@ -88,7 +89,7 @@ namespace
 
   // |v - P v| / |v| with P the l2 projection onto the span of the modes.
   double
-  distance_from_span(const TrilinosWrappers::MPI::Vector &             v,
+  distance_from_span(const TrilinosWrappers::MPI::Vector              &v,
                      const std::vector<TrilinosWrappers::MPI::Vector> &modes)
   {
     const unsigned int n = modes.size();
@@ -120,23 +121,28 @@ main(int argc, char **argv)
   for (const std::string cell_type : {"triangle", "quadrilateral"})
     {
       out << cell_type << "s:" << std::endl;
-      const auto p = testing::solve_contact(
-        {{"Scene/Name", "blocks"},
-         {"Mesh/Cell type", cell_type},
-         {"Mesh/Global refinements", "1"},
-         {"Contact/Friction coefficient", "0.3"}});
+      const auto p =
+        testing::solve_contact({{"Scene/Name", "blocks"},
+                                {"Mesh/Cell type", cell_type},
+                                {"Mesh/Global refinements", "1"},
+                                {"Contact/Friction coefficient", "0.3"}});
       const ElasticBody &slave  = *p->bodies[0];
       const ElasticBody &master = *p->bodies[1];
-      const auto &       mortar = p->solver->mortar_interface();
+      const auto        &mortar = p->solver->mortar_interface();
 
-      const auto unchanged = correct_contact_solution(
-        slave, master, mortar, p->solver->node_states(), mu,
-        p->parameters.linear_solver);
+      const auto unchanged =
+        correct_contact_solution(slave,
+                                 master,
+                                 mortar,
+                                 p->solver->node_states(),
+                                 mu,
+                                 p->parameters.linear_solver);
       TrilinosWrappers::MPI::Vector difference(unchanged.displacement(0));
       difference -= slave.solution();
       out << "  FE reactions in the cone: correction skipped: "
-          << (unchanged.skipped ? "yes" : "no") << ", U_c = U_h: "
-          << (difference.linfty_norm() == 0 ? "yes" : "no") << std::endl;
+          << (unchanged.skipped ? "yes" : "no")
+          << ", U_c = U_h: " << (difference.linfty_norm() == 0 ? "yes" : "no")
+          << std::endl;
       AssertThrow(unchanged.skipped && difference.linfty_norm() == 0,
                   ExcMessage("admissible reactions were corrected"));
 
@@ -156,16 +162,17 @@ main(int argc, char **argv)
       out << "  " << n_outside << " reactions pushed out of the cone: "
           << corrected.n_projected_nodes << " projected, relative change "
           << corrected.relative_change << std::endl;
-      AssertThrow(!corrected.skipped && corrected.n_projected_nodes == n_outside,
+      AssertThrow(!corrected.skipped &&
+                    corrected.n_projected_nodes == n_outside,
                   ExcMessage("the projection missed nodes"));
 
       double worst_cone = 0, worst_normality = 0;
       for (unsigned int j = 0; j < states.size(); ++j)
         {
           const auto &f = corrected.fields[j];
-          worst_cone    = std::max(worst_cone,
-                                std::abs(f.tangential_traction) -
-                                  mu * f.pressure);
+          worst_cone =
+            std::max(worst_cone,
+                     std::abs(f.tangential_traction) - mu * f.pressure);
           if (states[j].status == ContactStatus::stick)
             {
               // lambda - lambda_c is normal to the edge (1, mu s).
@@ -185,22 +192,16 @@ main(int argc, char **argv)
       AssertThrow(worst_cone <= 1e-12 && worst_normality <= 1e-12,
                   ExcMessage("not the projection onto the cone"));
 
-      const auto r2 = residual(master,
-                               corrected.displacement(1),
-                               mortar,
-                               corrected.fields,
-                               false);
+      const auto r2 = residual(
+        master, corrected.displacement(1), mortar, corrected.fields, false);
       const double master_residual = r2.first.l2_norm() / r2.second;
       out << "  master body in equilibrium under R_c (1e-10): "
           << (master_residual < 1e-10 ? "yes" : "no") << std::endl;
       AssertThrow(master_residual < 1e-10, ExcMessage("master residual"));
 
       const auto modes = rigid_modes(slave);
-      const auto r1    = residual(slave,
-                               corrected.displacement(0),
-                               mortar,
-                               corrected.fields,
-                               true);
+      const auto r1    = residual(
+        slave, corrected.displacement(0), mortar, corrected.fields, true);
       const double off_span =
         distance_from_span(r1.first, modes) * r1.first.l2_norm() / r1.second;
       TrilinosWrappers::MPI::Vector change(slave.locally_owned_dof_set(),
@@ -211,9 +212,9 @@ main(int argc, char **argv)
       change -= u_h;
       double rigid_part = 0;
       for (const auto &m : modes)
-        rigid_part = std::max(rigid_part,
-                              std::abs(m * change) /
-                                (m.l2_norm() * change.l2_norm()));
+        rigid_part =
+          std::max(rigid_part,
+                   std::abs(m * change) / (m.l2_norm() * change.l2_norm()));
       out << "  floating body: residual = a rigid-body resultant (1e-8): "
           << (off_span < 1e-8 ? "yes" : "no")
           << ", U_c - U_h orthogonal to the rigid modes (1e-10): "

@@ -65,8 +65,8 @@ main(int argc, char **argv)
         // contact term is a product of a traction and a jump of ~1e-16
         // relative size): it must vanish to round-off.
         const double epsilon_squared = e.epsilon * e.epsilon;
-        out << "  " << cell_type << ", mu = " << mu
-            << ": epsilon^2 < 1e-13: " << (epsilon_squared < 1e-13 ? "yes" : "no")
+        out << "  " << cell_type << ", mu = " << mu << ": epsilon^2 < 1e-13: "
+            << (epsilon_squared < 1e-13 ? "yes" : "no")
             << ", correction skipped: " << (e.correction.skipped ? "yes" : "no")
             << std::endl;
         AssertThrow(epsilon_squared < 1e-13,
@@ -75,7 +75,8 @@ main(int argc, char **argv)
       }
 
   out << "epsilon^2 = sum epsilon_E^2" << std::endl;
-  const std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>>
+  const std::vector<
+    std::pair<std::string, std::vector<std::pair<std::string, std::string>>>>
     scenes = {{"blocks (P1, mu = 0.3)",
                {{"Scene/Name", "blocks"},
                 {"Mesh/Cell type", "triangle"},
@@ -97,13 +98,15 @@ main(int argc, char **argv)
       out << "  " << name << ": epsilon = " << std::fixed
           << std::setprecision(3) << 100 * e.epsilon << " %, contact part "
           << 100 * e.epsilon_contact << std::defaultfloat
-          << std::setprecision(4) << " %, |sum - epsilon^2| / epsilon^2 < 1e-12: "
+          << std::setprecision(4)
+          << " %, |sum - epsilon^2| / epsilon^2 < 1e-12: "
           << (mismatch < 1e-12 ? "yes" : "no") << std::endl;
       AssertThrow(mismatch < 1e-12, ExcMessage(name + ": sum rule broken"));
     }
 
   out << "Homogeneity: loads x 1e-3 and x 1e3" << std::endl;
-  const std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>>
+  const std::vector<
+    std::pair<std::string, std::vector<std::pair<std::string, std::string>>>>
     homogeneous = {{"blocks",
                     {{"Scene/Name", "blocks"},
                      {"Mesh/Cell type", "triangle"},
@@ -121,20 +124,22 @@ main(int argc, char **argv)
         s.emplace_back(load_entry, std::to_string(base_load * factor));
         return s;
       };
-      const auto          p0 = testing::solve_contact(with_load(1));
-      const ErrorEstimate e0 = estimate(*p0);
-      const auto          reference = testing::gathered_indicators({{p0->bodies[0].get(), p0->bodies[1].get()}}, e0);
+      const auto          p0        = testing::solve_contact(with_load(1));
+      const ErrorEstimate e0        = estimate(*p0);
+      const auto          reference = testing::gathered_indicators(
+        {{p0->bodies[0].get(), p0->bodies[1].get()}}, e0);
       for (const double factor : {1e-3, 1e3})
         {
           const auto          p = testing::solve_contact(with_load(factor));
           const ErrorEstimate e = estimate(*p);
-          const auto          indicators = testing::gathered_indicators({{p->bodies[0].get(), p->bodies[1].get()}}, e);
+          const auto          indicators = testing::gathered_indicators(
+            {{p->bodies[0].get(), p->bodies[1].get()}}, e);
           double largest = 0, difference = 0;
           for (unsigned int i = 0; i < indicators.size(); ++i)
             {
-              largest    = std::max(largest, reference[i]);
-              difference = std::max(difference,
-                                    std::abs(indicators[i] - reference[i]));
+              largest = std::max(largest, reference[i]);
+              difference =
+                std::max(difference, std::abs(indicators[i] - reference[i]));
             }
           const bool same_epsilon =
             std::abs(e.epsilon - e0.epsilon) <= 1e-10 * e0.epsilon;
@@ -151,19 +156,18 @@ main(int argc, char **argv)
 
   {
     // 3 x 3 and 6 x 7 quads, 8 triangles each: 72 + 336 = 408 triangles.
-    const auto p = testing::solve_contact(
-      {{"Scene/Name", "blocks"},
-       {"Mesh/Cell type", "triangle"},
-       {"Scene/Blocks/Upper body subdivisions", "3, 3"},
-       {"Scene/Blocks/Lower body subdivisions", "6, 7"},
-       {"Contact/Friction coefficient", "0.3"}});
+    const auto p =
+      testing::solve_contact({{"Scene/Name", "blocks"},
+                              {"Mesh/Cell type", "triangle"},
+                              {"Scene/Blocks/Upper body subdivisions", "3, 3"},
+                              {"Scene/Blocks/Lower body subdivisions", "6, 7"},
+                              {"Contact/Friction coefficient", "0.3"}});
     const ErrorEstimate e = estimate(*p);
-    const auto          n_cells =
-      p->bodies[0]->triangulation().n_global_active_cells() +
-      p->bodies[1]->triangulation().n_global_active_cells();
-    out << "Seed's example: " << n_cells << " P1 triangles, epsilon = "
-        << std::fixed << std::setprecision(2) << 100 * e.epsilon
-        << " % (seed: 398 triangles, 6.58 %)" << std::endl;
+    const auto n_cells = p->bodies[0]->triangulation().n_global_active_cells() +
+                         p->bodies[1]->triangulation().n_global_active_cells();
+    out << "Seed's example: " << n_cells
+        << " P1 triangles, epsilon = " << std::fixed << std::setprecision(2)
+        << 100 * e.epsilon << " % (seed: 398 triangles, 6.58 %)" << std::endl;
     AssertThrow(e.epsilon > 0.04 && e.epsilon < 0.10,
                 ExcMessage("seed's example: epsilon outside 4-10 %"));
   }

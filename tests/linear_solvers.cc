@@ -21,17 +21,22 @@ main(int argc, char *argv[])
   for (const std::string cell_type : {"quadrilateral", "triangle"})
     {
       ParameterHandler prm;
-      Parameters       parameters = testing::make_parameters(
-        prm,
-        {{"Scene/Name", "manufactured"},
-         {"Mesh/Cell type", cell_type},
-         {"Linear solver/Relative tolerance", "1e-12"}});
+      Parameters       parameters =
+        testing::make_parameters(prm,
+                                 {{"Scene/Name", "manufactured"},
+                                  {"Mesh/Cell type", cell_type},
+                                  {"Linear solver/Relative tolerance",
+                                   "1e-12"}});
       const auto scene = scenes::create_scene(parameters, prm);
 
       for (unsigned int b = 0; b < 2; ++b)
         {
-          ElasticBody body(MPI_COMM_WORLD, *scene, b, parameters.mesh.cell_type,
-                           2, parameters.finite_elements);
+          ElasticBody body(MPI_COMM_WORLD,
+                           *scene,
+                           b,
+                           parameters.mesh.cell_type,
+                           2,
+                           parameters.finite_elements);
           for (unsigned int cycle = 0; cycle < 3; ++cycle)
             {
               if (cycle > 0)
@@ -41,7 +46,8 @@ main(int argc, char *argv[])
 
               std::map<std::string, TrilinosWrappers::MPI::Vector> solutions;
               unsigned int amg_iterations = 0;
-              for (const std::string solver : {"Amesos_Mumps", "Amesos_Klu", "amg"})
+              for (const std::string solver :
+                   {"Amesos_Mumps", "Amesos_Klu", "amg"})
                 {
                   parameters.linear_solver.type =
                     solver == "amg" ? "amg" : "direct";
@@ -61,13 +67,15 @@ main(int argc, char *argv[])
                     difference += std::pow(solutions[name][i] - r, 2);
                     reference += r * r;
                   }
-                return std::sqrt(Utilities::MPI::sum(difference, MPI_COMM_WORLD) /
-                                 Utilities::MPI::sum(reference, MPI_COMM_WORLD));
+                return std::sqrt(
+                  Utilities::MPI::sum(difference, MPI_COMM_WORLD) /
+                  Utilities::MPI::sum(reference, MPI_COMM_WORLD));
               };
               const double difference_klu = relative_difference("Amesos_Klu");
               const double difference_amg = relative_difference("amg");
               out << cell_type << ", body " << b + 1 << ", "
-                  << body.dof_handler().n_dofs() << " DoFs: KLU = MUMPS to 1e-12: "
+                  << body.dof_handler().n_dofs()
+                  << " DoFs: KLU = MUMPS to 1e-12: "
                   << (difference_klu < 1e-12 ? "yes" : "no")
                   << ", AMG = MUMPS to 1e-9: "
                   << (difference_amg < 1e-9 ? "yes" : "no")
@@ -75,11 +83,11 @@ main(int argc, char *argv[])
                   << (amg_iterations <= 40 ? "yes" : "no") << std::endl;
               AssertThrow(difference_klu < 1e-12 && difference_amg < 1e-9 &&
                             amg_iterations <= 40,
-                          ExcMessage("solvers disagree: KLU " +
-                                     std::to_string(difference_klu) + ", AMG " +
-                                     std::to_string(difference_amg) + " after " +
-                                     std::to_string(amg_iterations) +
-                                     " iterations"));
+                          ExcMessage(
+                            "solvers disagree: KLU " +
+                            std::to_string(difference_klu) + ", AMG " +
+                            std::to_string(difference_amg) + " after " +
+                            std::to_string(amg_iterations) + " iterations"));
             }
         }
     }

@@ -11,8 +11,8 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/app/finiteness.h>
+#include <coulomb_adapt/app/two_body_problem.h>
 
 #include "test_utilities.h"
 
@@ -52,15 +52,16 @@ namespace
   run_blocks(const std::string &pressure)
   {
     ParameterHandler prm;
-    const Parameters parameters = testing::make_parameters(
-      prm,
-      {{"Scene/Name", "blocks"},
-       {"Scene/Blocks/Pressure", pressure},
-       {"Adaptation/Strategy", "refine"},
-       {"Adaptation/Target error", "1"},
-       {"Adaptation/Number of cycles", "2"},
-       {"Output/Write VTU", "false"},
-       {"Output/Output directory", "output-" + pressure}});
+    const Parameters parameters =
+      testing::make_parameters(prm,
+                               {{"Scene/Name", "blocks"},
+                                {"Scene/Blocks/Pressure", pressure},
+                                {"Adaptation/Strategy", "refine"},
+                                {"Adaptation/Target error", "1"},
+                                {"Adaptation/Number of cycles", "2"},
+                                {"Output/Write VTU", "false"},
+                                {"Output/Output directory",
+                                 "output-" + pressure}});
     prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
     std::ostringstream log;
     TwoBodyProblem     problem(MPI_COMM_WORLD, parameters, prm, "test", log);
@@ -121,14 +122,14 @@ main(int argc, char **argv)
     {
       const Result r = run_blocks(pressure);
       // Every rank must have stopped the same way.
-      const unsigned int n_stopped = Utilities::MPI::sum(
-        r.error.empty() ? 0u : 1u, MPI_COMM_WORLD);
+      const unsigned int n_stopped =
+        Utilities::MPI::sum(r.error.empty() ? 0u : 1u, MPI_COMM_WORLD);
       const bool names_it =
         r.error.find("the stresses of body 1 (upper block) are of the "
                      "order of") != std::string::npos &&
         r.error.find(kind) != std::string::npos;
-      out << "pressure " << pressure << ": stopped on "
-          << n_stopped << "/" << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
+      out << "pressure " << pressure << ": stopped on " << n_stopped << "/"
+          << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
           << " ranks, message names body 1 and " << kind << ": "
           << (names_it ? "yes" : "no") << ", summary.json without null: "
           << (r.summary_has_null ? "no" : "yes") << std::endl;

@@ -22,17 +22,26 @@ void
 check_patch(const std::string &cell_type, const std::string &degree = "1")
 {
   ParameterHandler prm;
-  const Parameters parameters = testing::make_parameters(
-    prm,
-    {{"Scene/Name", "patch"},
-     {"Mesh/Cell type", cell_type},
-     {"Finite elements/Polynomial degree", degree},
-     {"Scene/Patch/Upper body subdivisions", "3, 2"},
-     {"Scene/Patch/Lower body subdivisions", "10, 4"}});
+  const Parameters parameters =
+    testing::make_parameters(prm,
+                             {{"Scene/Name", "patch"},
+                              {"Mesh/Cell type", cell_type},
+                              {"Finite elements/Polynomial degree", degree},
+                              {"Scene/Patch/Upper body subdivisions", "3, 2"},
+                              {"Scene/Patch/Lower body subdivisions",
+                               "10, 4"}});
   const auto  scene = scenes::create_scene(parameters, prm);
-  ElasticBody slave(MPI_COMM_WORLD, *scene, 0, parameters.mesh.cell_type, 0,
+  ElasticBody slave(MPI_COMM_WORLD,
+                    *scene,
+                    0,
+                    parameters.mesh.cell_type,
+                    0,
                     parameters.finite_elements);
-  ElasticBody master(MPI_COMM_WORLD, *scene, 1, parameters.mesh.cell_type, 0,
+  ElasticBody master(MPI_COMM_WORLD,
+                     *scene,
+                     1,
+                     parameters.mesh.cell_type,
+                     0,
                      parameters.finite_elements);
   slave.setup_system();
   master.setup_system();
@@ -66,14 +75,16 @@ check_patch(const std::string &cell_type, const std::string &degree = "1")
                               (-jump[j] - D[j] * u(nodes[j].position)).norm() /
                                 (D[j] * u(nodes[j].position).norm()));
       gap_error    = std::max(gap_error, std::abs(gaps[j]) / D[j]);
-      normal_error = std::max(
-        normal_error, (nodes[j].normal - Tensor<1, 2>({0., -1.})).norm());
+      normal_error =
+        std::max(normal_error,
+                 (nodes[j].normal - Tensor<1, 2>({0., -1.})).norm());
     }
   auto out = testing::root_output();
   out << "patch (" << cell_type << ", degree " << degree
       << "): " << nodes.size() << " slave nodes, "
-      << interface.master_nodes().size() << " master nodes, sum D = "
-      << std::setprecision(12) << sum_D << std::endl;
+      << interface.master_nodes().size()
+      << " master nodes, sum D = " << std::setprecision(12) << sum_D
+      << std::endl;
   out << "  rows of M sum to D: " << (row_error < 1e-13 ? "yes" : "no")
       << "; M reproduces linear fields: "
       << (linear_error < 1e-13 ? "yes" : "no")
@@ -98,17 +109,25 @@ check_hertz(const std::string &cell_type)
   const Parameters parameters = testing::make_parameters(
     prm, {{"Scene/Name", "hertz"}, {"Mesh/Cell type", cell_type}});
   const auto  scene = scenes::create_scene(parameters, prm);
-  ElasticBody slave(MPI_COMM_WORLD, *scene, 0, parameters.mesh.cell_type, 0,
+  ElasticBody slave(MPI_COMM_WORLD,
+                    *scene,
+                    0,
+                    parameters.mesh.cell_type,
+                    0,
                     parameters.finite_elements);
-  ElasticBody master(MPI_COMM_WORLD, *scene, 1, parameters.mesh.cell_type, 0,
+  ElasticBody master(MPI_COMM_WORLD,
+                     *scene,
+                     1,
+                     parameters.mesh.cell_type,
+                     0,
                      parameters.finite_elements);
   slave.setup_system();
   master.setup_system();
   MortarInterface interface;
   interface.reinit(slave, master);
 
-  const double R     = 100;
-  const auto & nodes = interface.slave_nodes();
+  const double R         = 100;
+  const auto  &nodes     = interface.slave_nodes();
   unsigned int n_checked = 0;
   double       worst     = 0;
   auto         out       = testing::root_output();
@@ -117,8 +136,8 @@ check_hertz(const std::string &cell_type)
       const Point<2> &x = nodes[j].position;
       if (std::abs(x[0]) > 5.)
         continue;
-      const double gap = interface.weighted_initial_gaps()[j] /
-                         interface.slave_weights()[j];
+      const double gap =
+        interface.weighted_initial_gaps()[j] / interface.slave_weights()[j];
       // Relative to the height, with an absolute floor for the node at 0.
       const double error = std::abs(gap - x[1]) / std::max(x[1], 1e-6);
       worst              = std::max(worst, error);

@@ -79,7 +79,7 @@ namespace
   {
     unsigned int n = 0;
     for (std::size_t p = text.find(what); p != std::string::npos;
-         p          = text.find(what, p + 1))
+         p             = text.find(what, p + 1))
       ++n;
     return n;
   }
@@ -105,8 +105,8 @@ namespace
     const auto          dims = dimensions(file, data_set);
     std::vector<double> values(dims[0] * dims[1]);
     const hid_t         set = H5Dopen2(file, data_set.c_str(), H5P_DEFAULT);
-    H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-            values.data());
+    H5Dread(
+      set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
     H5Dclose(set);
     double m = 0;
     for (const double v : values)
@@ -128,8 +128,8 @@ namespace
     const std::string text = read_text(path);
     const std::regex  grid(
       "<Geometry[^>]*>\\s*<DataItem Dimensions=\"([0-9 ]+)\"[^>]*>\\s*"
-      "([^:\\s]+):/nodes[\\s\\S]*?<Topology[^>]*>\\s*<DataItem "
-      "Dimensions=\"([0-9 ]+)\"");
+       "([^:\\s]+):/nodes[\\s\\S]*?<Topology[^>]*>\\s*<DataItem "
+       "Dimensions=\"([0-9 ]+)\"");
     std::vector<XdmfEntryText> entries;
     for (auto it = std::sregex_iterator(text.begin(), text.end(), grid);
          it != std::sregex_iterator();
@@ -139,7 +139,7 @@ namespace
   }
 
   void
-  check_no_temporary_files(const std::string &directory,
+  check_no_temporary_files(const std::string  &directory,
                            ConditionalOStream &out)
   {
     unsigned int n = 0;
@@ -153,18 +153,17 @@ namespace
   check_hdf5(ConditionalOStream &out)
   {
     out << "Format = hdf5, Write cycles = all" << std::endl;
-    const ProgramRun run(blocks("hdf5", "all", "output-hdf5"));
+    const ProgramRun  run(blocks("hdf5", "all", "output-hdf5"));
     const std::string directory = run.parameters.output.directory;
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
       {
-        const std::vector<std::string> bases = {"body-1", "body-2",
-                                                "contact"};
+        const std::vector<std::string> bases = {"body-1", "body-2", "contact"};
         for (unsigned int k = 0; k < 3; ++k)
           {
             const auto entries =
               xdmf_entries(directory + "/" + bases[k] + ".xdmf");
-            out << "  " << bases[k] << ".xdmf: " << entries.size()
-                << " cycles" << std::endl;
+            out << "  " << bases[k] << ".xdmf: " << entries.size() << " cycles"
+                << std::endl;
             AssertThrow(entries.size() == 2,
                         ExcMessage("the XDMF file does not index 2 cycles"));
             for (unsigned int c = 0; c < entries.size(); ++c)
@@ -186,9 +185,9 @@ namespace
                       .get<std::size_t>();
                 else
                   {
-                    const std::string csv = read_text(
-                      directory + "/contact_" +
-                      Utilities::int_to_string(c, 3) + ".csv");
+                    const std::string csv =
+                      read_text(directory + "/contact_" +
+                                Utilities::int_to_string(c, 3) + ".csv");
                     expected_cells = count(csv, "\n") - 2;
                     nodes_per_cell = 2;
                   }
@@ -202,9 +201,8 @@ namespace
                               nodes[0] == nodes_per_cell * expected_cells &&
                               nodes[1] == 2,
                             ExcMessage("wrong sizes in " + h5));
-                AssertThrow(entries[c].cells ==
-                                std::to_string(cells[0]) + " " +
-                                  std::to_string(cells[1]) &&
+                AssertThrow(entries[c].cells == std::to_string(cells[0]) + " " +
+                                                  std::to_string(cells[1]) &&
                               entries[c].nodes ==
                                 std::to_string(nodes[0]) + " 2",
                             ExcMessage("the XDMF sizes differ from " + h5));
@@ -220,7 +218,7 @@ namespace
           {
             const std::string h5 =
               directory + "/body-" + std::to_string(b + 1) + "_001.h5";
-            const hid_t  file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+            const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
             const double written = max_abs(file, "/displacement");
             H5Fclose(file);
             out << "  body " << b + 1 << ", cycle 1: max |u| written "
@@ -235,15 +233,14 @@ namespace
   }
 
   void
-  check_write_cycles(const std::string &format,
-                     const std::string &write_cycles,
+  check_write_cycles(const std::string  &format,
+                     const std::string  &write_cycles,
                      ConditionalOStream &out)
   {
     out << "Format = " << format << ", Write cycles = " << write_cycles
         << std::endl;
-    const ProgramRun run(blocks(format,
-                                write_cycles,
-                                "output-" + format + "-" + write_cycles));
+    const ProgramRun run(
+      blocks(format, write_cycles, "output-" + format + "-" + write_cycles));
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) > 0)
       return;
     const std::string directory = run.parameters.output.directory;
@@ -251,8 +248,9 @@ namespace
     // number of ranks prints the same.
     std::set<std::string> files;
     for (const auto &name : files_in(directory))
-      files.insert(std::regex_replace(
-        name, std::regex("(_[0-9]{3})\\.[0-9]+\\.vtu$"), "$1.R.vtu"));
+      files.insert(std::regex_replace(name,
+                                      std::regex("(_[0-9]{3})\\.[0-9]+\\.vtu$"),
+                                      "$1.R.vtu"));
     out << "  files:";
     for (const auto &name : files)
       out << ' ' << name;
@@ -285,8 +283,8 @@ namespace
             const unsigned int n_records =
               count(read_text(directory + "/" + base + index),
                     format == "vtu" ? "<DataSet" : "<Grid Name=\"mesh\"");
-            out << "  " << base << index << ": " << n_records
-                << " record(s)" << std::endl;
+            out << "  " << base << index << ": " << n_records << " record(s)"
+                << std::endl;
             AssertThrow(!has_first && has_last && n_records == 1,
                         ExcMessage("Write cycles = last wrote other than "
                                    "the last cycle"));

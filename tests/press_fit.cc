@@ -44,8 +44,8 @@ main(int argc, char *argv[])
     std::string degree, size_factor;
     double      tolerance, mean_tolerance;
   };
-  for (const Case &test : {Case{"1", "0.5", 0.01, 1e-3},
-                           Case{"2", "1", 0.01, 1e-4}})
+  for (const Case &test :
+       {Case{"1", "0.5", 0.01, 1e-3}, Case{"2", "1", 0.01, 1e-4}})
     {
       const auto problem = testing::solve_contact(
         {{"Scene/Gmsh/Mesh file", root + "/prm/meshes/press_fit.geo"},
@@ -54,9 +54,9 @@ main(int argc, char *argv[])
         root + "/prm/press_fit.prm");
 
       // The initial gap as the mortar integrates it, per slave node.
-      const MortarInterface &mortar = problem->solver->mortar_interface();
-      double overlap = 0, clearance = 0;
-      unsigned int n_covered = 0;
+      const MortarInterface &mortar  = problem->solver->mortar_interface();
+      double                 overlap = 0, clearance = 0;
+      unsigned int           n_covered = 0;
       for (unsigned int j = 0; j < mortar.slave_nodes().size(); ++j)
         if (mortar.is_covered(j))
           {
@@ -71,7 +71,7 @@ main(int argc, char *argv[])
       // force's magnitude over the bore's length).
       double       deviation = 0, lowest = 1e300, highest = 0;
       double       force = 0, length = 0;
-      unsigned int n_active  = 0;
+      unsigned int n_active = 0;
       for (const auto &s : problem->solver->node_states())
         {
           n_active += s.status != ContactStatus::open;
@@ -81,7 +81,7 @@ main(int argc, char *argv[])
           lowest    = std::min(lowest, s.pressure);
           highest   = std::max(highest, s.pressure);
         }
-      const unsigned int n_nodes = problem->solver->node_states().size();
+      const unsigned int n_nodes        = problem->solver->node_states().size();
       const double       mean_deviation = force / length / lame - 1;
 
       out << "P" << test.degree << ", Mesh size factor " << test.size_factor

@@ -45,8 +45,7 @@ namespace coulomb_adapt
         // Rank 0 writes the summary; the others read it once it is
         // complete.
         MPI_Barrier(MPI_COMM_WORLD);
-        std::ifstream(parameters.output.directory + "/summary.json") >>
-          summary;
+        std::ifstream(parameters.output.directory + "/summary.json") >> summary;
       }
     };
   } // namespace testing

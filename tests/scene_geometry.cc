@@ -21,33 +21,39 @@ using namespace coulomb_adapt;
 
 struct Expected
 {
-  double                                 area;
+  double                               area;
   std::map<types::boundary_id, double> lengths;
-  bool                                   floating;
-  double                                 tolerance; // relative
+  bool                                 floating;
+  double                               tolerance; // relative
 };
 
 void
-check(const std::string &scene_name,
-      const std::string &cell_type,
+check(const std::string             &scene_name,
+      const std::string             &cell_type,
       const std::array<Expected, 2> &expected)
 {
   ParameterHandler prm;
   const Parameters parameters = testing::make_parameters(
     prm, {{"Scene/Name", scene_name}, {"Mesh/Cell type", cell_type}});
-  const auto scene = scenes::create_scene(parameters, prm);
-  auto       out   = testing::root_output();
-  const MPI_Comm comm = MPI_COMM_WORLD;
+  const auto     scene = scenes::create_scene(parameters, prm);
+  auto           out   = testing::root_output();
+  const MPI_Comm comm  = MPI_COMM_WORLD;
 
   for (unsigned int b = 0; b < 2; ++b)
     {
-      ElasticBody body(comm, *scene, b, parameters.mesh.cell_type, 0,
+      ElasticBody body(comm,
+                       *scene,
+                       b,
+                       parameters.mesh.cell_type,
+                       0,
                        parameters.finite_elements);
       body.setup_system();
 
-      FEValues<2> fe_values(body.mapping(), body.dof_handler().get_fe(),
-                            body.cell_quadrature(), update_JxW_values);
-      double area = 0;
+      FEValues<2>                          fe_values(body.mapping(),
+                            body.dof_handler().get_fe(),
+                            body.cell_quadrature(),
+                            update_JxW_values);
+      double                               area = 0;
       std::map<types::boundary_id, double> lengths;
       for (const auto &cell : body.dof_handler().active_cell_iterators())
         if (cell->is_locally_owned())
@@ -62,7 +68,8 @@ check(const std::string &scene_name,
       area = Utilities::MPI::sum(area, comm);
 
       out << scene_name << " (" << cell_type << "), body " << b + 1 << " ("
-          << body.name() << "): " << body.triangulation().n_global_active_cells()
+          << body.name()
+          << "): " << body.triangulation().n_global_active_cells()
           << " cells, area " << std::setprecision(6) << area;
       const Expected &e = expected[b];
       AssertThrow(std::abs(area - e.area) < e.tolerance * e.area,
@@ -72,8 +79,8 @@ check(const std::string &scene_name,
           const double l = Utilities::MPI::sum(lengths[id], comm);
           out << ", boundary " << int(id) << " length " << l;
           AssertThrow(std::abs(l - length) < e.tolerance * length,
-                      ExcMessage("boundary " + std::to_string(id) +
-                                 " length " + std::to_string(l)));
+                      ExcMessage("boundary " + std::to_string(id) + " length " +
+                                 std::to_string(l)));
         }
       const bool floating = body.is_floating();
       out << ", floating: " << (floating ? "yes" : "no") << std::endl;
@@ -89,14 +96,19 @@ check_hertz_resolution(const std::string &cell_type)
   ParameterHandler prm;
   const Parameters parameters = testing::make_parameters(
     prm, {{"Scene/Name", "hertz"}, {"Mesh/Cell type", cell_type}});
-  const auto scene = scenes::create_scene(parameters, prm);
-  const double a = dynamic_cast<const scenes::Hertz &>(*scene).contact_half_width();
+  const auto   scene = scenes::create_scene(parameters, prm);
+  const double a =
+    dynamic_cast<const scenes::Hertz &>(*scene).contact_half_width();
   auto out = testing::root_output();
   for (unsigned int b = 0; b < 2; ++b)
     {
-      ElasticBody body(MPI_COMM_WORLD, *scene, b, parameters.mesh.cell_type, 0,
+      ElasticBody  body(MPI_COMM_WORLD,
+                       *scene,
+                       b,
+                       parameters.mesh.cell_type,
+                       0,
                        parameters.finite_elements);
-      double covered = 0;
+      double       covered = 0;
       unsigned int n_faces = 0;
       for (const auto &cell : body.triangulation().active_cell_iterators())
         if (cell->is_locally_owned())
@@ -113,7 +125,8 @@ check_hertz_resolution(const std::string &cell_type)
           << ": at least 20 contact faces across the contact width 2a: "
           << (n_faces >= 20 ? "yes" : "no") << std::endl;
       AssertThrow(n_faces >= 20,
-                  ExcMessage(std::to_string(n_faces) + " contact faces in [-a, a]"));
+                  ExcMessage(std::to_string(n_faces) +
+                             " contact faces in [-a, a]"));
     }
 }
 
@@ -126,40 +139,45 @@ check_symmetry_line(const std::string &scene_name,
                     const std::string &hold_parameter)
 {
   ParameterHandler prm;
-  const Parameters parameters = testing::make_parameters(
-    prm,
-    {{"Scene/Name", scene_name},
-     {"Mesh/Cell type", cell_type},
-     {hold_parameter, "true"}});
-  const auto scene = scenes::create_scene(parameters, prm);
-  auto       out   = testing::root_output();
-  ElasticBody body(MPI_COMM_WORLD, *scene, 0, parameters.mesh.cell_type, 0,
+  const Parameters parameters =
+    testing::make_parameters(prm,
+                             {{"Scene/Name", scene_name},
+                              {"Mesh/Cell type", cell_type},
+                              {hold_parameter, "true"}});
+  const auto  scene = scenes::create_scene(parameters, prm);
+  auto        out   = testing::root_output();
+  ElasticBody body(MPI_COMM_WORLD,
+                   *scene,
+                   0,
+                   parameters.mesh.cell_type,
+                   0,
                    parameters.finite_elements);
   body.setup_system();
   const Tensor<1, 2> sideways({1., 0.});
   const auto         held_sideways = [&]() {
     return holds_translation_along(body.support_gram(Point<2>()), sideways);
   };
-  out << scene_name << " (" << cell_type << "), body 1 held sideways: "
-      << (held_sideways() ? "yes" : "no");
-  AssertThrow(held_sideways(),
-              ExcMessage(hold_parameter + " holds nothing"));
+  out << scene_name << " (" << cell_type
+      << "), body 1 held sideways: " << (held_sideways() ? "yes" : "no");
+  AssertThrow(held_sideways(), ExcMessage(hold_parameter + " holds nothing"));
   if (cell_type == "triangle")
     {
       // Remeshed with cells about half the size.
       Vector<double> ratio(body.triangulation().n_active_cells());
-      ratio = 0.5;
-      const auto field = nodal_size_field(body, ratio);
+      ratio                  = 0.5;
+      const auto       field = nodal_size_field(body, ratio);
       Triangulation<2> geometry;
       body.create_scene_coarse_mesh(geometry);
       const auto lines = body.description().interior_lines();
       AssertThrow(lines.size() == 1, ExcMessage("no interior line"));
-      body.replace_mesh(remesh_with_gmsh(geometry, field, body.name(),
-                                         MPI_COMM_WORLD, "frontal-delaunay",
+      body.replace_mesh(remesh_with_gmsh(geometry,
+                                         field,
+                                         body.name(),
+                                         MPI_COMM_WORLD,
+                                         "frontal-delaunay",
                                          lines));
       body.setup_system();
-      out << ", after remeshing: "
-          << (held_sideways() ? "yes" : "no");
+      out << ", after remeshing: " << (held_sideways() ? "yes" : "no");
       AssertThrow(held_sideways(),
                   ExcMessage(hold_parameter + " holds nothing after "
                                               "remeshing"));
@@ -176,16 +194,26 @@ main(int argc, char *argv[])
 
   for (const std::string cell_type : {"quadrilateral", "triangle"})
     {
-      check("blocks", cell_type,
-            {{{1e4, {{contact, 100.}, {traction, 100.}, {traction_free, 200.}}, true, 1e-12},
-              {4e4, {{contact, 200.}, {dirichlet, 200.}, {traction_free, 400.}}, false, 1e-12}}});
-      check("patch", cell_type,
+      check("blocks",
+            cell_type,
+            {{{1e4,
+               {{contact, 100.}, {traction, 100.}, {traction_free, 200.}},
+               true,
+               1e-12},
+              {4e4,
+               {{contact, 200.}, {dirichlet, 200.}, {traction_free, 400.}},
+               false,
+               1e-12}}});
+      check("patch",
+            cell_type,
             {{{50., {{contact, 10.}, {traction, 10.}}, true, 1e-12},
               {50., {{contact, 10.}, {roller, 10.}}, false, 1e-12}}});
-      check("punch", cell_type,
+      check("punch",
+            cell_type,
             {{{200., {{contact, 20.}, {traction, 20.}}, true, 1e-12},
               {5000., {{contact, 100.}, {dirichlet, 100.}}, false, 1e-12}}});
-      check("manufactured", cell_type,
+      check("manufactured",
+            cell_type,
             {{{1., {{dirichlet, 3.}, {traction, 1.}}, false, 1e-12},
               {1., {{dirichlet, 3.}, {traction, 1.}}, false, 1e-12}}});
     }
@@ -194,13 +222,14 @@ main(int argc, char *argv[])
   // contact refinements resolve the arc near the contact point only.
   for (const std::string cell_type : {"quadrilateral", "triangle"})
     {
-      check("hertz", cell_type,
-            {{{pi * 1e4 / 2, {{contact, pi * 100}, {traction, 200.}}, true, 2e-2},
-              {2e4, {{contact, 200.}, {dirichlet, 200.}}, false, 1e-12}}});
+      check(
+        "hertz",
+        cell_type,
+        {{{pi * 1e4 / 2, {{contact, pi * 100}, {traction, 200.}}, true, 2e-2},
+          {2e4, {{contact, 200.}, {dirichlet, 200.}}, false, 1e-12}}});
       check_hertz_resolution(cell_type);
       check_symmetry_line("hertz", cell_type, "Scene/Hertz/Hold axis");
-      check_symmetry_line("blocks", cell_type,
-                          "Scene/Blocks/Hold centre line");
+      check_symmetry_line("blocks", cell_type, "Scene/Blocks/Hold centre line");
       check_symmetry_line("punch", cell_type, "Scene/Punch/Hold centre line");
     }
 }

@@ -24,9 +24,9 @@
 #include <deal.II/base/convergence_table.h>
 #include <deal.II/base/quadrature_lib.h>
 
-#include <deal.II/fe/fe_values.h>
-
 #include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_values.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
@@ -216,8 +216,10 @@ const RecoveryScene one_quadrilateral([](Triangulation<2> &tria) {
 });
 
 const RecoveryScene two_triangles([](Triangulation<2> &tria) {
-  GridGenerator::subdivided_hyper_rectangle_with_simplices(
-    tria, {1, 1}, Point<2>(0, 0), Point<2>(1.2, 0.9));
+  GridGenerator::subdivided_hyper_rectangle_with_simplices(tria,
+                                                           {1, 1},
+                                                           Point<2>(0, 0),
+                                                           Point<2>(1.2, 0.9));
 });
 
 const RecoveryScene distorted_triangles([](Triangulation<2> &tria) {
@@ -237,26 +239,26 @@ struct StressErrors
 };
 
 StressErrors
-compute_stress_errors(const ElasticBody &      body,
-                      const RecoveredStress &  recovery,
-                      const Function<2> &      exact)
+compute_stress_errors(const ElasticBody     &body,
+                      const RecoveredStress &recovery,
+                      const Function<2>     &exact)
 {
   const unsigned int  p = body.dof_handler().get_fe().degree;
   const Quadrature<2> quadrature =
     body.is_simplex_mesh() ?
       static_cast<Quadrature<2>>(QGaussSimplex<2>(p + 2)) :
       static_cast<Quadrature<2>>(QGauss<2>(p + 2));
-  FEValues<2> displacement_values(body.mapping(),
+  FEValues<2>                        displacement_values(body.mapping(),
                                   body.dof_handler().get_fe(),
                                   quadrature,
                                   update_gradients | update_quadrature_points |
                                     update_JxW_values);
-  FEValues<2> recovered_values(body.mapping(),
+  FEValues<2>                        recovered_values(body.mapping(),
                                recovery.dof_handler().get_fe(),
                                quadrature,
                                update_values);
-  std::vector<SymmetricTensor<2, 2>>   strains(quadrature.size());
-  std::array<std::vector<double>, 3>   recovered;
+  std::vector<SymmetricTensor<2, 2>> strains(quadrature.size());
+  std::array<std::vector<double>, 3> recovered;
   for (auto &r : recovered)
     r.resize(quadrature.size());
   const auto energy = [&](const SymmetricTensor<2, 2> &sigma) {
@@ -268,9 +270,11 @@ compute_stress_errors(const ElasticBody &      body,
     if (cell->is_locally_owned())
       {
         displacement_values.reinit(cell);
-        recovered_values.reinit(DoFHandler<2>::active_cell_iterator(
-          &body.triangulation(), cell->level(), cell->index(),
-          &recovery.dof_handler()));
+        recovered_values.reinit(
+          DoFHandler<2>::active_cell_iterator(&body.triangulation(),
+                                              cell->level(),
+                                              cell->index(),
+                                              &recovery.dof_handler()));
         displacement_values[FEValuesExtractors::Vector(0)]
           .get_function_symmetric_gradients(body.solution(), strains);
         for (unsigned int c = 0; c < 3; ++c)
@@ -289,7 +293,7 @@ compute_stress_errors(const ElasticBody &      body,
               body.material().stress(strains[q]);
             const SymmetricTensor<2, 2> sigma_r = stress_tensor(Tensor<1, 3>(
               {recovered[0][q], recovered[1][q], recovered[2][q]}));
-            const double JxW = displacement_values.JxW(q);
+            const double                JxW     = displacement_values.JxW(q);
             raw += energy(sigma_h - sigma) * JxW;
             recovered_error += energy(sigma_r - sigma) * JxW;
             norm += energy(sigma) * JxW;
@@ -315,7 +319,7 @@ interpolate_displacement(ElasticBody &body, const Function<2> &u)
 std::unique_ptr<ElasticBody>
 interpolated_body(const RecoveryScene &scene,
                   const unsigned int   degree,
-                  const Function<2> &  u)
+                  const Function<2>   &u)
 {
   auto body = std::make_unique<ElasticBody>(
     MPI_COMM_WORLD,
@@ -333,8 +337,8 @@ interpolated_body(const RecoveryScene &scene,
 // FEValues of the displacement's FESystem (update_gradients), reinit'ed on
 // @p cell here, at each of its points.
 std::vector<Tensor<1, 3>>
-reference_stresses(const ElasticBody &                        body,
-                   FEValues<2> &                              reference,
+reference_stresses(const ElasticBody                         &body,
+                   FEValues<2>                               &reference,
                    const DoFHandler<2>::active_cell_iterator &cell)
 {
   reference.reinit(cell);
@@ -360,17 +364,17 @@ check_quadrature_stress(const std::string &label, const ElasticBody &body)
   const unsigned int     degree = body.dof_handler().get_fe().degree;
   const QuadratureStress raw_stress(body, body.solution());
 
-  FEValues<2> reference(body.mapping(),
+  FEValues<2>     reference(body.mapping(),
                         body.dof_handler().get_fe(),
                         body.cell_quadrature(),
                         update_gradients | update_JxW_values);
   RecoveredStress recovered(body);
   recovered.recover(raw_stress, StressRecoveryMethod::l2_projection);
-  FEValues<2> recovered_reference(body.mapping(),
+  FEValues<2>                        recovered_reference(body.mapping(),
                                   recovered.dof_handler().get_fe(),
                                   body.cell_quadrature(),
                                   update_values);
-  const unsigned int n_points = body.cell_quadrature().size();
+  const unsigned int                 n_points = body.cell_quadrature().size();
   std::vector<Tensor<1, 3>>          recovered_values(n_points);
   std::array<std::vector<double>, 3> reference_components;
   for (auto &r : reference_components)
@@ -382,7 +386,9 @@ check_quadrature_stress(const std::string &label, const ElasticBody &body)
     if (cell->is_locally_owned())
       {
         const DoFHandler<2>::active_cell_iterator stress_cell(
-          &body.triangulation(), cell->level(), cell->index(),
+          &body.triangulation(),
+          cell->level(),
+          cell->index(),
           &recovered.dof_handler());
         recovered.get_quadrature_values(stress_cell, recovered_values);
         recovered_reference.reinit(stress_cell);
@@ -393,7 +399,7 @@ check_quadrature_stress(const std::string &label, const ElasticBody &body)
         for (const unsigned int q : reference.quadrature_point_indices())
           {
             const Tensor<1, 3> &sigma = sigmas[q];
-            largest_stress = std::max(largest_stress, sigma.norm());
+            largest_stress            = std::max(largest_stress, sigma.norm());
             stress_difference =
               std::max(stress_difference,
                        (raw_stress.stress(owned_cell, q) - sigma).norm());
@@ -410,12 +416,12 @@ check_quadrature_stress(const std::string &label, const ElasticBody &body)
           }
         ++owned_cell;
       }
-  const MPI_Comm comm = body.triangulation().get_communicator();
-  largest_stress      = Utilities::MPI::max(largest_stress, comm);
-  stress_difference   = Utilities::MPI::max(stress_difference, comm);
-  weight_difference   = Utilities::MPI::max(weight_difference, comm);
+  const MPI_Comm comm  = body.triangulation().get_communicator();
+  largest_stress       = Utilities::MPI::max(largest_stress, comm);
+  stress_difference    = Utilities::MPI::max(stress_difference, comm);
+  weight_difference    = Utilities::MPI::max(weight_difference, comm);
   recovered_difference = Utilities::MPI::max(recovered_difference, comm);
-  const bool same = stress_difference <= 1e-13 * largest_stress &&
+  const bool same      = stress_difference <= 1e-13 * largest_stress &&
                     weight_difference <= 1e-14 &&
                     recovered_difference <= 1e-13 * largest_stress;
   testing::root_output()
@@ -436,7 +442,7 @@ check_quadrature_stress(const std::string &label, const ElasticBody &body)
 void
 check_sampled_stress(const std::string &label, const ElasticBody &body)
 {
-  const unsigned int  degree   = body.dof_handler().get_fe().degree;
+  const unsigned int  degree = body.dof_handler().get_fe().degree;
   const Quadrature<2> sampling =
     body.is_simplex_mesh() ?
       static_cast<Quadrature<2>>(QGaussSimplex<2>(degree)) :
@@ -446,9 +452,9 @@ check_sampled_stress(const std::string &label, const ElasticBody &body)
                         body.dof_handler().get_fe(),
                         sampling,
                         update_gradients | update_quadrature_points);
-  double       largest_stress = 0, stress_difference = 0;
-  double       largest_coordinate = 0, point_difference = 0;
-  unsigned int owned_cell = 0;
+  double                 largest_stress = 0, stress_difference = 0;
+  double                 largest_coordinate = 0, point_difference = 0;
+  unsigned int           owned_cell = 0;
   for (const auto &cell : body.dof_handler().active_cell_iterators())
     if (cell->is_locally_owned())
       {
@@ -456,16 +462,16 @@ check_sampled_stress(const std::string &label, const ElasticBody &body)
         for (const unsigned int q : reference.quadrature_point_indices())
           {
             const Tensor<1, 3> &sigma = sigmas[q];
-            largest_stress = std::max(largest_stress, sigma.norm());
+            largest_stress            = std::max(largest_stress, sigma.norm());
             stress_difference =
               std::max(stress_difference,
                        (sampled.stress(owned_cell, q) - sigma).norm());
-            largest_coordinate =
-              std::max(largest_coordinate, reference.quadrature_point(q).norm());
-            point_difference = std::max(
-              point_difference,
-              sampled.point(owned_cell, q).distance(
-                reference.quadrature_point(q)));
+            largest_coordinate = std::max(largest_coordinate,
+                                          reference.quadrature_point(q).norm());
+            point_difference =
+              std::max(point_difference,
+                       sampled.point(owned_cell, q)
+                         .distance(reference.quadrature_point(q)));
           }
         ++owned_cell;
       }
@@ -483,8 +489,9 @@ check_sampled_stress(const std::string &label, const ElasticBody &body)
                          << ": same as FEValues: " << (same ? "yes" : "no")
                          << std::endl;
   AssertThrow(same,
-              ExcMessage(label + ": SPR samples differ from FEValues: "
-                                 "stress " +
+              ExcMessage(label +
+                         ": SPR samples differ from FEValues: "
+                         "stress " +
                          std::to_string(stress_difference) + ", position " +
                          std::to_string(point_difference)));
 }
@@ -582,9 +589,9 @@ check_mass_operator(const std::string &label, const ElasticBody &body)
       reference.vmult(y_reference, x_reference);
       for (const types::global_dof_index i : owned)
         if (constraints.is_constrained(i))
-          identity_on_constrained =
-            identity_on_constrained && y.block(b)(i) == x.block(b)(i) &&
-            inverse_diagonal.block(b)(i) == 1.;
+          identity_on_constrained = identity_on_constrained &&
+                                    y.block(b)(i) == x.block(b)(i) &&
+                                    inverse_diagonal.block(b)(i) == 1.;
         else
           {
             largest = std::max(largest, std::abs(y_reference(i)));
@@ -598,9 +605,9 @@ check_mass_operator(const std::string &label, const ElasticBody &body)
                                 1.));
           }
     }
-  largest                 = Utilities::MPI::max(largest, comm);
-  product_difference      = Utilities::MPI::max(product_difference, comm);
-  diagonal_difference     = Utilities::MPI::max(diagonal_difference, comm);
+  largest             = Utilities::MPI::max(largest, comm);
+  product_difference  = Utilities::MPI::max(product_difference, comm);
+  diagonal_difference = Utilities::MPI::max(diagonal_difference, comm);
   identity_on_constrained =
     Utilities::MPI::min(identity_on_constrained ? 1 : 0, comm) == 1;
   const bool same = product_difference <= 1e-13 * largest &&
@@ -610,8 +617,9 @@ check_mass_operator(const std::string &label, const ElasticBody &body)
                          << ": same as the assembled C^T M C: "
                          << (same ? "yes" : "no") << std::endl;
   AssertThrow(same,
-              ExcMessage(label + ": mass operator differs from the assembled "
-                                 "matrix: product " +
+              ExcMessage(label +
+                         ": mass operator differs from the assembled "
+                         "matrix: product " +
                          std::to_string(product_difference / largest) +
                          " (relative), diagonal " +
                          std::to_string(diagonal_difference) +
@@ -619,9 +627,8 @@ check_mass_operator(const std::string &label, const ElasticBody &body)
                          (identity_on_constrained ? "yes" : "no")));
 }
 
-const std::vector<StressRecoveryMethod> methods = {
-  StressRecoveryMethod::l2_projection,
-  StressRecoveryMethod::spr};
+const std::vector<StressRecoveryMethod> methods =
+  {StressRecoveryMethod::l2_projection, StressRecoveryMethod::spr};
 
 std::string
 element_name(const ElasticBody &body)
@@ -633,17 +640,17 @@ element_name(const ElasticBody &body)
 // Relative recovered-stress error of @p u for each method; those in
 // @p must_be_exact must vanish to round-off.
 void
-check_exactness(const std::string &                     label,
-                const RecoveryScene &                   scene,
+check_exactness(const std::string                      &label,
+                const RecoveryScene                    &scene,
                 const unsigned int                      degree,
-                const Function<2> &                     u,
+                const Function<2>                      &u,
                 const std::vector<StressRecoveryMethod> must_be_exact)
 {
   const double tolerance = 1e-10;
   auto         out       = testing::root_output();
 
-  const auto         body_pointer = interpolated_body(scene, degree, u);
-  const ElasticBody &body         = *body_pointer;
+  const auto             body_pointer = interpolated_body(scene, degree, u);
+  const ElasticBody     &body         = *body_pointer;
   RecoveredStress        recovery(body);
   const QuadratureStress raw_stress(body, body.solution());
 
@@ -652,11 +659,11 @@ check_exactness(const std::string &                     label,
   for (const auto method : methods)
     {
       recovery.recover(raw_stress, method);
-      const StressErrors e  = compute_stress_errors(body, recovery, u);
-      const double relative = e.recovered / e.exact_norm;
-      const bool   exact    = std::find(must_be_exact.begin(),
-                                   must_be_exact.end(),
-                                   method) != must_be_exact.end();
+      const StressErrors e        = compute_stress_errors(body, recovery, u);
+      const double       relative = e.recovered / e.exact_norm;
+      const bool         exact =
+        std::find(must_be_exact.begin(), must_be_exact.end(), method) !=
+        must_be_exact.end();
       out << "  " << to_string(method) << " ";
       if (relative < tolerance)
         out << "exact";
@@ -683,22 +690,22 @@ struct Gain
 // under uniform refinement, and their rates; the gains of ZZ1 and SPR on
 // the last two meshes must be at least @p zz_gain and @p spr_gain.
 void
-check_convergence(const std::string &  label,
+check_convergence(const std::string   &label,
                   const RecoveryScene &scene,
                   const unsigned int   degree,
                   const unsigned int   n_cycles,
-                  const Gain &         zz_gain,
-                  const Gain &         spr_gain)
+                  const Gain          &zz_gain,
+                  const Gain          &spr_gain)
 {
-  const SmoothDisplacement u;
-  auto                     out = testing::root_output();
-  ElasticBody              body(MPI_COMM_WORLD,
+  const SmoothDisplacement                   u;
+  auto                                       out = testing::root_output();
+  ElasticBody                                body(MPI_COMM_WORLD,
                    scene,
                    0,
                    CellType::quadrilateral,
                    1,
                    {degree, PlaneModel::plane_strain});
-  ConvergenceTable                 table;
+  ConvergenceTable                           table;
   std::map<std::string, std::vector<double>> errors;
   for (unsigned int cycle = 0; cycle < n_cycles; ++cycle)
     {
@@ -754,8 +761,7 @@ check_convergence(const std::string &  label,
                              " above the raw rate " +
                              std::to_string(rate("raw"))));
       AssertThrow(factor > gain.factor,
-                  ExcMessage(label + ", " + method +
-                             ": recovered error only " +
+                  ExcMessage(label + ", " + method + ": recovered error only " +
                              std::to_string(factor) + " times below raw"));
     }
 }
@@ -764,8 +770,8 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const auto spr = StressRecoveryMethod::spr;
-  const auto zz  = StressRecoveryMethod::l2_projection;
+  const auto                       spr = StressRecoveryMethod::spr;
+  const auto                       zz  = StressRecoveryMethod::l2_projection;
 
   const SmoothDisplacement smooth;
   const std::vector<std::pair<std::string, const RecoveryScene *>>
@@ -785,22 +791,36 @@ main(int argc, char *argv[])
   for (const unsigned int p : {1u, 2u})
     {
       const PolynomialDisplacement higher(p + 1), in_space(p);
-      check_exactness("(a) degree p+1 on parallelograms",
-                      parallelograms, p, higher, {spr});
+      check_exactness(
+        "(a) degree p+1 on parallelograms", parallelograms, p, higher, {spr});
       check_exactness("(b) degree p on distorted quadrilaterals with "
                       "hanging nodes",
-                      distorted_quadrilaterals_with_hanging_nodes, p,
-                      in_space, {zz, spr});
+                      distorted_quadrilaterals_with_hanging_nodes,
+                      p,
+                      in_space,
+                      {zz, spr});
       check_exactness("(b) degree p on distorted triangles",
-                      distorted_triangles, p, in_space, {zz, spr});
+                      distorted_triangles,
+                      p,
+                      in_space,
+                      {zz, spr});
       check_exactness("(b) degree p on one quadrilateral",
-                      one_quadrilateral, p, in_space, {zz, spr});
-      check_exactness("(b) degree p on two triangles",
-                      two_triangles, p, in_space, {zz, spr});
+                      one_quadrilateral,
+                      p,
+                      in_space,
+                      {zz, spr});
+      check_exactness(
+        "(b) degree p on two triangles", two_triangles, p, in_space, {zz, spr});
       check_exactness("(c) degree p+1 on distorted quadrilaterals",
-                      distorted_quadrilaterals, p, higher, {});
+                      distorted_quadrilaterals,
+                      p,
+                      higher,
+                      {});
       check_exactness("(c) degree p+1 on distorted triangles",
-                      distorted_triangles, p, higher, {});
+                      distorted_triangles,
+                      p,
+                      higher,
+                      {});
     }
   testing::root_output() << std::endl;
 
@@ -809,17 +829,25 @@ main(int argc, char *argv[])
   // order. ZZ1 gains half an order for p = 1 (its error concentrates
   // along the boundary) and, for p = 2, only a little in the constant.
   check_convergence("distorted quadrilaterals",
-                    distorted_quadrilaterals, 1, 5, {0.4, 10}, {0.9, 20});
+                    distorted_quadrilaterals,
+                    1,
+                    5,
+                    {0.4, 10},
+                    {0.9, 20});
   check_convergence("distorted quadrilaterals",
-                    distorted_quadrilaterals, 2, 4, {-0.1, 1}, {0.9, 20});
+                    distorted_quadrilaterals,
+                    2,
+                    4,
+                    {-0.1, 1},
+                    {0.9, 20});
   // P_1: a centroid's gradient error is O(h); it cancels between the
   // point-symmetric triangles around a vertex of a refined coarse cell,
   // not along the lines of the coarse mesh, which leaves SPR at rate 1.5
   // (2 on translation-invariant meshes). P_2: the gradient errors at the
   // Gauss points of a triangle and of its mirror image are equal, not
   // opposite: SPR keeps rate p, with a much smaller constant.
-  check_convergence("distorted triangles",
-                    distorted_triangles, 1, 4, {0.4, 5}, {0.4, 10});
-  check_convergence("distorted triangles",
-                    distorted_triangles, 2, 3, {-0.1, 1}, {-0.1, 10});
+  check_convergence(
+    "distorted triangles", distorted_triangles, 1, 4, {0.4, 5}, {0.4, 10});
+  check_convergence(
+    "distorted triangles", distorted_triangles, 2, 3, {-0.1, 1}, {-0.1, 10});
 }

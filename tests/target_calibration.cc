@@ -38,10 +38,10 @@ main(int argc, char *argv[])
   const double target = 0.05;
   // The hand values are one or two floating-point operations away from
   // the computed ones: a few ulp.
-  const auto check = [&](const std::string &  step,
+  const auto check = [&](const std::string       &step,
                          const TargetCalibration &calibration,
-                         const double         expected_correction,
-                         const double         expected_aim) {
+                         const double             expected_correction,
+                         const double             expected_aim) {
     const double c   = calibration.correction();
     const double aim = calibration.aim(target);
     out << step << ": correction " << c << ", aim " << aim << std::endl;
@@ -67,7 +67,9 @@ main(int argc, char *argv[])
   calibration.record_plan(0.032);
   calibration.record_achieved(0.016);
   check("plan 0.032, achieved 0.016 (c = 0.5, the bound)",
-        calibration, 0.5, 0.08);
+        calibration,
+        0.5,
+        0.08);
 
   calibration.record_plan(0.08);
   calibration.record_achieved(0.01);
@@ -83,16 +85,16 @@ main(int argc, char *argv[])
 
   calibration.record_plan(0.);
   calibration.record_achieved(0.03);
-  check("plan 0, achieved 0.03 (not checked)",
-        calibration, 1.95, 0.04 / 1.95);
+  check("plan 0, achieved 0.03 (not checked)", calibration, 1.95, 0.04 / 1.95);
   calibration.record_plan(std::numeric_limits<double>::infinity());
   calibration.record_achieved(0.03);
   check("plan inf, achieved 0.03 (not checked)",
-        calibration, 1.95, 0.04 / 1.95);
+        calibration,
+        1.95,
+        0.04 / 1.95);
   calibration.record_plan(0.02);
   calibration.record_achieved(0.);
-  check("plan 0.02, achieved 0 (not checked)",
-        calibration, 1.95, 0.04 / 1.95);
+  check("plan 0.02, achieved 0 (not checked)", calibration, 1.95, 0.04 / 1.95);
   calibration.record_achieved(0.03);
   check("achieved 0.03, that plan dropped", calibration, 1.95, 0.04 / 1.95);
 

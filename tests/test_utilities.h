@@ -23,7 +23,7 @@ namespace coulomb_adapt
      * way the program applies `-s` options. */
     inline Parameters
     make_parameters(
-      ParameterHandler &                                      prm,
+      ParameterHandler                                       &prm,
       const std::vector<std::pair<std::string, std::string>> &settings,
       const std::string &parameter_file = "")
     {

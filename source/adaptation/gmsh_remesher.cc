@@ -47,7 +47,9 @@ namespace coulomb_adapt
       for (std::size_t c = 0; c < part.size(); c += n_values)
         {
           std::array<double, n_values> cell;
-          std::copy(part.begin() + c, part.begin() + c + n_values, cell.begin());
+          std::copy(part.begin() + c,
+                    part.begin() + c + n_values,
+                    cell.begin());
           cell[6] = static_cast<float>(cell[6]);
           cells.push_back(cell);
         }
@@ -77,10 +79,10 @@ namespace coulomb_adapt
         const double area = cells[c][7];
         for (unsigned int v = 0; v < 3; ++v)
           {
-            const auto &entry =
-              log_sum[{cells[c][2 * v], cells[c][2 * v + 1]}];
-            field[c].vertices[v] = Point<2>(cells[c][2 * v], cells[c][2 * v + 1]);
-            field[c].size[v]     = std::exp(entry.first / entry.second);
+            const auto &entry = log_sum[{cells[c][2 * v], cells[c][2 * v + 1]}];
+            field[c].vertices[v] =
+              Point<2>(cells[c][2 * v], cells[c][2 * v + 1]);
+            field[c].size[v] = std::exp(entry.first / entry.second);
           }
         n_wanted += area / (cells[c][6] * cells[c][6]);
         for (unsigned int v = 0; v < 3; ++v)
@@ -169,21 +171,21 @@ namespace coulomb_adapt
     // @p corners: vertices where a curve must end even inside a straight
     // run or an arc (end points of interior lines).
     std::vector<Curve>
-    boundary_curves(const Triangulation<2> &      tria,
-                    const std::string &           body_name,
+    boundary_curves(const Triangulation<2>       &tria,
+                    const std::string            &body_name,
                     const std::set<unsigned int> &corners)
     {
       const std::vector<BoundaryFace> loop     = boundary_loop(tria, body_name);
-      const auto &                    vertices = tria.get_vertices();
-      auto direction = [&](const BoundaryFace &f) {
+      const auto                     &vertices = tria.get_vertices();
+      auto                            direction = [&](const BoundaryFace &f) {
         const Tensor<1, 2> d = vertices[f.b] - vertices[f.a];
         return d / d.norm();
       };
       // A curve ends where the boundary data change, or where a straight
       // run turns.
       auto breaks_between = [&](const BoundaryFace &f, const BoundaryFace &g) {
-        if (f.boundary_id != g.boundary_id ||
-            f.manifold_id != g.manifold_id || corners.count(g.a) > 0)
+        if (f.boundary_id != g.boundary_id || f.manifold_id != g.manifold_id ||
+            corners.count(g.a) > 0)
           return true;
         if (f.manifold_id != numbers::flat_manifold_id)
           return false;
@@ -192,7 +194,8 @@ namespace coulomb_adapt
       };
       const unsigned int n     = loop.size();
       unsigned int       start = 0;
-      while (start < n && !breaks_between(loop[(start + n - 1) % n], loop[start]))
+      while (start < n &&
+             !breaks_between(loop[(start + n - 1) % n], loop[start]))
         ++start;
       if (start == n) // a closed smooth curve: any vertex will do
         start = 0;
@@ -221,10 +224,10 @@ namespace coulomb_adapt
 
     // Mesh in gmsh; the elements and the boundary lines of each curve.
     CoarseMeshData
-    mesh_in_gmsh(const Triangulation<2> &              geometry,
-                 const std::vector<SizeFieldTriangle> &size_field,
-                 const std::string &                   body_name,
-                 const int                             algorithm,
+    mesh_in_gmsh(const Triangulation<2>                     &geometry,
+                 const std::vector<SizeFieldTriangle>       &size_field,
+                 const std::string                          &body_name,
+                 const int                                   algorithm,
                  const std::vector<std::array<Point<2>, 2>> &interior_lines)
     {
       const auto &vertices = geometry.get_vertices();
@@ -255,7 +258,7 @@ namespace coulomb_adapt
 
       gmsh::model::add(body_name);
       std::map<unsigned int, int> point_tag;
-      auto point = [&](const unsigned int v) {
+      auto                        point = [&](const unsigned int v) {
         auto it = point_tag.find(v);
         if (it == point_tag.end())
           it = point_tag
@@ -266,16 +269,17 @@ namespace coulomb_adapt
                  .first;
         return it->second;
       };
-      std::vector<int>          loop_tags;
-      std::vector<unsigned int> curve_of_tag; // gmsh curve -> curves[]
+      std::vector<int>            loop_tags;
+      std::vector<unsigned int>   curve_of_tag; // gmsh curve -> curves[]
       std::map<int, unsigned int> curve_index;
       for (unsigned int c = 0; c < curves.size(); ++c)
         {
-          const Curve &curve = curves[c];
+          const Curve     &curve = curves[c];
           std::vector<int> tags;
           if (curve.manifold_id == numbers::flat_manifold_id)
-            tags.push_back(gmsh::model::geo::addLine(
-              point(curve.vertices.front()), point(curve.vertices.back())));
+            tags.push_back(
+              gmsh::model::geo::addLine(point(curve.vertices.front()),
+                                        point(curve.vertices.back())));
           else
             {
               const auto *sphere = dynamic_cast<const SphericalManifold<2> *>(
@@ -313,8 +317,8 @@ namespace coulomb_adapt
               curve_index[t] = c;
             }
         }
-      const int loop    = gmsh::model::geo::addCurveLoop(loop_tags);
-      const int surface = gmsh::model::geo::addPlaneSurface({loop});
+      const int        loop    = gmsh::model::geo::addCurveLoop(loop_tags);
+      const int        surface = gmsh::model::geo::addPlaneSurface({loop});
       std::vector<int> interior_tags;
       for (const auto &ends : line_ends)
         interior_tags.push_back(
@@ -373,14 +377,14 @@ namespace coulomb_adapt
       std::vector<std::size_t> node_of_tag(max_tag + 1);
       for (std::size_t i = 0; i < node_tags.size(); ++i)
         node_of_tag[node_tags[i]] = i;
-      constexpr unsigned int invalid = numbers::invalid_unsigned_int;
+      constexpr unsigned int    invalid = numbers::invalid_unsigned_int;
       std::vector<unsigned int> local_index(max_tag + 1, invalid);
 
       CoarseMeshData mesh;
       auto           vertex = [&](const std::size_t tag) {
         if (local_index[tag] == invalid)
           {
-            local_index[tag] = mesh.vertices.size();
+            local_index[tag]    = mesh.vertices.size();
             const std::size_t i = node_of_tag[tag];
             mesh.vertices.emplace_back(coordinates[3 * i],
                                        coordinates[3 * i + 1]);
@@ -406,8 +410,7 @@ namespace coulomb_adapt
               for (unsigned int v = 0; v < 3; ++v)
                 {
                   const Point<2> &p = mesh.vertices[cell.vertices[v]];
-                  const Point<2> &q =
-                    mesh.vertices[cell.vertices[(v + 1) % 3]];
+                  const Point<2> &q = mesh.vertices[cell.vertices[(v + 1) % 3]];
                   area += p[0] * q[1] - q[0] * p[1];
                 }
               if (0.5 * area < 0)
@@ -461,7 +464,8 @@ namespace coulomb_adapt
     {
       std::vector<double> data = {double(mesh.vertices.size()),
                                   double(mesh.cells.size()),
-                                  double(mesh.boundary_lines.boundary_lines.size())};
+                                  double(
+                                    mesh.boundary_lines.boundary_lines.size())};
       for (const auto &v : mesh.vertices)
         data.insert(data.end(), {v[0], v[1]});
       for (const auto &c : mesh.cells)
@@ -485,9 +489,11 @@ namespace coulomb_adapt
       CoarseMeshData mesh;
       std::size_t    k       = 3;
       const auto     n_lines = static_cast<std::size_t>(data[2]);
-      for (std::size_t i = 0; i < static_cast<std::size_t>(data[0]); ++i, k += 2)
+      for (std::size_t i = 0; i < static_cast<std::size_t>(data[0]);
+           ++i, k += 2)
         mesh.vertices.emplace_back(data[k], data[k + 1]);
-      for (std::size_t i = 0; i < static_cast<std::size_t>(data[1]); ++i, k += 4)
+      for (std::size_t i = 0; i < static_cast<std::size_t>(data[1]);
+           ++i, k += 4)
         {
           CellData<2> cell(3);
           for (unsigned int v = 0; v < 3; ++v)
@@ -499,7 +505,7 @@ namespace coulomb_adapt
         {
           CellData<1> line;
           line.vertices    = {static_cast<unsigned int>(data[k]),
-                           static_cast<unsigned int>(data[k + 1])};
+                              static_cast<unsigned int>(data[k + 1])};
           line.boundary_id = static_cast<types::boundary_id>(data[k + 2]);
           line.manifold_id = static_cast<types::manifold_id>(data[k + 3]);
           mesh.boundary_lines.boundary_lines.push_back(line);
@@ -511,11 +517,11 @@ namespace coulomb_adapt
 
 
   CoarseMeshData
-  remesh_with_gmsh(const Triangulation<2> &              geometry,
-                   const std::vector<SizeFieldTriangle> &size_field,
-                   const std::string &                   body_name,
-                   const MPI_Comm                        comm,
-                   const std::string &                   algorithm,
+  remesh_with_gmsh(const Triangulation<2>                     &geometry,
+                   const std::vector<SizeFieldTriangle>       &size_field,
+                   const std::string                          &body_name,
+                   const MPI_Comm                              comm,
+                   const std::string                          &algorithm,
                    const std::vector<std::array<Point<2>, 2>> &interior_lines)
   {
     // gmsh's Mesh.Algorithm numbers.
@@ -530,12 +536,11 @@ namespace coulomb_adapt
         gmsh::option::setNumber("General.Verbosity", 0);
         try
           {
-            data = pack(
-              mesh_in_gmsh(geometry,
-                           size_field,
-                           body_name,
-                           algorithm_number,
-                           interior_lines));
+            data = pack(mesh_in_gmsh(geometry,
+                                     size_field,
+                                     body_name,
+                                     algorithm_number,
+                                     interior_lines));
           }
         catch (const std::exception &e)
           {

@@ -8,10 +8,10 @@
 namespace coulomb_adapt
 {
   MeshAdaptationReport
-  adapt_meshes(const std::array<ElasticBody *, 2> & bodies,
-               ErrorEstimate &                      estimate,
+  adapt_meshes(const std::array<ElasticBody *, 2>  &bodies,
+               ErrorEstimate                       &estimate,
                const std::vector<ContactNodeState> &contact_states,
-               const parameters::Adaptation &       parameters,
+               const parameters::Adaptation        &parameters,
                const unsigned int                   degree,
                const double                         aimed_error)
   {
@@ -44,8 +44,8 @@ namespace coulomb_adapt
             n_cells += body->triangulation().n_global_active_cells();
             n_dofs += body->dof_handler().n_dofs();
           }
-        const double max_n_cells = parameters.max_dofs * n_cells / n_dofs;
-        ratios = optimal_size_ratios(const_bodies,
+        const double max_n_cells   = parameters.max_dofs * n_cells / n_dofs;
+        ratios                     = optimal_size_ratios(const_bodies,
                                      estimate,
                                      find_singular_points(const_bodies,
                                                           contact_states),
@@ -55,12 +55,12 @@ namespace coulomb_adapt
                                      parameters.min_size_ratio,
                                      parameters.max_size_ratio,
                                      max_n_cells);
-        report.aimed_epsilon     = aimed_error;
-        report.predicted_n_cells = ratios.predicted_n_cells;
-        report.predicted_epsilon = ratios.predicted_epsilon;
-        report.n_singular_cells  = ratios.n_singular_cells;
-        report.n_at_min_ratio    = ratios.n_at_min_ratio;
-        report.n_at_max_ratio    = ratios.n_at_max_ratio;
+        report.aimed_epsilon       = aimed_error;
+        report.predicted_n_cells   = ratios.predicted_n_cells;
+        report.predicted_epsilon   = ratios.predicted_epsilon;
+        report.n_singular_cells    = ratios.n_singular_cells;
+        report.n_at_min_ratio      = ratios.n_at_min_ratio;
+        report.n_at_max_ratio      = ratios.n_at_max_ratio;
         report.limited_by_max_dofs = ratios.limited_by_max_n_cells;
       }
 
@@ -83,24 +83,23 @@ namespace coulomb_adapt
       }
 
     const RefinementDecisions decisions =
-      use_ratios ?
-        decisions_from_size_ratios(const_bodies,
-                                   estimate,
-                                   ratios,
-                                   aimed_error) :
-        decisions_from_indicator(const_bodies,
-                                 estimate,
-                                 parameters.refinement_criterion,
-                                 parameters.refine_fraction,
-                                 parameters.coarsen_fraction,
-                                 degree);
+      use_ratios ? decisions_from_size_ratios(const_bodies,
+                                              estimate,
+                                              ratios,
+                                              aimed_error) :
+                   decisions_from_indicator(const_bodies,
+                                            estimate,
+                                            parameters.refinement_criterion,
+                                            parameters.refine_fraction,
+                                            parameters.coarsen_fraction,
+                                            degree);
     for (unsigned int b = 0; b < 2; ++b)
       for (const signed char d : decisions[b])
         {
           report.n_refine_flags += (d > 0);
           report.n_coarsen_flags += (d < 0);
         }
-    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
+    const MPI_Comm comm    = bodies[0]->dof_handler().get_communicator();
     report.n_refine_flags  = Utilities::MPI::sum(report.n_refine_flags, comm);
     report.n_coarsen_flags = Utilities::MPI::sum(report.n_coarsen_flags, comm);
     for (unsigned int b = 0; b < 2; ++b)

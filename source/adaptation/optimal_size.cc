@@ -34,7 +34,8 @@ namespace coulomb_adapt
                 p_min = p_max = state.position;
                 continue;
               }
-            const double s = (state.position - first->position) * first->tangent;
+            const double s =
+              (state.position - first->position) * first->tangent;
             if (s < s_min)
               s_min = s, p_min = state.position;
             if (s > s_max)
@@ -55,7 +56,7 @@ namespace coulomb_adapt
     // ghost cell's face towards an absent cell also reports at_boundary),
     // so the ids of a vertex are combined over the ranks.
     void
-    add_boundary_condition_changes(const ElasticBody &                  body,
+    add_boundary_condition_changes(const ElasticBody                   &body,
                                    std::set<std::pair<double, double>> &points)
     {
       std::vector<std::array<double, 3>> local;
@@ -68,14 +69,14 @@ namespace coulomb_adapt
                                   face->vertex(v)[1],
                                   double(face->boundary_id())}});
       std::map<std::pair<double, double>, std::set<types::boundary_id>> ids;
-      for (const auto &part : Utilities::MPI::all_gather(
-             body.dof_handler().get_communicator(), local))
+      for (const auto &part :
+           Utilities::MPI::all_gather(body.dof_handler().get_communicator(),
+                                      local))
         for (const auto &[x, y, id] : part)
           ids[{x, y}].insert(static_cast<types::boundary_id>(id));
       for (const auto &[point, point_ids] : ids)
-        if (point_ids.size() > 1 &&
-            (point_ids.count(boundary_ids::dirichlet) ||
-             point_ids.count(boundary_ids::contact)))
+        if (point_ids.size() > 1 && (point_ids.count(boundary_ids::dirichlet) ||
+                                     point_ids.count(boundary_ids::contact)))
           points.insert(point);
     }
   } // namespace
@@ -84,7 +85,7 @@ namespace coulomb_adapt
 
   std::vector<Point<2>>
   find_singular_points(const std::array<const ElasticBody *, 2> &bodies,
-                       const std::vector<ContactNodeState> &     contact_states)
+                       const std::vector<ContactNodeState>      &contact_states)
   {
     std::set<std::pair<double, double>> local;
     // The states are those of all slave nodes on every rank.
@@ -102,17 +103,17 @@ namespace coulomb_adapt
 
   OptimalSizeRatios
   optimal_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
-                      const ErrorEstimate &                     estimate,
-                      const std::vector<Point<2>> &             singular_points,
+                      const ErrorEstimate                      &estimate,
+                      const std::vector<Point<2>>              &singular_points,
                       const double                              target_error,
                       const unsigned int                        degree,
                       const double                              singular_rate,
                       const double                              min_ratio,
                       const double                              max_ratio,
-                      const double max_n_cells)
+                      const double                              max_n_cells)
   {
     Assert(target_error > 0, ExcMessage("a target error is needed"));
-    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
+    const MPI_Comm    comm = bodies[0]->dof_handler().get_communicator();
     OptimalSizeRatios result;
 
     // Per owned cell: epsilon_E^2 and q_E; the cells of both bodies in one
@@ -132,8 +133,8 @@ namespace coulomb_adapt
         for (const auto &cell : tria.active_cell_iterators())
           if (cell->is_locally_owned())
             {
-              const unsigned int i = cell->active_cell_index();
-              double             q = degree;
+              const unsigned int   i   = cell->active_cell_index();
+              double               q   = degree;
               const BoundingBox<2> box = cell->bounding_box();
               for (const auto &p : singular_points)
                 if (box.point_inside(p, 1e-10))
@@ -144,10 +145,14 @@ namespace coulomb_adapt
                   }
               result.rate[b](i) = q;
               cells.push_back(
-                {b, i, std::max(0., estimate.contribution_squared[b](i) / D2), q});
+                {b,
+                 i,
+                 std::max(0., estimate.contribution_squared[b](i) / D2),
+                 q});
             }
       }
-    result.n_singular_cells = Utilities::MPI::sum(result.n_singular_cells, comm);
+    result.n_singular_cells =
+      Utilities::MPI::sum(result.n_singular_cells, comm);
 
     // r_E for the multiplier exp(L), bounded above, and below if
     // lower_bound. The multiplier is found without the lower bound: cells
@@ -171,20 +176,22 @@ namespace coulomb_adapt
     auto lowest_ratio = [&](const CellData &c) {
       return lowest_size_ratio(min_ratio, c.rate < degree);
     };
-    auto ratio = [&](const CellData &c, const double L, const bool lower_bound) {
-      if (c.epsilon_squared <= 0)
-        return max_ratio;
-      const double log_r =
-        (std::log(dimension / (2 * c.rate * c.epsilon_squared)) - L) /
-        (2 * c.rate + dimension);
-      return std::clamp(std::exp(std::clamp(log_r, -300., 300.)),
-                        lower_bound ? lowest_ratio(c) : 0.,
-                        max_ratio);
-    };
+    auto ratio =
+      [&](const CellData &c, const double L, const bool lower_bound) {
+        if (c.epsilon_squared <= 0)
+          return max_ratio;
+        const double log_r =
+          (std::log(dimension / (2 * c.rate * c.epsilon_squared)) - L) /
+          (2 * c.rate + dimension);
+        return std::clamp(std::exp(std::clamp(log_r, -300., 300.)),
+                          lower_bound ? lowest_ratio(c) : 0.,
+                          max_ratio);
+      };
     auto predicted_error_squared = [&](const double L, const bool lower_bound) {
       double sum = 0;
       for (const auto &c : cells)
-        sum += std::pow(ratio(c, L, lower_bound), 2 * c.rate) * c.epsilon_squared;
+        sum +=
+          std::pow(ratio(c, L, lower_bound), 2 * c.rate) * c.epsilon_squared;
       return Utilities::MPI::sum(sum, comm);
     };
 
@@ -211,7 +218,7 @@ namespace coulomb_adapt
     if (max_n_cells > 0 && predicted_n_cells(L) > max_n_cells)
       {
         result.limited_by_max_n_cells = true;
-        double L_fewer = -1400;
+        double L_fewer                = -1400;
         for (unsigned int k = 0; k < 200 && L - L_fewer > 1e-12; ++k)
           {
             const double L_middle = 0.5 * (L_fewer + L);
@@ -226,7 +233,7 @@ namespace coulomb_adapt
     double n_cells = 0;
     for (const auto &c : cells)
       {
-        const double r              = ratio(c, L, true);
+        const double r                = ratio(c, L, true);
         result.ratio[c.body](c.index) = r;
         n_cells += std::pow(r, -dimension);
         result.n_at_min_ratio += (r <= lowest_ratio(c) * (1 + 1e-12));

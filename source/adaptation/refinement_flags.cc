@@ -11,9 +11,9 @@ namespace coulomb_adapt
 {
   RefinementDecisions
   decisions_from_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
-                             const ErrorEstimate &                     estimate,
-                             const OptimalSizeRatios &                 ratios,
-                             const double                              target_error)
+                             const ErrorEstimate                      &estimate,
+                             const OptimalSizeRatios                  &ratios,
+                             const double target_error)
   {
     const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
     // Levels for r_E: the nearest power of 2 on a log scale, at least one
@@ -35,7 +35,8 @@ namespace coulomb_adapt
     auto predicted_error_squared = [&](const double r_refine) {
       double sum = 0;
       for (unsigned int b = 0; b < 2; ++b)
-        for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
+        for (const auto &cell :
+             bodies[b]->triangulation().active_cell_iterators())
           if (cell->is_locally_owned())
             {
               const unsigned int i = cell->active_cell_index();
@@ -82,18 +83,19 @@ namespace coulomb_adapt
 
   RefinementDecisions
   decisions_from_indicator(const std::array<const ElasticBody *, 2> &bodies,
-                           const ErrorEstimate &estimate,
-                           const std::string &  criterion,
-                           const double         refine_fraction,
-                           const double         coarsen_fraction,
-                           const unsigned int   degree)
+                           const ErrorEstimate                      &estimate,
+                           const std::string                        &criterion,
+                           const double       refine_fraction,
+                           const double       coarsen_fraction,
+                           const unsigned int degree)
   {
     const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
     // epsilon_E^2 of every cell of both bodies, on every rank, sorted
     // decreasingly: the thresholds are then the same everywhere.
     std::vector<double> local;
     for (unsigned int b = 0; b < 2; ++b)
-      for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
+      for (const auto &cell :
+           bodies[b]->triangulation().active_cell_iterators())
         if (cell->is_locally_owned())
           local.push_back(
             estimate.contribution_squared[b](cell->active_cell_index()));
@@ -141,12 +143,14 @@ namespace coulomb_adapt
           }
       }
     else
-      AssertThrow(false, ExcMessage("unknown refinement criterion '" + criterion + "'"));
+      AssertThrow(false,
+                  ExcMessage("unknown refinement criterion '" + criterion +
+                             "'"));
 
     // Cells equal up to round-off (symmetric ones) get the same decision.
-    const double refine_threshold =
-      n_refine > 0 ? all[n_refine - 1] * (1 - 1e-10) :
-                     std::numeric_limits<double>::infinity();
+    const double refine_threshold = n_refine > 0 ?
+                                      all[n_refine - 1] * (1 - 1e-10) :
+                                      std::numeric_limits<double>::infinity();
     const double coarsen_threshold =
       n_coarsen > 0 ? all[N - n_coarsen] * (1 + 1e-10) : -1;
 

@@ -5,8 +5,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <iterator>
+#include <map>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -56,8 +56,8 @@ namespace coulomb_adapt
                                    "': expected \"Section/Entry=value\"");
             // Blanks around the names and the value, as the file parser
             // trims them ("Section/Entry = value" is the file's spelling).
-            std::vector<std::string> names = Utilities::split_string_list(
-              assignment.substr(0, equal), '/');
+            std::vector<std::string> names =
+              Utilities::split_string_list(assignment.substr(0, equal), '/');
             std::string path;
             for (const auto &name : names)
               path += (path.empty() ? "" : "/") + Utilities::trim(name);
@@ -116,15 +116,15 @@ namespace coulomb_adapt
               std::string key;
               for (const auto &p : path)
                 key += p + "/";
-              key += Utilities::trim(
-                statement.substr(4, statement.find('=') - 4));
+              key +=
+                Utilities::trim(statement.substr(4, statement.find('=') - 4));
               const auto [where, inserted] = first_line.emplace(key, start);
               if (!inserted)
-                throw ParameterError(
-                  "in parameter file '" + file + "': line " +
-                  std::to_string(start) + " sets '" + key +
-                  "' again (first on line " + std::to_string(where->second) +
-                  "); each entry may be set once");
+                throw ParameterError("in parameter file '" + file + "': line " +
+                                     std::to_string(start) + " sets '" + key +
+                                     "' again (first on line " +
+                                     std::to_string(where->second) +
+                                     "); each entry may be set once");
             }
         }
     }
@@ -150,13 +150,12 @@ namespace coulomb_adapt
            std::filesystem::is_fifo(status)      ? "a FIFO (named pipe)" :
            std::filesystem::is_character_file(status) ||
                std::filesystem::is_block_file(status) ?
-                                                   "a device" :
-                                                   "not a regular file") +
+                                              "a device" :
+                                              "not a regular file") +
           ", not a parameter file (give a .prm file)");
       std::ifstream in(file);
       if (!in)
-        throw ParameterError("parameter file '" + file +
-                             "' cannot be read (" +
+        throw ParameterError("parameter file '" + file + "' cannot be read (" +
                              std::strerror(errno) + ")");
       std::string text((std::istreambuf_iterator<char>(in)),
                        std::istreambuf_iterator<char>());
@@ -184,7 +183,7 @@ namespace coulomb_adapt
     void
     apply_override(const std::string &path,
                    const std::string &value,
-                   ParameterHandler & prm)
+                   ParameterHandler  &prm)
     {
       std::vector<std::string> sections =
         Utilities::split_string_list(path, '/');
@@ -203,12 +202,14 @@ namespace coulomb_adapt
               std::string parent;
               for (const auto &e : existing)
                 parent += (parent.empty() ? "" : "/") + e;
-              throw ParameterError(
-                "in option -s \"" + path + "=" + value + "\": there is "
-                "no subsection '" + section + "' " +
-                (parent.empty() ? std::string("at the top level") :
-                                  "in '" + parent + "'") +
-                " (--print-parameters lists them)");
+              throw ParameterError("in option -s \"" + path + "=" + value +
+                                   "\": there is "
+                                   "no subsection '" +
+                                   section + "' " +
+                                   (parent.empty() ?
+                                      std::string("at the top level") :
+                                      "in '" + parent + "'") +
+                                   " (--print-parameters lists them)");
             }
           existing = next;
         }

@@ -55,7 +55,7 @@ namespace coulomb_adapt
   void
   check_finite_solution(
     const std::array<std::unique_ptr<ElasticBody>, 2> &bodies,
-    const ContactSolver *                               contact_solver)
+    const ContactSolver                               *contact_solver)
   {
     for (unsigned int b = 0; b < 2; ++b)
       {
@@ -96,8 +96,7 @@ namespace coulomb_adapt
             lower[d] = Utilities::MPI::min(lower[d], comm);
             upper[d] = Utilities::MPI::max(upper[d], comm);
           }
-        const double size =
-          std::max(upper[0] - lower[0], upper[1] - lower[1]);
+        const double size = std::max(upper[0] - lower[0], upper[1] - lower[1]);
         const double stress_scale =
           size > 0 ? 2 * body.material().mu() * max_abs / size : 0;
         const double limit = 1e120;
@@ -106,8 +105,9 @@ namespace coulomb_adapt
           throw NonFiniteResult(
             "after the solve, the stresses of body " + std::to_string(b + 1) +
             " (" + body.name() + ") are of the order of " +
-            to_string(stress_scale) + " MPa (2 mu max|u| / size, max|u| = " +
-            to_string(max_abs) + " mm): outside 1e-120 ... 1e120 MPa, the "
+            to_string(stress_scale) +
+            " MPa (2 mu max|u| / size, max|u| = " + to_string(max_abs) +
+            " mm): outside 1e-120 ... 1e120 MPa, the "
             "error indicator's squares of stresses " +
             (stress_scale > limit ? "overflow" : "underflow") +
             " the range of doubles. " + units_hint);
@@ -126,10 +126,9 @@ namespace coulomb_adapt
         if (!std::isfinite(value))
           throw NonFiniteResult(
             std::string("after the contact solve, the ") + quantity +
-            " at the contact node of body 1 (" + bodies[0]->name() +
-            ") at (" + to_string(n.position[0]) + ", " +
-            to_string(n.position[1]) + ") is " + to_string(value) + ". " +
-            units_hint);
+            " at the contact node of body 1 (" + bodies[0]->name() + ") at (" +
+            to_string(n.position[0]) + ", " + to_string(n.position[1]) +
+            ") is " + to_string(value) + ". " + units_hint);
   }
 
 
@@ -137,7 +136,7 @@ namespace coulomb_adapt
   void
   check_finite_estimate(
     const std::array<std::unique_ptr<ElasticBody>, 2> &bodies,
-    const ErrorEstimate &                               estimate)
+    const ErrorEstimate                               &estimate)
   {
     const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
     for (unsigned int b = 0; b < 2; ++b)
@@ -153,8 +152,8 @@ namespace coulomb_adapt
             ++n_subnormal;
         n_non_finite = Utilities::MPI::sum(n_non_finite, comm);
         n_subnormal  = Utilities::MPI::sum(n_subnormal, comm);
-        const std::string body = "body " + std::to_string(b + 1) + " (" +
-                                 bodies[b]->name() + ")";
+        const std::string body =
+          "body " + std::to_string(b + 1) + " (" + bodies[b]->name() + ")";
         const double largest_u = displacement_range(*bodies[b]).first;
         if (n_non_finite > 0 || !std::isfinite(estimate.epsilon_volume[b]))
           throw NonFiniteResult(
@@ -163,14 +162,16 @@ namespace coulomb_adapt
             " element contributions e_E^2, epsilon_volume = " +
             to_string(estimate.epsilon_volume[b]) +
             "): the squares of its stresses overflow the range of doubles "
-            "(largest |u| = " + to_string(largest_u) + " mm). " + units_hint);
+            "(largest |u| = " +
+            to_string(largest_u) + " mm). " + units_hint);
         if (n_subnormal > 0)
           throw NonFiniteResult(
-            "the error indicator of " + body + " has lost its precision: " +
-            std::to_string(n_subnormal) +
+            "the error indicator of " + body +
+            " has lost its precision: " + std::to_string(n_subnormal) +
             " element contributions e_E^2 are below the smallest normal "
             "double (2.2e-308), the squares of its stresses underflow "
-            "(largest |u| = " + to_string(largest_u) + " mm). " + units_hint);
+            "(largest |u| = " +
+            to_string(largest_u) + " mm). " + units_hint);
       }
 
     const bool moves = displacement_range(*bodies[0]).first > 0 ||
@@ -182,19 +183,21 @@ namespace coulomb_adapt
         "the error indicator is not finite: D^2 = " +
         to_string(estimate.normalisation_squared) +
         " (the energy of the stresses), epsilon = " +
-        to_string(estimate.epsilon) + ", epsilon_contact = " +
-        to_string(estimate.epsilon_contact) +
+        to_string(estimate.epsilon) +
+        ", epsilon_contact = " + to_string(estimate.epsilon_contact) +
         ": the squares of the stresses overflow the range of doubles. " +
         units_hint);
     if (moves &&
         estimate.normalisation_squared < std::numeric_limits<double>::min())
       throw NonFiniteResult(
         "the error indicator's normalisation D^2 (the energy of the "
-        "stresses) is " + to_string(estimate.normalisation_squared) +
+        "stresses) is " +
+        to_string(estimate.normalisation_squared) +
         " although the bodies move (largest |u| = " +
         to_string(std::max(displacement_range(*bodies[0]).first,
                            displacement_range(*bodies[1]).first)) +
         " mm): the squares of the stresses underflow the range of doubles, "
-        "and epsilon would be meaningless. " + units_hint);
+        "and epsilon would be meaningless. " +
+        units_hint);
   }
 } // namespace coulomb_adapt

@@ -15,8 +15,8 @@ namespace coulomb_adapt
     // about p^2 vertices' worth of DoFs per quadrilateral, half that per
     // triangle. On the way, each coarse mesh's cells are checked.
     double
-    estimate_first_mesh_dofs(const Scene &      scene,
-                             const Parameters & parameters,
+    estimate_first_mesh_dofs(const Scene       &scene,
+                             const Parameters  &parameters,
                              const std::string &mesh_source)
     {
       const unsigned int p        = parameters.finite_elements.degree;
@@ -96,9 +96,9 @@ namespace coulomb_adapt
   // below the DoF limit the adaptation keeps to (without this check, a
   // large 'Global refinements' ends in std::bad_alloc after minutes).
   void
-  check_before_meshing(const Scene &             scene,
-                       const Parameters &        parameters,
-                       const std::string &       mesh_source,
+  check_before_meshing(const Scene              &scene,
+                       const Parameters         &parameters,
+                       const std::string        &mesh_source,
                        const ConditionalOStream &pcout)
   {
     const double estimate =

@@ -14,22 +14,19 @@
 namespace coulomb_adapt
 {
   TwoBodyProblem::TwoBodyProblem(const MPI_Comm     mpi_communicator,
-                                 const Parameters & parameters,
-                                 ParameterHandler & prm,
+                                 const Parameters  &parameters,
+                                 ParameterHandler  &prm,
                                  const std::string &parameter_file,
-                                 std::ostream &     log)
+                                 std::ostream      &log)
     : mpi_communicator(mpi_communicator)
     , parameters(parameters)
-    , pcout(log,
-            Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+    , pcout(log, Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
     // No communicator: the timer's destructor must not synchronise the
     // ranks while an exception unwinds (that could deadlock).
-    , computing_timer(pcout,
-                      TimerOutput::never,
-                      TimerOutput::wall_times)
+    , computing_timer(pcout, TimerOutput::never, TimerOutput::wall_times)
     , target_calibration(parameters.adaptation.target_safety_factor)
   {
-    scene   = scenes::create_scene(parameters, prm);
+    scene = scenes::create_scene(parameters, prm);
     if (parameters.scene.name == "gmsh")
       {
         prm.enter_subsection("Scene");
@@ -38,13 +35,13 @@ namespace coulomb_adapt
         prm.leave_subsection();
         prm.leave_subsection();
       }
-    cycle_report = std::make_unique<CycleReport>(
-      mpi_communicator,
-      pcout,
-      computing_timer,
-      parameters.output.directory + "/summary.json",
-      scene->name(),
-      parameter_file);
+    cycle_report = std::make_unique<CycleReport>(mpi_communicator,
+                                                 pcout,
+                                                 computing_timer,
+                                                 parameters.output.directory +
+                                                   "/summary.json",
+                                                 scene->name(),
+                                                 parameter_file);
     if (!scene->reference_values().empty())
       cycle_report->set_run_entry("reference", scene->reference_values());
     cycle_report->set_run_entry("friction_coefficient",
@@ -160,8 +157,8 @@ namespace coulomb_adapt
   void
   TwoBodyProblem::estimate_error()
   {
-    TimerOutput::Scope t(computing_timer, "error indicator");
-    const auto &       indicator = parameters.error_indicator;
+    TimerOutput::Scope   t(computing_timer, "error indicator");
+    const auto          &indicator = parameters.error_indicator;
     ErrorEstimateOptions options;
     options.timer  = &computing_timer;
     error_estimate = std::make_unique<ErrorEstimate>(
@@ -211,9 +208,9 @@ namespace coulomb_adapt
   void
   TwoBodyProblem::compare_with_exact_error()
   {
-    TimerOutput::Scope t(computing_timer, "exact error");
+    TimerOutput::Scope               t(computing_timer, "exact error");
     std::unique_ptr<ReferenceStress> exact;
-    const ReferenceSolutionStress *  reference_solution = nullptr;
+    const ReferenceSolutionStress   *reference_solution = nullptr;
     if (bodies[0]->description().exact_displacement &&
         bodies[1]->description().exact_displacement)
       exact = std::make_unique<ExactSolutionStress>(body_pointers());
@@ -273,8 +270,9 @@ namespace coulomb_adapt
           compute_elasticity_errors(
             *bodies[b], *bodies[b]->description().exact_displacement));
     for (unsigned int b = 0; b < 2; ++b)
-      cycle_report->record_strain_energy(
-        b, strain_energy(*bodies[b], bodies[b]->solution()));
+      cycle_report->record_strain_energy(b,
+                                         strain_energy(*bodies[b],
+                                                       bodies[b]->solution()));
   }
 
 
@@ -321,14 +319,13 @@ namespace coulomb_adapt
     if (contact_solver)
       previous_contact_states = contact_solver->node_states();
     contact_solver.reset();
-    const auto &a = parameters.adaptation;
-    last_adaptation =
-      adapt_meshes({{bodies[0].get(), bodies[1].get()}},
-                   *error_estimate,
-                   previous_contact_states,
-                   a,
-                   parameters.finite_elements.degree,
-                   target_calibration.aim(a.target_error));
+    const auto &a   = parameters.adaptation;
+    last_adaptation = adapt_meshes({{bodies[0].get(), bodies[1].get()}},
+                                   *error_estimate,
+                                   previous_contact_states,
+                                   a,
+                                   parameters.finite_elements.degree,
+                                   target_calibration.aim(a.target_error));
     if (last_adaptation->predicted_epsilon > 0)
       target_calibration.record_plan(last_adaptation->predicted_epsilon);
     error_estimate.reset();
@@ -343,9 +340,9 @@ namespace coulomb_adapt
   bool
   TwoBodyProblem::continue_cycles(const unsigned int            cycle,
                                   const types::global_dof_index n_dofs,
-                                  std::string &                 reason) const
+                                  std::string                  &reason) const
   {
-    const auto &a = parameters.adaptation;
+    const auto        &a = parameters.adaptation;
     std::ostringstream s;
     // An over-refined mesh is optimised again only while a further cycle
     // could still refine it should the coarser one miss the target.
@@ -359,18 +356,18 @@ namespace coulomb_adapt
             << a.over_refinement_ratio << " epsilon_0: optimising again"
             << std::endl;
     if (a.target_error > 0 && error_estimate &&
-        error_estimate->epsilon <= a.target_error && cycle + 1 >= a.min_cycles &&
-        !over_refined)
+        error_estimate->epsilon <= a.target_error &&
+        cycle + 1 >= a.min_cycles && !over_refined)
       s << "target reached: epsilon = " << std::setprecision(4)
-        << 100 * error_estimate->epsilon << " % <= epsilon_0 = "
-        << 100 * a.target_error << " %";
+        << 100 * error_estimate->epsilon
+        << " % <= epsilon_0 = " << 100 * a.target_error << " %";
     else if (cycle + 1 >= a.n_cycles)
       {
         s << "maximum number of cycles (" << a.n_cycles << ") reached";
         if (a.target_error > 0 && error_estimate)
           s << " before the target: epsilon = " << std::setprecision(4)
-            << 100 * error_estimate->epsilon << " % > epsilon_0 = "
-            << 100 * a.target_error << " %";
+            << 100 * error_estimate->epsilon
+            << " % > epsilon_0 = " << 100 * a.target_error << " %";
       }
     else if (n_dofs >= a.max_dofs)
       s << "maximum number of DoFs reached (" << n_dofs << " >= " << a.max_dofs
@@ -395,8 +392,9 @@ namespace coulomb_adapt
           "(body-[12]|contact)(_[0-9]{3}(\\.[0-9]+)?\\.(vtu|pvtu|csv)|\\.pvd)"
           "(\\.tmp)?");
         std::error_code error;
-        for (const auto &entry : std::filesystem::directory_iterator(
-               parameters.output.directory, error))
+        for (const auto &entry :
+             std::filesystem::directory_iterator(parameters.output.directory,
+                                                 error))
           if (entry.is_regular_file(error) &&
               std::regex_match(entry.path().filename().string(), own_file))
             n_removed += std::filesystem::remove(entry.path(), error);
@@ -419,22 +417,22 @@ namespace coulomb_adapt
     TimerOutput::Scope t(computing_timer, "setup");
     for (unsigned int b = 0; b < 2; ++b)
       {
-        bodies[b] = std::make_unique<ElasticBody>(
-          mpi_communicator,
-          *scene,
-          b,
-          parameters.mesh.cell_type,
-          parameters.mesh.global_refinements,
-          parameters.finite_elements);
-        body_outputs[b] = std::make_unique<BodyOutput>(
-          parameters.output.directory,
-          "body-" + std::to_string(b + 1),
-          parameters.output.format);
+        bodies[b] =
+          std::make_unique<ElasticBody>(mpi_communicator,
+                                        *scene,
+                                        b,
+                                        parameters.mesh.cell_type,
+                                        parameters.mesh.global_refinements,
+                                        parameters.finite_elements);
+        body_outputs[b] =
+          std::make_unique<BodyOutput>(parameters.output.directory,
+                                       "body-" + std::to_string(b + 1),
+                                       parameters.output.format);
       }
-    contact_output = std::make_unique<ContactOutput>(
-      parameters.output.directory,
-      mpi_communicator,
-      parameters.output.format);
+    contact_output =
+      std::make_unique<ContactOutput>(parameters.output.directory,
+                                      mpi_communicator,
+                                      parameters.output.format);
     contact_solve_driver = std::make_unique<ContactSolveDriver>(
       mpi_communicator,
       *scene,
@@ -458,8 +456,8 @@ namespace coulomb_adapt
   {
     pcout << "coulomb-adapt: scene '" << scene->name() << "', "
           << Utilities::MPI::n_mpi_processes(mpi_communicator)
-          << " MPI rank(s), results in '" << parameters.output.directory
-          << "'" << std::endl;
+          << " MPI rank(s), results in '" << parameters.output.directory << "'"
+          << std::endl;
     remove_files_of_earlier_run();
     make_bodies();
     AssertThrow(!parameters.error_indicator.compute_exact_error ||

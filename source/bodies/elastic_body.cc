@@ -31,7 +31,7 @@
 namespace coulomb_adapt
 {
   ElasticBody::ElasticBody(const MPI_Comm                    mpi_communicator,
-                           const Scene &                     scene,
+                           const Scene                      &scene,
                            const unsigned int                body_index,
                            const CellType                    cell_type,
                            const unsigned int                global_refinements,
@@ -50,8 +50,8 @@ namespace coulomb_adapt
     const unsigned int p = fe_parameters.degree;
     if (simplex)
       {
-        fe       = std::make_unique<FESystem<2>>(FE_SimplexP<2>(p), 2);
-        mapping_ = std::make_unique<MappingFE<2>>(FE_SimplexP<2>(1));
+        fe         = std::make_unique<FESystem<2>>(FE_SimplexP<2>(p), 2);
+        mapping_   = std::make_unique<MappingFE<2>>(FE_SimplexP<2>(1));
         quadrature = std::make_unique<QGaussSimplex<2>>(p + 1);
       }
     else
@@ -87,7 +87,10 @@ namespace coulomb_adapt
                                                locally_owned_dofs,
                                                mpi_communicator,
                                                locally_relevant_dofs);
-    matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+    matrix.reinit(locally_owned_dofs,
+                  locally_owned_dofs,
+                  dsp,
+                  mpi_communicator);
     rhs.reinit(locally_owned_dofs, mpi_communicator);
     displacement.reinit(locally_owned_dofs,
                         locally_relevant_dofs,
@@ -138,8 +141,8 @@ namespace coulomb_adapt
               cell->get_dof_indices(local_dof_indices);
               for (unsigned int i = 0; i < local_dof_indices.size(); ++i)
                 for (unsigned int p = 0; p < point_constraints.size(); ++p)
-                  if (point_constraints[p].components
-                        [fe->system_to_component_index(i).first] &&
+                  if (point_constraints[p]
+                        .components[fe->system_to_component_index(i).first] &&
                       point_constraints[p].selects(
                         fe_values.quadrature_point(i)))
                     {
@@ -174,12 +177,12 @@ namespace coulomb_adapt
     matrix = 0;
     rhs    = 0;
 
-    FEValues<2>     fe_values(*mapping_,
+    FEValues<2>                      fe_values(*mapping_,
                           *fe,
                           *quadrature,
                           update_values | update_gradients |
                             update_quadrature_points | update_JxW_values);
-    FEFaceValues<2> fe_face_values(*mapping_,
+    FEFaceValues<2>                  fe_face_values(*mapping_,
                                    *fe,
                                    *face_quadrature,
                                    update_values | update_quadrature_points |
@@ -218,9 +221,10 @@ namespace coulomb_adapt
                 }
               for (unsigned int i = 0; i < dofs_per_cell; ++i)
                 for (unsigned int j = 0; j <= i; ++j)
-                  cell_matrix(i, j) += (2. * mu * (strain[i] * strain[j]) +
-                                        lambda * divergence[i] * divergence[j]) *
-                                       JxW;
+                  cell_matrix(i, j) +=
+                    (2. * mu * (strain[i] * strain[j]) +
+                     lambda * divergence[i] * divergence[j]) *
+                    JxW;
               if (body_description.body_force)
                 {
                   const Tensor<1, 2> f =
@@ -326,7 +330,7 @@ namespace coulomb_adapt
                 const unsigned int k =
                   locally_owned_dofs.index_within_set(local_dof_indices[i]);
                 const unsigned int c = fe->system_to_component_index(i).first;
-                const Point<2> &   x = fe_values.quadrature_point(i);
+                const Point<2>    &x = fe_values.quadrature_point(i);
                 modes[0][k]          = (c == 0) ? 1. : 0.;
                 modes[1][k]          = (c == 1) ? 1. : 0.;
                 modes[2][k]          = (c == 0) ? -x[1] : x[0];

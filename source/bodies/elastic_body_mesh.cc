@@ -41,7 +41,7 @@ namespace coulomb_adapt
   // holds the serial mesh, so every rank stops alike.
   void
   check_mesh_cells(const Triangulation<2> &mesh,
-                   const std::string &     name,
+                   const std::string      &name,
                    const unsigned int      body_index)
   {
     for (const auto &cell : mesh.active_cell_iterators())

@@ -11,7 +11,7 @@ namespace coulomb_adapt
   ElasticityErrors
   compute_elasticity_errors(const ElasticBody &body, const Function<2> &exact)
   {
-    const auto &       fe     = body.dof_handler().get_fe();
+    const auto &fe = body.dof_handler().get_fe();
     // QGaussSimplex offers at most 4 points per direction in deal.II 9.4.
     const unsigned int n_q_1d =
       body.is_simplex_mesh() ? std::min(fe.degree + 2, 4u) : fe.degree + 3;
@@ -21,7 +21,7 @@ namespace coulomb_adapt
     else
       quadrature = std::make_unique<QGauss<2>>(n_q_1d);
 
-    FEValues<2> fe_values(body.mapping(),
+    FEValues<2>                        fe_values(body.mapping(),
                           fe,
                           *quadrature,
                           update_values | update_gradients |
@@ -29,7 +29,7 @@ namespace coulomb_adapt
     const FEValuesExtractors::Vector   u(0);
     std::vector<Tensor<1, 2>>          values(quadrature->size());
     std::vector<SymmetricTensor<2, 2>> strains(quadrature->size());
-    const ElasticMaterial &            material = body.material();
+    const ElasticMaterial             &material = body.material();
 
     double l2_squared = 0, energy_squared = 0, exact_energy_squared = 0;
     for (const auto &cell : body.dof_handler().active_cell_iterators())

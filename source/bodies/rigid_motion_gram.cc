@@ -7,8 +7,8 @@ namespace coulomb_adapt
   void
   add_rigid_motion_constraint(FullMatrix<double> &gram,
                               const Tensor<1, 2> &direction,
-                              const Point<2> &    x,
-                              const Point<2> &    centre)
+                              const Point<2>     &x,
+                              const Point<2>     &centre)
   {
     const Tensor<1, 2>          arm = x - centre;
     const std::array<double, 3> row = {
@@ -24,7 +24,7 @@ namespace coulomb_adapt
 
   FullMatrix<double>
   move_rotation_centre(const FullMatrix<double> &gram,
-                       const Tensor<1, 2> &      shift)
+                       const Tensor<1, 2>       &shift)
   {
     // G' = B^T G B, the columns of B the new motions in the old coordinates.
     FullMatrix<double> B(3, 3);
@@ -56,7 +56,7 @@ namespace coulomb_adapt
 
   bool
   holds_translation_along(const FullMatrix<double> &gram,
-                          const Tensor<1, 2> &      direction)
+                          const Tensor<1, 2>       &direction)
   {
     double along = 0;
     for (unsigned int a = 0; a < 2; ++a)

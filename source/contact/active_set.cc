@@ -38,9 +38,9 @@ namespace coulomb_adapt
   ContactStatus
   initial_status(const bool touching, const double friction_coefficient)
   {
-    return !touching                  ? ContactStatus::open :
+    return !touching                ? ContactStatus::open :
            friction_coefficient > 0 ? ContactStatus::stick :
-                                        ContactStatus::slip;
+                                      ContactStatus::slip;
   }
 
 
@@ -56,9 +56,9 @@ namespace coulomb_adapt
   // a small scale a slip node sliding backwards by a non-negligible amount
   // would pass as a tie (doc/contact.md section 3).
   unsigned int
-  update_sets(const ActiveSetRule &           rule,
-              const std::vector<double> &     previous_weighted_slip,
-              std::vector<ContactNodeState> & states)
+  update_sets(const ActiveSetRule           &rule,
+              const std::vector<double>     &previous_weighted_slip,
+              std::vector<ContactNodeState> &states)
   {
     const double mu        = rule.friction_coefficient;
     unsigned int n_changed = 0;
@@ -84,10 +84,9 @@ namespace coulomb_adapt
             const auto natural = trial_tractions(s,
                                                  previous_weighted_slip[j],
                                                  natural_constant(rule, s));
-            const bool at_edge =
-              std::abs(std::abs(natural.tangential) - mu * natural.normal) <=
-                tie &&
-              s.status != ContactStatus::open;
+            const bool at_edge = std::abs(std::abs(natural.tangential) -
+                                          mu * natural.normal) <= tie &&
+                                 s.status != ContactStatus::open;
             if (at_edge ? s.status == ContactStatus::stick :
                           std::abs(trial) < mu * normal)
               status = ContactStatus::stick;
@@ -123,24 +122,23 @@ namespace coulomb_adapt
   // |C_t| / p^2, p the largest pressure, evaluated with the natural
   // constant whatever scale drives the set update.
   double
-  node_residual(const ActiveSetRule &   rule,
+  node_residual(const ActiveSetRule    &rule,
                 const ContactNodeState &s,
                 const double            previous_weighted_slip,
                 const double            p)
   {
     if (!s.facing_master)
       return 0; // no contact possible: lambda_j = 0 by construction
-    const double mu            = rule.friction_coefficient;
+    const double mu = rule.friction_coefficient;
     const auto [normal, trial] =
       trial_tractions(s, previous_weighted_slip, natural_constant(rule, s));
     const double C_n = s.pressure - std::max(0., normal);
     // C_t is homogeneous of degree 2 in (lambda, c u): scale it by p
     // and by the size of its trial traction.
-    const double C_t =
-      (mu == 0) ? s.tangential_traction * p :
-                  std::max(mu * normal, std::abs(trial)) *
-                      s.tangential_traction -
-                    mu * std::max(0., normal) * trial;
+    const double C_t = (mu == 0) ? s.tangential_traction * p :
+                                   std::max(mu * normal, std::abs(trial)) *
+                                       s.tangential_traction -
+                                     mu * std::max(0., normal) * trial;
     return std::max(std::abs(C_n) / p,
                     std::abs(C_t) / (p * std::max(p, std::abs(trial))));
   }
@@ -148,15 +146,16 @@ namespace coulomb_adapt
 
 
   double
-  complementarity_residual(const ActiveSetRule &                rule,
-                           const std::vector<double> &          previous_weighted_slip,
+  complementarity_residual(const ActiveSetRule       &rule,
+                           const std::vector<double> &previous_weighted_slip,
                            const std::vector<ContactNodeState> &states)
   {
     const double p        = largest_pressure(states);
     double       residual = 0;
     for (unsigned int j = 0; j < states.size(); ++j)
-      residual = std::max(
-        residual, node_residual(rule, states[j], previous_weighted_slip[j], p));
+      residual =
+        std::max(residual,
+                 node_residual(rule, states[j], previous_weighted_slip[j], p));
     return residual;
   }
 
@@ -170,11 +169,11 @@ namespace coulomb_adapt
   // solution. The converged sets do not depend on it: they must pass the
   // full rule unchanged.
   unsigned int
-  restrict_set_changes(const ActiveSetRule &                rule,
-                       const std::vector<double> &          previous_weighted_slip,
+  restrict_set_changes(const ActiveSetRule       &rule,
+                       const std::vector<double> &previous_weighted_slip,
                        const std::vector<ContactNodeState> &before,
                        const double                         fraction,
-                       std::vector<ContactNodeState> &      states)
+                       std::vector<ContactNodeState>       &states)
   {
     const double p       = largest_pressure(states);
     const auto   changed = [&](const unsigned int j) {
@@ -186,11 +185,9 @@ namespace coulomb_adapt
     double              largest = 0;
     for (unsigned int j = 0; j < states.size(); ++j)
       if (changed(j))
-        largest = std::max(largest,
-                           r[j] = node_residual(rule,
-                                                states[j],
-                                                previous_weighted_slip[j],
-                                                p));
+        largest = std::max(
+          largest,
+          r[j] = node_residual(rule, states[j], previous_weighted_slip[j], p));
     unsigned int n_kept = 0;
     for (unsigned int j = 0; j < states.size(); ++j)
       if (changed(j))
@@ -210,8 +207,8 @@ namespace coulomb_adapt
 
   // Nearest to sticking: smallest |trial| / (mu normal).
   unsigned int
-  node_nearest_to_sticking(const ActiveSetRule &                rule,
-                           const std::vector<double> &          previous_weighted_slip,
+  node_nearest_to_sticking(const ActiveSetRule       &rule,
+                           const std::vector<double> &previous_weighted_slip,
                            const std::vector<ContactNodeState> &states)
   {
     const double       mu   = rule.friction_coefficient;

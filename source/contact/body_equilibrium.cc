@@ -42,7 +42,7 @@ namespace coulomb_adapt
     std::pair<Point<2>, double>
     centre_and_extent(const ElasticBody &body)
     {
-      const MPI_Comm comm = body.triangulation().get_communicator();
+      const MPI_Comm      comm = body.triangulation().get_communicator();
       std::vector<double> sums(3, 0.);
       for (const auto &cell : body.triangulation().active_cell_iterators())
         if (cell->is_locally_owned())
@@ -55,7 +55,7 @@ namespace coulomb_adapt
       sums = summed(sums, comm);
       const Point<2> centre(sums[0] / std::max(sums[2], 1.),
                             sums[1] / std::max(sums[2], 1.));
-      double extent = 0;
+      double         extent = 0;
       for (const auto &cell : body.triangulation().active_cell_iterators())
         if (cell->is_locally_owned())
           for (const auto v : cell->vertex_indices())
@@ -72,13 +72,13 @@ namespace coulomb_adapt
     std::vector<Tensor<1, 3>>
     free_modes(const ElasticBody &body, const Point<2> &centre, const double L)
     {
-      const FullMatrix<double> gram  = body.support_gram(centre);
+      const FullMatrix<double> gram     = body.support_gram(centre);
       const double             scale[3] = {1., 1., 1. / L};
       SymmetricTensor<2, 3>    g;
       for (unsigned int a = 0; a < 3; ++a)
         for (unsigned int b = a; b < 3; ++b)
           g[a][b] = scale[a] * gram(a, b) * scale[b];
-      const double trace_g = trace(g);
+      const double              trace_g = trace(g);
       std::vector<Tensor<1, 3>> modes;
       if (trace_g == 0)
         {
@@ -125,18 +125,18 @@ namespace coulomb_adapt
 
 
   BodyEquilibrium
-  body_equilibrium(const ElasticBody &                  body,
+  body_equilibrium(const ElasticBody                   &body,
                    const bool                           slave,
-                   const MortarInterface &              mortar,
+                   const MortarInterface               &mortar,
                    const std::vector<ContactNodeState> &states,
                    const double                         linear_tolerance)
   {
     BodyEquilibrium result;
-    const MPI_Comm  comm      = body.triangulation().get_communicator();
-    const auto [centre, L]    = centre_and_extent(body);
-    result.centre             = centre;
-    const auto free           = free_modes(body, centre, L);
-    result.n_free_modes       = free.size();
+    const MPI_Comm  comm   = body.triangulation().get_communicator();
+    const auto [centre, L] = centre_and_extent(body);
+    result.centre          = centre;
+    const auto free        = free_modes(body, centre, L);
+    result.n_free_modes    = free.size();
     if (free.empty())
       return result;
 
@@ -150,15 +150,15 @@ namespace coulomb_adapt
     const auto  modes = body.rigid_body_modes();
     // [load_m (3), magnitude_m (3), max |z_m| (3), |f|_1, rows]
     std::vector<double> sums(11, 0.);
-    unsigned int max_row_length = 0;
-    double       z_max[3] = {0, 0, 0};
+    unsigned int        max_row_length = 0;
+    double              z_max[3]       = {0, 0, 0};
     for (unsigned int k = 0; k < owned.n_elements(); ++k)
       {
         const auto i = owned.nth_index_in_set(k);
         if (body.constraints().is_constrained(i))
           continue;
-        double magnitude = std::abs(f(i));
-        unsigned int length = 0;
+        double       magnitude = std::abs(f(i));
+        unsigned int length    = 0;
         for_each_entry(K, i, [&](const auto column, const double value) {
           magnitude += std::abs(value * u(column));
           ++length;
@@ -203,8 +203,8 @@ namespace coulomb_adapt
                            states[j].tangential_traction * states[j].tangent));
     else
       {
-        const auto &M       = mortar.master_coupling();
-        const auto &masters = mortar.master_nodes();
+        const auto               &M       = mortar.master_coupling();
+        const auto               &masters = mortar.master_nodes();
         std::vector<Tensor<1, 2>> force(masters.size());
         for (unsigned int j = 0; j < states.size(); ++j)
           for (const auto &[l, m] : M[j])
@@ -231,7 +231,8 @@ namespace coulomb_adapt
             sum += v[m] * (sums[m] + contact[m]);
             magnitude += std::abs(v[m]) * (sums[3 + m] + contact_magnitude[m]);
             z_size += std::abs(v[m]) * sums[6 + m];
-            scale += std::abs(v[m]) * (std::abs(sums[m]) + contact_magnitude[m]);
+            scale +=
+              std::abs(v[m]) * (std::abs(sums[m]) + contact_magnitude[m]);
           }
         // A Krylov solve leaves |r|_2 <= tol |b|_2, and |z^T r| <= |z|_2
         // |r|_2 <= sqrt(n) max |z_i| tol |f|_1 (norms that do not
@@ -260,13 +261,13 @@ namespace coulomb_adapt
         load += l * v;
         contact_free += c * v;
       }
-    imbalance = load + contact_free;
+    imbalance             = load + contact_free;
     result.load_force     = Tensor<1, 2>({load[0], load[1]});
     result.contact_force  = Tensor<1, 2>({contact_free[0], contact_free[1]});
     result.load_moment    = load[2] * L;
     result.contact_moment = contact_free[2] * L;
-    result.tips = std::abs(imbalance[2]) >
-                  std::hypot(imbalance[0], imbalance[1]);
+    result.tips =
+      std::abs(imbalance[2]) > std::hypot(imbalance[0], imbalance[1]);
     return result;
   }
 

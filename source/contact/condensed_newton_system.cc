@@ -14,11 +14,11 @@ namespace coulomb_adapt
   // all ranks) and the master-to-slave coupling.
   void
   SlaveCondensation::reinit(const MortarInterface &mortar,
-                            const ElasticBody &    slave,
-                            const ElasticBody &    master)
+                            const ElasticBody     &slave,
+                            const ElasticBody     &master)
   {
-    const auto &       nodes   = mortar.slave_nodes();
-    const auto &       M       = mortar.master_coupling();
+    const auto        &nodes   = mortar.slave_nodes();
+    const auto        &M       = mortar.master_coupling();
     const unsigned int n_slave = nodes.size();
     communicator               = slave.triangulation().get_communicator();
     weights                    = mortar.slave_weights();
@@ -59,10 +59,12 @@ namespace coulomb_adapt
               packed.push_back(c);
               packed.push_back(f1(row));
               packed.push_back(K1.row_length(row));
-              for_each_entry(K1, row, [&](const auto column, const double value) {
-                packed.push_back(column);
-                packed.push_back(value);
-              });
+              for_each_entry(K1,
+                             row,
+                             [&](const auto column, const double value) {
+                               packed.push_back(column);
+                               packed.push_back(value);
+                             });
             }
         }
     slave_rows.assign(n_slave, {});
@@ -99,7 +101,7 @@ namespace coulomb_adapt
   // on every rank. The multipliers are differences of large nodal forces:
   // their round-off bounds what the complementarity residual can reach.
   SlaveCondensation::Multipliers
-  SlaveCondensation::multipliers(const MortarInterface &              mortar,
+  SlaveCondensation::multipliers(const MortarInterface               &mortar,
                                  const TrilinosWrappers::MPI::Vector &u1) const
   {
     // [j, lambda_x, lambda_y] of the slave nodes whose rows this rank owns.
@@ -141,9 +143,9 @@ namespace coulomb_adapt
 
 
   std::vector<SlaveNodeConditions>
-  slave_node_conditions(const SlaveCondensation &            condensation,
-                        const MortarInterface &              mortar,
-                        const ElasticBody &                  master,
+  slave_node_conditions(const SlaveCondensation             &condensation,
+                        const MortarInterface               &mortar,
+                        const ElasticBody                   &master,
                         const std::vector<ContactNodeState> &states,
                         const std::vector<double> &previous_weighted_slip,
                         const double               friction_coefficient)

@@ -10,10 +10,10 @@ namespace coulomb_adapt
 {
   ContactSolveDriver::ContactSolveDriver(
     const MPI_Comm                      mpi_communicator,
-    const Scene &                       scene,
+    const Scene                        &scene,
     const std::array<ElasticBody *, 2> &bodies,
-    const Parameters &                  parameters,
-    const ConditionalOStream &          pcout)
+    const Parameters                   &parameters,
+    const ConditionalOStream           &pcout)
     : mpi_communicator(mpi_communicator)
     , scene(scene)
     , bodies(bodies)
@@ -28,19 +28,21 @@ namespace coulomb_adapt
   // initial gap. Load paths (quasi-static scenes) always start from the
   // initial gap: their stick/slip history lives in the solver.
   ContactSolveOutcome
-  ContactSolveDriver::solve(const std::vector<ContactNodeState> &previous_states,
-                            const bool first_meshes) const
+  ContactSolveDriver::solve(
+    const std::vector<ContactNodeState> &previous_states,
+    const bool                           first_meshes) const
   {
-    pcout << "  contact: " << (parameters.contact.friction_coefficient > 0 ?
-                                 "Coulomb friction, mu = " +
-                                   Patterns::Tools::Convert<double>::to_string(
-                                     parameters.contact.friction_coefficient) :
-                                 std::string("frictionless (mu = 0): no "
-                                             "stick/slip sets"))
+    pcout << "  contact: "
+          << (parameters.contact.friction_coefficient > 0 ?
+                "Coulomb friction, mu = " +
+                  Patterns::Tools::Convert<double>::to_string(
+                    parameters.contact.friction_coefficient) :
+                std::string("frictionless (mu = 0): no "
+                            "stick/slip sets"))
           << std::endl;
     ContactSolveOutcome outcome;
-    const bool static_problem = scene.n_load_steps() == 1;
-    outcome.warm_start = parameters.adaptation.warm_start &&
+    const bool          static_problem = scene.n_load_steps() == 1;
+    outcome.warm_start                 = parameters.adaptation.warm_start &&
                          !previous_states.empty() && static_problem;
     std::vector<ContactNodeState> predicted_sets;
     if (outcome.warm_start)
@@ -49,11 +51,11 @@ namespace coulomb_adapt
     if (!outcome.warm_start && static_problem && first_meshes)
       {
         outcome.nested_iteration.emplace();
-        nested = start_from_coarser_meshes(predicted_sets,
-                                           *outcome.nested_iteration);
+        nested =
+          start_from_coarser_meshes(predicted_sets, *outcome.nested_iteration);
       }
     const bool predicted_start = outcome.warm_start || nested;
-    outcome.solver = new_solver(parameters.contact,
+    outcome.solver             = new_solver(parameters.contact,
                                 predicted_start ? &predicted_sets : nullptr);
     pcout << "  contact: Newton starts from "
           << (outcome.warm_start ?
@@ -72,7 +74,7 @@ namespace coulomb_adapt
 
   std::unique_ptr<ContactSolver>
   ContactSolveDriver::new_solver(
-    const parameters::Contact &          c,
+    const parameters::Contact           &c,
     const std::vector<ContactNodeState> *predicted_sets) const
   {
     auto solver = std::make_unique<ContactSolver>(
@@ -137,9 +139,9 @@ namespace coulomb_adapt
   bool
   ContactSolveDriver::start_from_coarser_meshes(
     std::vector<ContactNodeState> &predicted_sets,
-    NestedIterationRecord &        record) const
+    NestedIterationRecord         &record) const
   {
-    const auto &c = parameters.contact;
+    const auto                   &c = parameters.contact;
     const types::global_dof_index n_dofs =
       bodies[0]->dof_handler().n_dofs() + bodies[1]->dof_handler().n_dofs();
     const unsigned int n_levels =
@@ -161,16 +163,16 @@ namespace coulomb_adapt
 
     try
       {
-        predicted_sets =
-          predict_contact_sets_on_coarser_meshes(mpi_communicator,
-                                                 scene,
-                                                 parameters.mesh.cell_type,
-                                                 parameters.mesh.global_refinements,
-                                                 n_levels,
-                                                 parameters.finite_elements,
-                                                 parameters.contact,
-                                                 parameters.linear_solver,
-                                                 record.levels);
+        predicted_sets = predict_contact_sets_on_coarser_meshes(
+          mpi_communicator,
+          scene,
+          parameters.mesh.cell_type,
+          parameters.mesh.global_refinements,
+          n_levels,
+          parameters.finite_elements,
+          parameters.contact,
+          parameters.linear_solver,
+          record.levels);
       }
     catch (const std::exception &e)
       {
@@ -188,8 +190,8 @@ namespace coulomb_adapt
       pcout << "  contact: nested iteration, " << l.global_refinements
             << " global refinements: " << l.n_dofs << " DoFs, "
             << l.newton_iterations << " Newton steps, " << l.n_active
-            << " active nodes, " << std::setprecision(3) << l.wall_time
-            << " s" << std::endl;
+            << " active nodes, " << std::setprecision(3) << l.wall_time << " s"
+            << std::endl;
     return true;
   }
 
@@ -201,12 +203,12 @@ namespace coulomb_adapt
   // one's diagnosis ends the run.
   void
   ContactSolveDriver::solve_load_steps(
-    const std::vector<Restart> &         restarts,
+    const std::vector<Restart>          &restarts,
     const std::vector<ContactNodeState> &predicted_sets,
-    ContactSolveOutcome &                outcome) const
+    ContactSolveOutcome                 &outcome) const
   {
-    const unsigned int n_steps   = scene.n_load_steps();
-    unsigned int total_newton_iterations = 0;
+    const unsigned int n_steps                 = scene.n_load_steps();
+    unsigned int       total_newton_iterations = 0;
     for (unsigned int step = 1; step <= n_steps; ++step)
       {
         if (n_steps > 1)

@@ -17,11 +17,11 @@
 namespace coulomb_adapt
 {
   ContactSolver::ContactSolver(
-    ElasticBody &                   slave,
-    ElasticBody &                   master,
-    const parameters::Contact &     contact_parameters,
+    ElasticBody                    &slave,
+    ElasticBody                    &master,
+    const parameters::Contact      &contact_parameters,
     const parameters::LinearSolver &solver_parameters,
-    const ConditionalOStream &      pcout)
+    const ConditionalOStream       &pcout)
     : slave(slave)
     , master(master)
     , contact_parameters(contact_parameters)
@@ -45,8 +45,8 @@ namespace coulomb_adapt
     setup();
     // The near null space depends on the meshes only: once per load step,
     // and only for the AMG path.
-    near_null_space = iterative ? rigid_body_modes() :
-                                  std::vector<std::vector<double>>();
+    near_null_space =
+      iterative ? rigid_body_modes() : std::vector<std::vector<double>>();
 
     ContactSolverReport report;
     report.frictionless = (mu == 0);
@@ -56,11 +56,10 @@ namespace coulomb_adapt
                              support,
                              restriction_allowed(),
                              pcout);
-    linear_tolerance_factor = 1;
+    linear_tolerance_factor                   = 1;
     unsigned int              n_turning_steps = 0;
     std::vector<unsigned int> last_changed;
-    for (unsigned int k = 1; k <= contact_parameters.max_newton_iterations;
-         ++k)
+    for (unsigned int k = 1; k <= contact_parameters.max_newton_iterations; ++k)
       {
         control.begin_step(k);
         const bool turning = check_sets(k);
@@ -73,9 +72,16 @@ namespace coulomb_adapt
           complementarity_residual(rule, previous_weighted_slip, states);
         last_changed = update.changed;
         record_step(k, residual, report);
-        newton_diagnostics::log_newton_step(
-          pcout, k, report, mu, update, residual, assembly_time, solve_time,
-          iterative ? &last_linear_solve : nullptr);
+        newton_diagnostics::log_newton_step(pcout,
+                                            k,
+                                            report,
+                                            mu,
+                                            update,
+                                            residual,
+                                            assembly_time,
+                                            solve_time,
+                                            iterative ? &last_linear_solve :
+                                                        nullptr);
         if (next_step(k, update, residual, turning, control, report) ==
             NextStep::converged)
           break;
@@ -128,8 +134,8 @@ namespace coulomb_adapt
     unsigned int n_active = 0;
     for (const auto &s : states)
       n_active += (s.status != ContactStatus::open);
-    const std::string where = "Newton step " + std::to_string(k) +
-                              ": body 2 (" + master.name() + ") ";
+    const std::string where =
+      "Newton step " + std::to_string(k) + ": body 2 (" + master.name() + ") ";
     if (n_active == 0)
       throw ContactDiagnosis(where + "has no active contact node and its "
                                      "Dirichlet data do not hold it: "
@@ -160,8 +166,7 @@ namespace coulomb_adapt
       if (s.status != ContactStatus::open)
         {
           ++report.n_active;
-          (s.status == ContactStatus::stick ? report.n_stick :
-                                              report.n_slip)++;
+          (s.status == ContactStatus::stick ? report.n_stick : report.n_slip)++;
         }
   }
 
@@ -181,8 +186,8 @@ namespace coulomb_adapt
                            const SetChangeControl::SetUpdate &update,
                            const double                       residual,
                            const bool                         turning,
-                           SetChangeControl &                 control,
-                           ContactSolverReport &              report)
+                           SetChangeControl                  &control,
+                           ContactSolverReport               &report)
   {
     const double floor              = residual_round_off_floor();
     report.residual_round_off_floor = floor;
@@ -246,7 +251,8 @@ namespace coulomb_adapt
           *bodies[b], b == 0, mortar, states, linear_tolerance);
         if (!e.balanced())
           throw ContactDiagnosis(
-            "Newton step " + std::to_string(k) + ": the contact sets "
+            "Newton step " + std::to_string(k) +
+              ": the contact sets "
               "converged, but " +
               equilibrium_message("body " + std::to_string(b + 1) + " (" +
                                     bodies[b]->name() + ")",
@@ -275,8 +281,7 @@ namespace coulomb_adapt
     rule.complementarity_constant.resize(D.size());
     for (unsigned int j = 0; j < D.size(); ++j)
       rule.complementarity_constant[j] =
-        contact_parameters.complementarity_scale * rule.combined_modulus /
-        D[j];
+        contact_parameters.complementarity_scale * rule.combined_modulus / D[j];
 
     const bool use_iterative =
       solver_parameters.type == "amg" ||
@@ -382,12 +387,11 @@ namespace coulomb_adapt
   void
   ContactSolver::evaluate_contact_state()
   {
-    const auto &nodes = mortar.slave_nodes();
-    const auto  multipliers =
-      condensation.multipliers(mortar, slave.solution());
-    multiplier_round_off = multipliers.round_off;
-    const auto &lambda   = multipliers.lambda;
-    const auto  gaps     = mortar.nodal_gaps(slave.solution(), master.solution());
+    const auto &nodes      = mortar.slave_nodes();
+    const auto multipliers = condensation.multipliers(mortar, slave.solution());
+    multiplier_round_off   = multipliers.round_off;
+    const auto &lambda     = multipliers.lambda;
+    const auto  gaps = mortar.nodal_gaps(slave.solution(), master.solution());
     for (unsigned int j = 0; j < nodes.size(); ++j)
       {
         states[j].pressure            = lambda[j] * nodes[j].normal;
@@ -427,8 +431,7 @@ namespace coulomb_adapt
   {
     // The tangential function is mu p (lambda_t - trial): its round-off
     // grows with mu (mu = 1e10 stuck all-stick at a residual of 1e-6).
-    return multiplier_round_off / largest_pressure(states) *
-           std::max(1., mu);
+    return multiplier_round_off / largest_pressure(states) * std::max(1., mu);
   }
 
 
@@ -465,8 +468,8 @@ namespace coulomb_adapt
   std::vector<std::vector<double>>
   ContactSolver::rigid_body_modes() const
   {
-    const auto modes_1 = slave.rigid_body_modes();
-    const auto modes_2 = master.rigid_body_modes();
+    const auto                       modes_1 = slave.rigid_body_modes();
+    const auto                       modes_2 = master.rigid_body_modes();
     std::vector<std::vector<double>> modes;
     for (unsigned int m = 0; m < 3; ++m)
       {

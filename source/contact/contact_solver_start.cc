@@ -25,8 +25,8 @@ namespace coulomb_adapt
   void
   ContactSolver::setup_states()
   {
-    const auto &       nodes      = mortar.slave_nodes();
-    const auto &       D          = mortar.slave_weights();
+    const auto        &nodes      = mortar.slave_nodes();
+    const auto        &D          = mortar.slave_weights();
     const unsigned int n_slave    = nodes.size();
     const bool         first_step = states.size() != n_slave;
     if (first_step)
@@ -75,9 +75,9 @@ namespace coulomb_adapt
     for (unsigned int j = 0; j < states.size(); ++j)
       if (mortar.is_covered(j))
         closest = std::min(closest, gaps[j] / D[j]);
-    const double closed_below =
-      support.holds_all_rigid_motions() ? 1e-10 * size :
-                                          std::max(closest, 0.) + 1e-10 * size;
+    const double closed_below = support.holds_all_rigid_motions() ?
+                                  1e-10 * size :
+                                  std::max(closest, 0.) + 1e-10 * size;
     for (unsigned int j = 0; j < states.size(); ++j)
       {
         const bool touching =

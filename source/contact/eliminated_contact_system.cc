@@ -13,17 +13,17 @@ namespace coulomb_adapt
 {
   void
   EliminatedContactSystem::reinit(const MortarInterface &,
-                                  const ElasticBody &      slave,
-                                  const ElasticBody &      master,
+                                  const ElasticBody       &slave,
+                                  const ElasticBody       &master,
                                   const SlaveCondensation &condensation)
   {
-    const auto &   K1           = slave.system_matrix();
-    const auto &   K2           = master.system_matrix();
-    const auto &   f1           = slave.system_rhs();
-    const auto &   f2           = master.system_rhs();
-    const IndexSet &owned       = condensation.owned;
-    const auto     offset       = condensation.offset;
-    const MPI_Comm communicator = condensation.communicator;
+    const auto     &K1           = slave.system_matrix();
+    const auto     &K2           = master.system_matrix();
+    const auto     &f1           = slave.system_rhs();
+    const auto     &f2           = master.system_rhs();
+    const IndexSet &owned        = condensation.owned;
+    const auto      offset       = condensation.offset;
+    const MPI_Comm  communicator = condensation.communicator;
 
     // A new load step or mesh: K may have changed, so the hierarchy is
     // rebuilt; u of the last solve stays the initial guess on the same
@@ -80,7 +80,8 @@ namespace coulomb_adapt
 
 
   void
-  EliminatedContactSystem::assemble(const std::vector<SlaveNodeConditions> &nodes)
+  EliminatedContactSystem::assemble(
+    const std::vector<SlaveNodeConditions> &nodes)
   {
     // The rows of Z and Z~ that differ from the identity: an eliminated
     // component is a combination of other DoFs, with no entry of its own.
@@ -91,7 +92,7 @@ namespace coulomb_adapt
     };
     // The same sets and data as the last call (a repeated solve of
     // converged sets, ContactSolver::solve): the system is built already.
-    std::vector<std::array<int, 3>> states;
+    std::vector<std::array<int, 3>>    states;
     std::vector<std::array<double, 2>> data;
     for (const SlaveNodeConditions &node : nodes)
       {
@@ -125,10 +126,9 @@ namespace coulomb_adapt
                 Row &row = eliminated[node.dofs[c]];
                 for (const auto &m : node.couplings)
                   {
-                    const double z = m.value / D;
-                    row.entries[m.dofs[c]] = {
-                      {z, m.constrained[c] ? 0. : z}};
-                    symmetric = symmetric && !m.constrained[c];
+                    const double z         = m.value / D;
+                    row.entries[m.dofs[c]] = {{z, m.constrained[c] ? 0. : z}};
+                    symmetric              = symmetric && !m.constrained[c];
                   }
                 row.shift =
                   (node.weighted_gap * n[c] + node.weighted_slip * t[c]) / D;
@@ -144,14 +144,14 @@ namespace coulomb_adapt
         const auto quality = [&](const unsigned int c) {
           return std::min(std::abs(n[c]), std::abs(w[c]) / w.norm());
         };
-        const unsigned int c = quality(0) >= quality(1) ? 0 : 1;
-        const unsigned int o = 1 - c;
-        Row &              row = eliminated[node.dofs[c]];
+        const unsigned int c      = quality(0) >= quality(1) ? 0 : 1;
+        const unsigned int o      = 1 - c;
+        Row               &row    = eliminated[node.dofs[c]];
         row.entries[node.dofs[o]] = {{-n[o] / n[c], -w[o] / w[c]}};
         for (const auto &m : node.couplings)
           for (unsigned int d = 0; d < 2; ++d)
             {
-              const double z = m.value / D;
+              const double z         = m.value / D;
               row.entries[m.dofs[d]] = {
                 {z * n[d] / n[c], m.constrained[d] ? 0. : z * w[d] / w[c]}};
               symmetric = symmetric && !m.constrained[d];
@@ -243,8 +243,8 @@ namespace coulomb_adapt
   LinearSolverReport
   EliminatedContactSystem::solve(
     const std::vector<std::vector<double>> &near_null_space,
-    const parameters::LinearSolver &        settings,
-    TrilinosWrappers::MPI::Vector &         solution)
+    const parameters::LinearSolver         &settings,
+    TrilinosWrappers::MPI::Vector          &solution)
   {
     // Initial guess: the last u on the components that stay unknowns; an
     // eliminated component's reduced unknown is zero (decoupled row, zero
@@ -272,16 +272,16 @@ namespace coulomb_adapt
       amg.reset();
       amg = std::make_unique<ElasticityAMG>();
       amg->initialize(*reduced, modes);
-      amg_matrix         = reduced;
-      states_at_build    = node_states;
-      reduced_solution   = initial_guess;
+      amg_matrix                = reduced;
+      states_at_build           = node_states;
+      reduced_solution          = initial_guess;
       LinearSolverReport report = solve_krylov(*reduced,
                                                reduced_solution,
                                                reduced_rhs,
                                                amg->preconditioner,
                                                settings,
                                                symmetric);
-      fresh_iterations = report.n_iterations;
+      fresh_iterations          = report.n_iterations;
       return report;
     };
 
@@ -303,7 +303,7 @@ namespace coulomb_adapt
               parameters::LinearSolver capped = settings;
               capped.max_iterations =
                 std::min(settings.max_iterations, 2 * fresh_iterations + 10);
-              report = solve_krylov(*reduced,
+              report                       = solve_krylov(*reduced,
                                     reduced_solution,
                                     reduced_rhs,
                                     amg->preconditioner,

@@ -63,8 +63,8 @@ namespace coulomb_adapt
 
 
   unsigned int
-  MortarInterface::collect_contact_boundary(const ElasticBody &   body,
-                                            std::vector<Node> &   nodes,
+  MortarInterface::collect_contact_boundary(const ElasticBody    &body,
+                                            std::vector<Node>    &nodes,
                                             std::vector<Segment> &segments)
   {
     const DoFHandler<2> &dof_handler = body.dof_handler();
@@ -72,8 +72,9 @@ namespace coulomb_adapt
     AssertThrow(degree <= 2,
                 ExcMessage("The mortar contact interface supports degrees 1 "
                            "and 2."));
-    const unsigned int n_face_nodes = degree + 1;
-    const types::boundary_id contact_id = body.description().contact_boundary_id;
+    const unsigned int       n_face_nodes = degree + 1;
+    const types::boundary_id contact_id =
+      body.description().contact_boundary_id;
 
     // Per local contact face: for each node (x, y, dof_x, dof_y), then the
     // outward normal of the face's chord and the cell's id (4 integers,
@@ -117,8 +118,8 @@ namespace coulomb_adapt
     // Nodes are identified by their x DoF, and numbered in lexicographic
     // order of their positions, so that the numbering does not depend on
     // the number of ranks.
-    const unsigned int record = 4 * n_face_nodes + 6;
-    std::map<types::global_dof_index, Node>           unique_nodes;
+    const unsigned int                      record = 4 * n_face_nodes + 6;
+    std::map<types::global_dof_index, Node> unique_nodes;
     std::vector<std::vector<types::global_dof_index>> segment_dofs;
     std::vector<Tensor<1, 2>>                         segment_normals;
     std::vector<CellId>                               segment_cells;
@@ -169,7 +170,8 @@ namespace coulomb_adapt
         segments.push_back(segment);
       }
     // Segments in the order of their first node, for reproducible sums.
-    std::sort(segments.begin(), segments.end(),
+    std::sort(segments.begin(),
+              segments.end(),
               [](const Segment &a, const Segment &b) {
                 return std::min(a.nodes[0], a.nodes[1]) <
                        std::min(b.nodes[0], b.nodes[1]);
@@ -195,8 +197,9 @@ namespace coulomb_adapt
   MortarInterface::reinit(const ElasticBody &slave_body,
                           const ElasticBody &master_body)
   {
-    slave_degree  = collect_contact_boundary(slave_body, slave, slave_segments);
-    master_degree = collect_contact_boundary(master_body, master, master_segments);
+    slave_degree = collect_contact_boundary(slave_body, slave, slave_segments);
+    master_degree =
+      collect_contact_boundary(master_body, master, master_segments);
     dual_coefficients = dual_basis_coefficients(slave_degree);
 
     D.assign(slave.size(), 0.);
@@ -229,12 +232,12 @@ namespace coulomb_adapt
   MortarInterface::integrate_segment_pair(const unsigned int slave_index,
                                           const unsigned int master_index)
   {
-    const Segment &    slave_segment  = slave_segments[slave_index];
-    const Segment &    master_segment = master_segments[master_index];
-    const Point<2> &   a = slave[slave_segment.nodes[0]].position;
-    const Point<2> &   b = slave[slave_segment.nodes[1]].position;
-    const Point<2> &   c = master[master_segment.nodes[0]].position;
-    const Point<2> &   d = master[master_segment.nodes[1]].position;
+    const Segment     &slave_segment  = slave_segments[slave_index];
+    const Segment     &master_segment = master_segments[master_index];
+    const Point<2>    &a              = slave[slave_segment.nodes[0]].position;
+    const Point<2>    &b              = slave[slave_segment.nodes[1]].position;
+    const Point<2>    &c  = master[master_segment.nodes[0]].position;
+    const Point<2>    &d  = master[master_segment.nodes[1]].position;
     const Tensor<1, 2> ab = b - a;
     const double       h  = ab.norm();
     const Tensor<1, 2> n  = slave_segment.normal;
@@ -257,15 +260,15 @@ namespace coulomb_adapt
 
     // Exact for the products of the (dual) slave and master shape
     // functions on straight segments.
-    const QGauss<1>    gauss(std::max(slave_degree, master_degree) + 2);
-    const unsigned int n_slave_nodes = slave_segment.nodes.size();
+    const QGauss<1>     gauss(std::max(slave_degree, master_degree) + 2);
+    const unsigned int  n_slave_nodes = slave_segment.nodes.size();
     std::vector<double> psi(n_slave_nodes);
     for (unsigned int q = 0; q < gauss.size(); ++q)
       {
-        const double   xi = begin + (end - begin) * gauss.point(q)[0];
-        const double   w  = gauss.weight(q) * (end - begin) * h;
-        const Point<2> x  = a + xi * ab;
-        const Tensor<1, 2> r = x - c;
+        const double       xi = begin + (end - begin) * gauss.point(q)[0];
+        const double       w  = gauss.weight(q) * (end - begin) * h;
+        const Point<2>     x  = a + xi * ab;
+        const Tensor<1, 2> r  = x - c;
         // Cramer's rule on [cd, -n] (eta, t)^T = r.
         const double eta = (-r[0] * n[1] + r[1] * n[0]) / det;
         const double t   = (cd[0] * r[1] - cd[1] * r[0]) / det;
@@ -306,31 +309,31 @@ namespace coulomb_adapt
     points.reserve(overlap_list.size() * n_points);
     for (unsigned int o = 0; o < overlap_list.size(); ++o)
       {
-        const Overlap &    overlap = overlap_list[o];
-        const Segment &    s_seg   = slave_segments[overlap.slave_segment];
-        const Segment &    m_seg   = master_segments[overlap.master_segment];
-        const Point<2> &   a       = slave[s_seg.nodes[0]].position;
-        const Point<2> &   b       = slave[s_seg.nodes[1]].position;
-        const Point<2> &   c       = master[m_seg.nodes[0]].position;
-        const Point<2> &   d       = master[m_seg.nodes[1]].position;
+        const Overlap     &overlap = overlap_list[o];
+        const Segment     &s_seg   = slave_segments[overlap.slave_segment];
+        const Segment     &m_seg   = master_segments[overlap.master_segment];
+        const Point<2>    &a       = slave[s_seg.nodes[0]].position;
+        const Point<2>    &b       = slave[s_seg.nodes[1]].position;
+        const Point<2>    &c       = master[m_seg.nodes[0]].position;
+        const Point<2>    &d       = master[m_seg.nodes[1]].position;
         const Tensor<1, 2> n       = s_seg.normal;
         const Tensor<1, 2> cd      = d - c;
         const double       det     = -cd[0] * n[1] + cd[1] * n[0];
         const double       h       = (b - a).norm();
         for (unsigned int q = 0; q < gauss.size(); ++q)
           {
-            const double xi = overlap.begin +
-                              (overlap.end - overlap.begin) * gauss.point(q)[0];
+            const double xi =
+              overlap.begin + (overlap.end - overlap.begin) * gauss.point(q)[0];
             const Point<2>     x   = a + xi * (b - a);
             const Tensor<1, 2> r   = x - c;
             const double       eta = (-r[0] * n[1] + r[1] * n[0]) / det;
-            points.push_back({o,
-                              xi,
-                              eta,
-                              x,
-                              c + eta * cd,
-                              gauss.weight(q) * (overlap.end - overlap.begin) *
-                                h});
+            points.push_back(
+              {o,
+               xi,
+               eta,
+               x,
+               c + eta * cd,
+               gauss.weight(q) * (overlap.end - overlap.begin) * h});
           }
       }
     return points;
@@ -387,7 +390,7 @@ namespace coulomb_adapt
   // Each rank packs the nodes whose DoFs it owns as [node, u_x, u_y].
   std::vector<Tensor<1, 2>>
   MortarInterface::gather_nodal_displacements(
-    const std::vector<Node> &            nodes,
+    const std::vector<Node>             &nodes,
     const TrilinosWrappers::MPI::Vector &u)
   {
     const IndexSet      owned = u.locally_owned_elements();

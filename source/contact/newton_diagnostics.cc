@@ -26,7 +26,8 @@ namespace coulomb_adapt
       // The hint of the "would slide" diagnosis: at the first step the
       // load itself is suspect; later also the iteration.
       std::string
-      sliding_message(const double friction_coefficient, const unsigned int step)
+      sliding_message(const double       friction_coefficient,
+                      const unsigned int step)
       {
         if (friction_coefficient == 0)
           return "can slide freely along the frictionless interface: nothing "
@@ -63,7 +64,7 @@ namespace coulomb_adapt
       unheld_message(const std::vector<ContactNodeState> &states,
                      const unsigned int                   step)
       {
-        unsigned int n_facing = 0;
+        unsigned int n_facing     = 0;
         double       smallest_gap = std::numeric_limits<double>::max();
         for (const auto &s : states)
           if (s.facing_master)
@@ -74,8 +75,8 @@ namespace coulomb_adapt
         // A node that still touches (its gap at round-off against the
         // others') while all have opened: the body turns about it, pressed
         // down elsewhere by a load that the contact cannot hold there.
-        double largest_gap = 0;
-        const ContactNodeState *pivot = nullptr;
+        double                  largest_gap = 0;
+        const ContactNodeState *pivot       = nullptr;
         for (const auto &s : states)
           if (s.facing_master)
             {
@@ -90,8 +91,8 @@ namespace coulomb_adapt
             pivot->gap <= 1e-10 * largest_gap)
           m << "Its contact nodes have all opened, but the one at ("
             << pivot->position[0] << ", " << pivot->position[1]
-            << ") still touches body 2 (gap " << pivot->gap
-            << " mm, up to " << largest_gap << " mm elsewhere): the body "
+            << ") still touches body 2 (gap " << pivot->gap << " mm, up to "
+            << largest_gap << " mm elsewhere): the body "
             << "turns about that point, away from body 2. Its load tips "
             << "it: the load acts outside the zone the contact can "
             << "support (over an edge), and no static equilibrium exists "
@@ -117,9 +118,9 @@ namespace coulomb_adapt
       // Up to ten positions of the nodes in @p changed.
       std::string
       node_positions(const std::vector<ContactNodeState> &states,
-                     const std::vector<unsigned int> &    changed,
-                     const std::string &                  before,
-                     const std::string &                  after)
+                     const std::vector<unsigned int>     &changed,
+                     const std::string                   &before,
+                     const std::string                   &after)
       {
         std::ostringstream s;
         for (unsigned int i = 0; i < std::min<std::size_t>(changed.size(), 10);
@@ -133,11 +134,11 @@ namespace coulomb_adapt
 
 
     void
-    check_support(const SlaveSupport &                 support,
+    check_support(const SlaveSupport                  &support,
                   const std::vector<ContactNodeState> &states,
                   const double                         friction_coefficient,
                   const unsigned int                   step,
-                  const std::string &                  body_name)
+                  const std::string                   &body_name)
     {
       unsigned int n_active = 0, n_stick = 0;
       for (const auto &s : states)
@@ -149,8 +150,7 @@ namespace coulomb_adapt
       const std::string where =
         newton_step(step) + ": body 1 (" + body_name + ") ";
       if (n_active == 0 && !support.holds_all_rigid_motions())
-        throw ContactDiagnosis(where + unheld_message(states, step),
-                               step - 1);
+        throw ContactDiagnosis(where + unheld_message(states, step), step - 1);
       if (n_stick == 0 && n_active > 0)
         {
           Tensor<1, 2> tangent;
@@ -168,11 +168,11 @@ namespace coulomb_adapt
 
 
     ContactDiagnosis
-    krylov_failure(const unsigned int step, const SolverControl::NoConvergence &e)
+    krylov_failure(const unsigned int                  step,
+                   const SolverControl::NoConvergence &e)
     {
       return ContactDiagnosis(
-        newton_step(step) +
-          ": the iterative linear solver did not converge (" +
+        newton_step(step) + ": the iterative linear solver did not converge (" +
           std::to_string(e.last_step) + " iterations, residual " +
           Utilities::to_string(e.last_residual) +
           "). Use 'Linear solver/Type = direct' for the contact system.",
@@ -232,9 +232,9 @@ namespace coulomb_adapt
     ContactDiagnosis
     cycling(const unsigned int                   step,
             const unsigned int                   repeated,
-            const std::vector<double> &          residual_history,
+            const std::vector<double>           &residual_history,
             const std::vector<ContactNodeState> &states,
-            const std::vector<unsigned int> &    changed,
+            const std::vector<unsigned int>     &changed,
             const unsigned int                   n_damping_steps,
             const bool                           iterative_solver_chosen)
     {
@@ -285,8 +285,10 @@ namespace coulomb_adapt
           std::to_string(step) + " the contact sets repeat those of step " +
           std::to_string(repeated) + ". Last residuals: " + residuals.str() +
           "; nodes that flipped in the last step: " +
-          node_positions(states, changed, "(", ") ") + ". c_n, c_t were "
-          "reduced " + std::to_string(n_damping_steps) +
+          node_positions(states, changed, "(", ") ") +
+          ". c_n, c_t were "
+          "reduced " +
+          std::to_string(n_damping_steps) +
           " times ten-fold before. Try another 'Contact/Complementarity "
           "scale'" +
           (iterative_solver_chosen ?
@@ -301,9 +303,9 @@ namespace coulomb_adapt
 
     ContactDiagnosis
     iteration_limit(const unsigned int                   max_steps,
-                    const std::vector<double> &          residual_history,
+                    const std::vector<double>           &residual_history,
                     const std::vector<ContactNodeState> &states,
-                    const std::vector<unsigned int> &    changed,
+                    const std::vector<unsigned int>     &changed,
                     const unsigned int                   n_turning_steps)
     {
       std::ostringstream s;
@@ -326,15 +328,15 @@ namespace coulomb_adapt
 
 
     void
-    log_newton_step(const ConditionalOStream &         pcout,
+    log_newton_step(const ConditionalOStream          &pcout,
                     const unsigned int                 step,
-                    const ContactSolverReport &        report,
+                    const ContactSolverReport         &report,
                     const double                       friction_coefficient,
                     const SetChangeControl::SetUpdate &update,
                     const double                       residual,
                     const double                       assembly_time,
                     const double                       solve_time,
-                    const LinearSolverReport *         linear_solve)
+                    const LinearSolverReport          *linear_solve)
     {
       pcout << "    Newton " << std::setw(2) << step << ": " << std::setw(4)
             << report.n_active << " active";

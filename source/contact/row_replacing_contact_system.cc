@@ -12,9 +12,9 @@ namespace coulomb_adapt
   // node's own DoFs and the coupled master DoFs), and in the master rows
   // the K^1 rows of the coupled slave nodes.
   void
-  RowReplacingContactSystem::reinit(const MortarInterface &  mortar,
-                                    const ElasticBody &      slave,
-                                    const ElasticBody &      master,
+  RowReplacingContactSystem::reinit(const MortarInterface   &mortar,
+                                    const ElasticBody       &slave,
+                                    const ElasticBody       &master,
                                     const SlaveCondensation &condensation)
   {
     this->slave        = &slave;
@@ -22,12 +22,12 @@ namespace coulomb_adapt
     this->condensation = &condensation;
     row_scale          = slave.description().material.youngs_modulus;
 
-    const auto &nodes        = mortar.slave_nodes();
-    const auto &master_nodes = mortar.master_nodes();
-    const auto &M            = mortar.master_coupling();
-    const auto &rows         = condensation.slave_rows;
-    const auto  offset       = condensation.offset;
-    const auto &owned        = condensation.owned;
+    const auto            &nodes        = mortar.slave_nodes();
+    const auto            &master_nodes = mortar.master_nodes();
+    const auto            &M            = mortar.master_coupling();
+    const auto            &rows         = condensation.slave_rows;
+    const auto             offset       = condensation.offset;
+    const auto            &owned        = condensation.owned;
     DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
     for (const auto row : slave.locally_owned_dof_set())
       for_each_entry(slave.system_matrix(),
@@ -160,7 +160,7 @@ namespace coulomb_adapt
 
     // v . (D u^1 - M u^2)_j = value, scaled to the size of K.
     const auto add_jump_row = [&](const types::global_dof_index row,
-                                  const Tensor<1, 2> &          v,
+                                  const Tensor<1, 2>           &v,
                                   const double                  value) {
       const double scale = row_scale / D;
       for (unsigned int d = 0; d < 2; ++d)
@@ -177,7 +177,7 @@ namespace coulomb_adapt
     };
     // w . (K^1 u^1)_j = w . f^1_j, i.e. w . lambda_j = 0.
     const auto add_traction_row = [&](const types::global_dof_index row,
-                                      const Tensor<1, 2> &          w) {
+                                      const Tensor<1, 2>           &w) {
       double right_hand_side = 0;
       for (unsigned int d = 0; d < 2; ++d)
         {
@@ -217,8 +217,8 @@ namespace coulomb_adapt
   LinearSolverReport
   RowReplacingContactSystem::solve(
     const std::vector<std::vector<double>> &near_null_space,
-    const parameters::LinearSolver &        settings,
-    TrilinosWrappers::MPI::Vector &         solution)
+    const parameters::LinearSolver         &settings,
+    TrilinosWrappers::MPI::Vector          &solution)
   {
     return solve_linear_system(matrix,
                                solution,

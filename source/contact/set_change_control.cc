@@ -21,12 +21,12 @@ namespace coulomb_adapt
 
 
   SetChangeControl::SetChangeControl(
-    ActiveSetRule &                rule,
+    ActiveSetRule                 &rule,
     std::vector<ContactNodeState> &states,
-    const std::vector<double> &    previous_weighted_slip,
-    const SlaveSupport &           support,
+    const std::vector<double>     &previous_weighted_slip,
+    const SlaveSupport            &support,
     const bool                     restriction_allowed,
-    const ConditionalOStream &     pcout)
+    const ConditionalOStream      &pcout)
     : rule(rule)
     , states(states)
     , previous_weighted_slip(previous_weighted_slip)
@@ -57,9 +57,9 @@ namespace coulomb_adapt
   SetChangeControl::SetUpdate
   SetChangeControl::update_sets(const unsigned int k)
   {
-    SetUpdate          update;
-    const std::string  before = set_signature(states);
-    states_before             = states;
+    SetUpdate         update;
+    const std::string before = set_signature(states);
+    states_before            = states;
     update.n_changed =
       coulomb_adapt::update_sets(rule, previous_weighted_slip, states);
 

@@ -4,7 +4,7 @@
 namespace coulomb_adapt
 {
   void
-  SlaveSupport::reinit(const ElasticBody &                  slave,
+  SlaveSupport::reinit(const ElasticBody                   &slave,
                        const std::vector<ContactNodeState> &states)
   {
     centre = Point<2>();
@@ -50,9 +50,8 @@ namespace coulomb_adapt
           active_centre += s.position;
           ++n_active;
         }
-    active_centre = (n_active > 0) ?
-                      active_centre / static_cast<double>(n_active) :
-                      centre;
+    active_centre =
+      (n_active > 0) ? active_centre / static_cast<double>(n_active) : centre;
     FullMatrix<double> constrained =
       move_rotation_centre(gram, active_centre - centre);
     for (const auto &s : states)

@@ -26,7 +26,7 @@ namespace coulomb_adapt
 
 
   void
-  MaterialConstants::parse_parameters(ParameterHandler &prm,
+  MaterialConstants::parse_parameters(ParameterHandler  &prm,
                                       const std::string &path)
   {
     youngs_modulus = prm.get_double("Young's modulus");
@@ -49,9 +49,9 @@ namespace coulomb_adapt
     : constants(constants)
     , plane_model(plane_model)
   {
-    const double E  = constants.youngs_modulus;
-    const double nu = constants.poissons_ratio;
-    mu_             = E / (2. * (1. + nu));
+    const double E         = constants.youngs_modulus;
+    const double nu        = constants.poissons_ratio;
+    mu_                    = E / (2. * (1. + nu));
     const double lambda_3d = E * nu / ((1. + nu) * (1. - 2. * nu));
     lambda_2d              = (plane_model == PlaneModel::plane_strain) ?
                                lambda_3d :

@@ -1,6 +1,6 @@
-#include <coulomb_adapt/core/parameter_error.h>
-
 #include <deal.II/base/exceptions.h>
+
+#include <coulomb_adapt/core/parameter_error.h>
 
 #include <sstream>
 

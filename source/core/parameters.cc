@@ -55,7 +55,7 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Output");
       {
-        directory = prm.get("Output directory");
+        directory    = prm.get("Output directory");
         format       = prm.get("Format");
         write_cycles = prm.get("Write cycles");
         if (!prm.get_bool("Write VTU"))
@@ -237,12 +237,12 @@ namespace coulomb_adapt
               (removed == "zz" || removed == "spr" ? removed :
                                                      std::string("zz")) +
               "' instead");
-        estimator = error_estimator_from_string(prm.get("Estimator"));
-        compare_estimators = prm.get_bool("Compare estimators");
+        estimator           = error_estimator_from_string(prm.get("Estimator"));
+        compare_estimators  = prm.get_bool("Compare estimators");
         cre_degree_increase = prm.get_integer("CRE degree increase");
         cre_traction_optimisation = prm.get_bool("CRE traction optimisation");
-        compute_exact_error   = prm.get_bool("Compute exact error");
-        reference_refinements = prm.get_integer("Reference refinements");
+        compute_exact_error       = prm.get_bool("Compute exact error");
+        reference_refinements     = prm.get_integer("Reference refinements");
       }
       prm.leave_subsection();
     }
@@ -389,10 +389,10 @@ namespace coulomb_adapt
       prm.enter_subsection("Adaptation");
       {
         const std::string path = "Adaptation/";
-        strategy             = prm.get("Strategy");
-        n_cycles             = prm.get_integer("Number of cycles");
-        min_cycles           = prm.get_integer("Minimum number of cycles");
-        over_refinement_ratio = prm.get_double("Over-refinement ratio");
+        strategy               = prm.get("Strategy");
+        n_cycles               = prm.get_integer("Number of cycles");
+        min_cycles             = prm.get_integer("Minimum number of cycles");
+        over_refinement_ratio  = prm.get_double("Over-refinement ratio");
         require_parameter(min_cycles <= n_cycles,
                           path + "Minimum number of cycles",
                           min_cycles,
@@ -506,8 +506,7 @@ namespace coulomb_adapt
         "the cre estimator's element equilibration is written for "
         "conforming meshes, and 'Adaptation/Strategy = refine' makes "
         "hanging nodes: use 'Strategy = remesh' (triangles) or 'uniform'");
-    if (adaptation.strategy == "remesh" &&
-        mesh.cell_type != CellType::triangle)
+    if (adaptation.strategy == "remesh" && mesh.cell_type != CellType::triangle)
       throw ParameterError("Adaptation/Strategy",
                            "remesh",
                            "'remesh' needs 'Mesh/Cell type = triangle' "

@@ -78,9 +78,9 @@ namespace coulomb_adapt
         max_dofs_for_direct = prm.get_integer("Maximum DoFs for direct");
         max_dofs_for_direct_contact =
           prm.get_integer("Maximum DoFs for direct contact");
-        direct_solver       = prm.get("Direct solver");
-        relative_tolerance  = prm.get_double("Relative tolerance");
-        max_iterations      = prm.get_integer("Maximum iterations");
+        direct_solver      = prm.get("Direct solver");
+        relative_tolerance = prm.get_double("Relative tolerance");
+        max_iterations     = prm.get_integer("Maximum iterations");
       }
       prm.leave_subsection();
     }
@@ -98,15 +98,16 @@ namespace coulomb_adapt
                           "Coulomb friction coefficient mu >= 0 "
                           "(dimensionless); 0 means frictionless (no "
                           "stick/slip sets).");
-        prm.declare_entry("Complementarity scale",
-                          "1",
-                          Patterns::Double(0),
-                          "The constants c_n = c_t of the complementarity "
-                          "functions are this factor times E_c / h at each "
-                          "slave node (E_c = E1 E2 / (E1 + E2), h the "
-                          "node's mortar weight). The converged solution does not "
-                          "depend on it; it changes the path of the active "
-                          "set iteration. Must be > 0.");
+        prm.declare_entry(
+          "Complementarity scale",
+          "1",
+          Patterns::Double(0),
+          "The constants c_n = c_t of the complementarity "
+          "functions are this factor times E_c / h at each "
+          "slave node (E_c = E1 E2 / (E1 + E2), h the "
+          "node's mortar weight). The converged solution does not "
+          "depend on it; it changes the path of the active "
+          "set iteration. Must be > 0.");
         prm.declare_entry("Maximum Newton iterations",
                           "40",
                           Patterns::Integer(1),
@@ -155,12 +156,11 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Contact");
       {
-        friction_coefficient  = prm.get_double("Friction coefficient");
-        complementarity_scale = prm.get_double("Complementarity scale");
-        max_newton_iterations = prm.get_integer("Maximum Newton iterations");
-        tolerance             = prm.get_double("Tolerance");
-        nested_iteration_levels =
-          prm.get_integer("Nested iteration levels");
+        friction_coefficient    = prm.get_double("Friction coefficient");
+        complementarity_scale   = prm.get_double("Complementarity scale");
+        max_newton_iterations   = prm.get_integer("Maximum Newton iterations");
+        tolerance               = prm.get_double("Tolerance");
+        nested_iteration_levels = prm.get_integer("Nested iteration levels");
         nested_iteration_min_dofs =
           prm.get_integer("Nested iteration minimum DoFs");
         require_parameter(complementarity_scale > 0,

@@ -36,7 +36,7 @@ namespace coulomb_adapt
     free_rigid_modes(const ElasticBody &body)
     {
       const MPI_Comm comm  = body.triangulation().get_communicator();
-      const auto &   owned = body.locally_owned_dof_set();
+      const auto    &owned = body.locally_owned_dof_set();
 
       Point<2> lower(1e300, 1e300), upper(-1e300, -1e300);
       for (const auto &cell : body.triangulation().active_cell_iterators())
@@ -62,7 +62,7 @@ namespace coulomb_adapt
           (modes[2][k] + centre[1] * modes[0][k] - centre[0] * modes[1][k]) /
           radius;
 
-      const auto &constraints = body.constraints();
+      const auto &constraints  = body.constraints();
       auto        is_supported = [&](const types::global_dof_index i) {
         return constraints.is_constrained(i) &&
                constraints.get_constraint_entries(i)->empty();
@@ -114,7 +114,7 @@ namespace coulomb_adapt
       for (unsigned int m = 0; m < reduced.size(); ++m)
         {
           // The largest remaining entry of mode m, over all ranks.
-          double                  best = 0;
+          double                  best  = 0;
           types::global_dof_index where = 0;
           for (const auto i : reduced[m].locally_owned_elements())
             if (std::abs(reduced[m](i)) > best)
@@ -124,10 +124,11 @@ namespace coulomb_adapt
               }
           const auto candidates =
             Utilities::MPI::all_gather(comm, std::make_pair(best, where));
-          const auto pick = *std::max_element(
-            candidates.begin(),
-            candidates.end(),
-            [](const auto &a, const auto &b) { return a.first < b.first; });
+          const auto pick = *std::max_element(candidates.begin(),
+                                              candidates.end(),
+                                              [](const auto &a, const auto &b) {
+                                                return a.first < b.first;
+                                              });
           pinned.push_back(pick.second);
 
           // Every mode's value at the pinned DoF, from its owner.
@@ -160,15 +161,15 @@ namespace coulomb_adapt
     // DoFs, a correction of 7e-12: epsilon 71 % instead of 1 %).
     TrilinosWrappers::MPI::Vector
     solve_under_prescribed_tractions(
-      const ElasticBody &                  body,
+      const ElasticBody                   &body,
       const TrilinosWrappers::MPI::Vector &load,
       const TrilinosWrappers::MPI::Vector &u_reference,
-      const parameters::LinearSolver &     solver_parameters)
+      const parameters::LinearSolver      &solver_parameters)
     {
       const MPI_Comm comm  = body.triangulation().get_communicator();
-      const auto &   owned = body.locally_owned_dof_set();
+      const auto    &owned = body.locally_owned_dof_set();
       const auto     modes = free_rigid_modes(body);
-      const auto &   K     = body.system_matrix();
+      const auto    &K     = body.system_matrix();
 
       // Gram matrix of the free modes and its inverse.
       const unsigned int n = modes.size();
@@ -215,7 +216,7 @@ namespace coulomb_adapt
         {
           // The pinned rows keep the size of K's diagonal, which AMG's
           // smoother expects.
-          const auto pinned = pinning_dofs(modes, comm);
+          const auto pinned   = pinning_dofs(modes, comm);
           double     diagonal = 0;
           for (const auto i : pinned)
             if (owned.is_element(i))
@@ -251,12 +252,12 @@ namespace coulomb_adapt
 
 
   std::vector<Tensor<1, 2>>
-  contact_traction_at(const MortarInterface &                            mortar,
-                      const std::vector<ContactNodeFields> &             fields,
+  contact_traction_at(const MortarInterface                            &mortar,
+                      const std::vector<ContactNodeFields>             &fields,
                       const std::vector<MortarInterface::OverlapPoint> &points)
   {
-    const auto &nodes    = mortar.slave_nodes();
-    const auto &segments = mortar.slave_segment_list();
+    const auto               &nodes    = mortar.slave_nodes();
+    const auto               &segments = mortar.slave_segment_list();
     std::vector<Tensor<1, 2>> traction(points.size());
     for (unsigned int q = 0; q < points.size(); ++q)
       {
@@ -285,12 +286,12 @@ namespace coulomb_adapt
 
 
   CorrectedContactSolution
-  correct_contact_solution(const ElasticBody &              slave,
-                           const ElasticBody &              master,
-                           const ContactSolution &          contact,
-                           const double                     mu,
-                           const parameters::LinearSolver & solver_parameters,
-                           const ContactLoadForm            load_form)
+  correct_contact_solution(const ElasticBody              &slave,
+                           const ElasticBody              &master,
+                           const ContactSolution          &contact,
+                           const double                    mu,
+                           const parameters::LinearSolver &solver_parameters,
+                           const ContactLoadForm           load_form)
   {
     return correct_contact_solution(slave,
                                     master,
@@ -304,16 +305,16 @@ namespace coulomb_adapt
 
 
   CorrectedContactSolution
-  correct_contact_solution(const ElasticBody &                  slave,
-                           const ElasticBody &                  master,
-                           const MortarInterface &              mortar,
+  correct_contact_solution(const ElasticBody                   &slave,
+                           const ElasticBody                   &master,
+                           const MortarInterface               &mortar,
                            const std::vector<ContactNodeState> &states,
                            const double                         mu,
-                           const parameters::LinearSolver &     solver_parameters,
-                           const ContactLoadForm                load_form)
+                           const parameters::LinearSolver &solver_parameters,
+                           const ContactLoadForm           load_form)
   {
-    const auto &nodes  = mortar.slave_nodes();
-    const auto &D      = mortar.slave_weights();
+    const auto &nodes = mortar.slave_nodes();
+    const auto &D     = mortar.slave_weights();
 
     CorrectedContactSolution corrected;
     corrected.fields.resize(states.size());
@@ -323,15 +324,14 @@ namespace coulomb_adapt
     // the level of the condensation's round-off are not corrections.
     double largest = 0;
     for (const auto &s : states)
-      largest = std::max({largest,
-                          std::abs(s.pressure),
-                          std::abs(s.tangential_traction)});
+      largest = std::max(
+        {largest, std::abs(s.pressure), std::abs(s.tangential_traction)});
     std::vector<Tensor<1, 2>> change(states.size());
     double                    change_norm = 0, norm = 0;
     for (unsigned int j = 0; j < states.size(); ++j)
       {
-        const auto  &s = states[j];
-        const auto   projected =
+        const auto &s = states[j];
+        const auto  projected =
           project_onto_coulomb_cone(s.pressure, s.tangential_traction, mu);
         const double dn = projected[0] - s.pressure;
         const double dt = projected[1] - s.tangential_traction;
@@ -344,14 +344,13 @@ namespace coulomb_adapt
         corrected.fields[j].tangential_traction = projected[1];
         corrected.fields[j].gap                 = s.gap;
         // The incremental law's slip: W_t of this load step.
-        corrected.fields[j].slip                = s.slip_increment;
+        corrected.fields[j].slip = s.slip_increment;
         change_norm += D[j] * change[j].norm_square();
         norm += D[j] * (s.pressure * s.pressure +
                         s.tangential_traction * s.tangential_traction);
       }
-    corrected.relative_change =
-      norm > 0 ? std::sqrt(change_norm / norm) : 0.;
-    corrected.skipped = (corrected.n_projected_nodes == 0);
+    corrected.relative_change = norm > 0 ? std::sqrt(change_norm / norm) : 0.;
+    corrected.skipped         = (corrected.n_projected_nodes == 0);
     // The consistent load differs from the mortar load the FE solution
     // balances whenever there is any contact traction at all.
     if (load_form == ContactLoadForm::consistent)
@@ -367,7 +366,7 @@ namespace coulomb_adapt
           {slave.system_rhs(), master.system_rhs()}};
         const auto &master_nodes = mortar.master_nodes();
         const auto &M            = mortar.master_coupling();
-        auto add_load = [&](const unsigned int                     b,
+        auto        add_load = [&](const unsigned int                            b,
                             const std::array<types::global_dof_index, 2> &dofs,
                             const Tensor<1, 2> &force) {
           for (unsigned int c = 0; c < 2; ++c)
@@ -391,10 +390,11 @@ namespace coulomb_adapt
             // side: the same traction field, integrated where the bodies
             // face each other (R vanishes elsewhere, since a node with a
             // nonzero reaction has its whole support covered).
-            const auto points = mortar.overlap_quadrature(
-              contact_traction_points_per_overlap(
+            const auto points =
+              mortar.overlap_quadrature(contact_traction_points_per_overlap(
                 mortar.slave_element_degree()));
-            const auto  R = contact_traction_at(mortar, corrected.fields, points);
+            const auto R =
+              contact_traction_at(mortar, corrected.fields, points);
             const auto &slave_segments  = mortar.slave_segment_list();
             const auto &master_segments = mortar.master_segment_list();
             for (unsigned int q = 0; q < points.size(); ++q)
@@ -434,10 +434,9 @@ namespace coulomb_adapt
         for (unsigned int j = 0; j < nodes.size(); ++j)
           if (mortar.is_covered(j))
             {
-              corrected.fields[j].gap  = gaps[j].gap;
-              corrected.fields[j].slip = gaps[j].slip -
-                                         (states[j].slip -
-                                          states[j].slip_increment);
+              corrected.fields[j].gap = gaps[j].gap;
+              corrected.fields[j].slip =
+                gaps[j].slip - (states[j].slip - states[j].slip_increment);
             }
       }
 

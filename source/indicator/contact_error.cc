@@ -15,7 +15,7 @@ namespace coulomb_adapt
     add_zeros(const std::vector<double> &v,
               const double               begin,
               const double               end,
-              std::vector<double> &      breaks)
+              std::vector<double>       &breaks)
     {
       double a0 = v[0], a1 = v[1] - v[0], a2 = 0;
       if (v.size() == 3)
@@ -55,13 +55,13 @@ namespace coulomb_adapt
 
 
   ContactErrorTerm
-  integrate_contact_error(const MortarInterface &               mortar,
+  integrate_contact_error(const MortarInterface                &mortar,
                           const std::vector<ContactNodeFields> &fields,
                           const double                          mu)
   {
-    const auto &       nodes    = mortar.slave_nodes();
-    const auto &       segments = mortar.slave_segment_list();
-    const auto &       masters  = mortar.master_segment_list();
+    const auto        &nodes    = mortar.slave_nodes();
+    const auto        &segments = mortar.slave_segment_list();
+    const auto        &masters  = mortar.master_segment_list();
     const unsigned int degree   = mortar.slave_element_degree();
     // c is a product of two interpolants on each piece (degree 2p), the
     // nodal densities one more factor phi_j (degree 3p).
@@ -71,8 +71,8 @@ namespace coulomb_adapt
     term.nodal_density.assign(nodes.size(), 0.);
     for (const auto &overlap : mortar.overlaps())
       {
-        const auto &segment = segments[overlap.slave_segment];
-        const double h = nodes[segment.nodes[0]].position.distance(
+        const auto  &segment = segments[overlap.slave_segment];
+        const double h       = nodes[segment.nodes[0]].position.distance(
           nodes[segment.nodes[1]].position);
         const unsigned int  n = segment.nodes.size();
         std::vector<double> pressure(n), traction(n), gap(n), slip(n);

@@ -15,7 +15,7 @@ namespace coulomb_adapt
     // the consistent load of the corrected problem, so that the edge
     // moments are those of the FE load vector).
     std::array<ContactTractionData, 2>
-    contact_traction_data(const MortarInterface &               mortar,
+    contact_traction_data(const MortarInterface                &mortar,
                           const std::vector<ContactNodeFields> &fields)
     {
       const auto points = mortar.overlap_quadrature(
@@ -38,12 +38,12 @@ namespace coulomb_adapt
 
   ErrorEstimate
   estimate_error_cre(const std::array<const ElasticBody *, 2> &bodies,
-                     const ContactSolution *                   contact_solver,
+                     const ContactSolution                    *contact_solver,
                      const double                              mu,
                      const unsigned int                        degree_increase,
-                     const bool                                optimise_tractions,
-                     const parameters::LinearSolver &          solver_parameters,
-                     const ErrorEstimateOptions &              options)
+                     const bool                      optimise_tractions,
+                     const parameters::LinearSolver &solver_parameters,
+                     const ErrorEstimateOptions     &options)
   {
     ErrorEstimate estimate;
     estimate.estimator   = ErrorEstimator::cre;
@@ -59,21 +59,24 @@ namespace coulomb_adapt
     if (estimate.has_contact)
       {
         {
-          const OptionalTimerSection section(options.timer, "error indicator: correction");
-          estimate.correction =
-            options.known_correction != nullptr ?
-              *options.known_correction :
-              correct_contact_solution(
-                *bodies[0], *bodies[1], *contact_solver, mu, solver_parameters);
-          equilibrium =
-            correct_contact_solution(*bodies[0],
-                                     *bodies[1],
-                                     *contact_solver,
-                                     mu,
-                                     solver_parameters,
-                                     ContactLoadForm::consistent);
+          const OptionalTimerSection section(options.timer,
+                                             "error indicator: correction");
+          estimate.correction = options.known_correction != nullptr ?
+                                  *options.known_correction :
+                                  correct_contact_solution(*bodies[0],
+                                                           *bodies[1],
+                                                           *contact_solver,
+                                                           mu,
+                                                           solver_parameters);
+          equilibrium         = correct_contact_solution(*bodies[0],
+                                                 *bodies[1],
+                                                 *contact_solver,
+                                                 mu,
+                                                 solver_parameters,
+                                                 ContactLoadForm::consistent);
         }
-        const OptionalTimerSection section(options.timer, "error indicator: contributions");
+        const OptionalTimerSection section(options.timer,
+                                           "error indicator: contributions");
         estimate.contact =
           integrate_contact_error(contact_solver->mortar_interface(),
                                   estimate.correction.fields,
@@ -83,8 +86,8 @@ namespace coulomb_adapt
       }
     else
       {
-        estimate.correction.fe_displacement = {{&bodies[0]->solution(),
-                                               &bodies[1]->solution()}};
+        estimate.correction.fe_displacement = {
+          {&bodies[0]->solution(), &bodies[1]->solution()}};
         equilibrium.fe_displacement = estimate.correction.fe_displacement;
       }
 
@@ -92,8 +95,9 @@ namespace coulomb_adapt
     double                normalisation_squared = 0, before_squared = 0;
     for (unsigned int b = 0; b < 2; ++b)
       {
-        const OptionalTimerSection section(options.timer, "error indicator: equilibration");
-        EquilibratedStressErrors errors =
+        const OptionalTimerSection section(options.timer,
+                                           "error indicator: equilibration");
+        EquilibratedStressErrors   errors =
           equilibrated_stress_errors(*bodies[b],
                                      equilibrium.displacement(b),
                                      estimate.correction.displacement(b),
@@ -104,17 +108,21 @@ namespace coulomb_adapt
         estimate.optimisation_iterations += errors.optimisation_iterations;
         estimate.contribution_squared[b].swap(errors.error_squared);
         normalisation_squared += errors.sum_norm_squared;
-        volume_squared[b] = Utilities::MPI::sum(
-          estimate.contribution_squared[b].l1_norm(),
-          bodies[b]->triangulation().get_communicator());
+        volume_squared[b] =
+          Utilities::MPI::sum(estimate.contribution_squared[b].l1_norm(),
+                              bodies[b]->triangulation().get_communicator());
         estimate.node_system_defect =
           std::max(estimate.node_system_defect, errors.node_system_defect);
         estimate.local_problem_defect =
           std::max(estimate.local_problem_defect, errors.local_problem_defect);
       }
 
-    const OptionalTimerSection section(options.timer, "error indicator: contributions");
-    finish_error_estimate(bodies, volume_squared, normalisation_squared, estimate);
+    const OptionalTimerSection section(options.timer,
+                                       "error indicator: contributions");
+    finish_error_estimate(bodies,
+                          volume_squared,
+                          normalisation_squared,
+                          estimate);
     // With the same normalisation D (that of the optimised sigma^).
     estimate.epsilon_before_optimisation =
       std::sqrt((before_squared + 2 * std::max(0., estimate.contact.integral)) /

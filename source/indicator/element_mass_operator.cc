@@ -6,11 +6,11 @@
 namespace coulomb_adapt
 {
   ElementMassOperator::ElementMassOperator(
-    const DoFHandler<2> &                                     dofs,
-    const AffineConstraints<double> &                         constraints,
+    const DoFHandler<2>                                      &dofs,
+    const AffineConstraints<double>                          &constraints,
     const std::shared_ptr<const Utilities::MPI::Partitioner> &partitioner,
-    const FullMatrix<double> &                                shape_values,
-    const QuadratureStress &                                  weights)
+    const FullMatrix<double>                                 &shape_values,
+    const QuadratureStress                                   &weights)
     : constraints(constraints)
     , partitioner(partitioner)
     , n_dofs_per_cell(dofs.get_fe().n_dofs_per_cell())
@@ -100,7 +100,7 @@ namespace coulomb_adapt
   // write the vectors directly; the others go through AffineConstraints,
   // which expands a constrained DoF into its masters.
   void
-  ElementMassOperator::vmult(BlockVectorType &      dst,
+  ElementMassOperator::vmult(BlockVectorType       &dst,
                              const BlockVectorType &src) const
   {
     AssertDimension(dst.n_blocks(), n_blocks);
@@ -144,7 +144,7 @@ namespace coulomb_adapt
 
   template <unsigned int n_static>
   void
-  ElementMassOperator::apply_element_matrices(BlockVectorType &      dst,
+  ElementMassOperator::apply_element_matrices(BlockVectorType       &dst,
                                               const BlockVectorType &src) const
   {
     const unsigned int n = n_static > 0 ? n_static : n_dofs_per_cell;
@@ -162,7 +162,7 @@ namespace coulomb_adapt
     for (unsigned int cell = 0; cell < cell_is_constrained.size(); ++cell)
       {
         const unsigned int *indices = &local_indices[cell * n];
-        const double *      matrix  = &cell_matrices[std::size_t(cell) * n * n];
+        const double       *matrix  = &cell_matrices[std::size_t(cell) * n * n];
         if (cell_is_constrained[cell])
           {
             for (unsigned int b = 0; b < n_blocks; ++b)
@@ -202,7 +202,7 @@ namespace coulomb_adapt
 
 
   void
-  ElementMassOperator::precondition_Jacobi(BlockVectorType &      dst,
+  ElementMassOperator::precondition_Jacobi(BlockVectorType       &dst,
                                            const BlockVectorType &src,
                                            const double           omega) const
   {
@@ -211,7 +211,7 @@ namespace coulomb_adapt
     const unsigned int n_owned = diagonal_inverse.locally_owned_size();
     for (unsigned int b = 0; b < n_blocks; ++b)
       {
-        VectorType &      out = dst.block(b);
+        VectorType       &out = dst.block(b);
         const VectorType &in  = src.block(b);
         for (unsigned int i = 0; i < n_owned; ++i)
           out.local_element(i) =
@@ -225,7 +225,7 @@ namespace coulomb_adapt
   ElementMassOperator::distribute_local_to_global(
     const unsigned int             cell,
     const ArrayView<const double> &cell_vector,
-    VectorType &                   dst) const
+    VectorType                    &dst) const
   {
     AssertDimension(cell_vector.size(), n_dofs_per_cell);
     const unsigned int first = cell * n_dofs_per_cell;
@@ -249,8 +249,8 @@ namespace coulomb_adapt
   {
     VectorType &diagonal = diagonal_inverse;
     initialize_dof_vector(diagonal);
-    const unsigned int n = n_dofs_per_cell;
-    std::vector<types::global_dof_index> masters;
+    const unsigned int                    n = n_dofs_per_cell;
+    std::vector<types::global_dof_index>  masters;
     std::array<double, max_dofs_per_cell> w;
     for (unsigned int cell = 0; cell < cell_is_constrained.size(); ++cell)
       {

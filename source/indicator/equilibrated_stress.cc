@@ -1,17 +1,15 @@
 #include <deal.II/base/quadrature_lib.h>
 
-#include <deal.II/fe/fe_values.h>
-
-#include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/lapack_full_matrix.h>
-
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
@@ -52,11 +50,11 @@ namespace coulomb_adapt
     // cell (the smaller CellId), the other cell sees -F.
     struct FaceData
     {
-      int           plus = -1, minus = -1;
-      Point<2>      v0, v1;
-      Tensor<1, 2>  normal; // outward normal of the plus cell
-      double        length = 0;
-      bool          at_boundary = false;
+      int          plus = -1, minus = -1;
+      Point<2>     v0, v1;
+      Tensor<1, 2> normal; // outward normal of the plus cell
+      double       length      = 0;
+      bool         at_boundary = false;
       /** Per component: the moments are unknown (interior and Dirichlet
        * edges) rather than prescribed data. */
       std::array<bool, 2> unknown = {{true, true}};
@@ -85,7 +83,7 @@ namespace coulomb_adapt
       /** Names of the free parameters in the optimisation's numbering:
        * per node and component (vertices), and of the bubble. */
       std::vector<std::array<types::global_dof_index, 2>> parameter_of_node;
-      std::array<types::global_dof_index, 2>              parameter_of_bubble = {
+      std::array<types::global_dof_index, 2> parameter_of_bubble = {
         {numbers::invalid_dof_index, numbers::invalid_dof_index}};
     };
 
@@ -108,15 +106,16 @@ namespace coulomb_adapt
     double
     edge_bubble(const unsigned int n, const double s)
     {
-      const double x = 2 * s - 1;
+      const double x        = 2 * s - 1;
       double       previous = 1, current = x;
       if (n == 0)
         return 1;
       for (unsigned int k = 1; k < n; ++k)
         {
-          const double next = ((2 * k + 1) * x * current - k * previous) / (k + 1);
-          previous          = current;
-          current           = next;
+          const double next =
+            ((2 * k + 1) * x * current - k * previous) / (k + 1);
+          previous = current;
+          current  = next;
         }
       return current;
     }
@@ -144,18 +143,18 @@ namespace coulomb_adapt
     // parallel layout. The moments and bubbles are updated in place.
     template <typename CellLoad, typename FaceWork>
     void
-    optimise_free_parameters(const ElasticBody &                  body,
-                             const std::vector<CellData> &        cells,
-                             std::vector<FaceData> &              faces,
-                             LocalNeumannProblem &                local,
+    optimise_free_parameters(const ElasticBody                   &body,
+                             const std::vector<CellData>         &cells,
+                             std::vector<FaceData>               &faces,
+                             LocalNeumannProblem                 &local,
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
-                             const CellLoad &                     cell_load,
-                             const FaceWork &                     face_work,
+                             const CellLoad                      &cell_load,
+                             const FaceWork                      &face_work,
                              const bool                           with_bubbles,
-                             EquilibratedStressErrors &           result)
+                             EquilibratedStressErrors            &result)
     {
-      const auto &       tria = body.triangulation();
-      const MPI_Comm     comm = tria.get_communicator();
+      const auto    &tria = body.triangulation();
+      const MPI_Comm comm = tria.get_communicator();
       // Quadratic elements: one DoF per vertex and one per edge, whatever
       // p (deal.II 9.4 has no cubic FE_SimplexP).
       std::unique_ptr<FiniteElement<2>> scalar;
@@ -176,17 +175,18 @@ namespace coulomb_adapt
       H.reinit(owned, owned, dsp, comm);
       TrilinosWrappers::MPI::Vector g(owned, comm), alpha(owned, comm);
 
-      std::vector<types::global_dof_index> name_dofs(names_fe.n_dofs_per_cell());
-      double         before = 0;
-      Vector<double> load(local.n_coefficients()), base;
+      std::vector<types::global_dof_index> name_dofs(
+        names_fe.n_dofs_per_cell());
+      double                               before = 0;
+      Vector<double>                       load(local.n_coefficients()), base;
       const unsigned int                   M = local.n_coefficients() / 2;
       std::vector<Vector<double>>          direction_loads;
       std::vector<types::global_dof_index> direction_dofs;
       unsigned int                         n_directions = 0;
       FullMatrix<double>                   W;
-      std::vector<Vector<double>>                       responses;
-      std::vector<const Vector<double> *>               loads;
-      std::vector<types::global_dof_index>              indices;
+      std::vector<Vector<double>>          responses;
+      std::vector<const Vector<double> *>  loads;
+      std::vector<types::global_dof_index> indices;
       for (unsigned int slot = 0; slot < cells.size(); ++slot)
         if (cells[slot].owned)
           {
@@ -208,8 +208,8 @@ namespace coulomb_adapt
             // each face's traction basis (the nodal polynomials, then the
             // bubble) on the monomials.
             n_directions = 0;
-            const auto direction = [&](const types::global_dof_index dof)
-              -> Vector<double> & {
+            const auto direction =
+              [&](const types::global_dof_index dof) -> Vector<double> & {
               for (unsigned int i = 0; i < n_directions; ++i)
                 if (direction_dofs[i] == dof)
                   return direction_loads[i];
@@ -224,11 +224,11 @@ namespace coulomb_adapt
             };
             for (const unsigned int f : cell->face_indices())
               {
-                FaceData &face = faces[cells[slot].faces[f]];
+                FaceData          &face   = faces[cells[slot].faces[f]];
                 const unsigned int n_face = face.nodes.size();
-                face.parameter_of_node.assign(
-                  n_face,
-                  {{numbers::invalid_dof_index, numbers::invalid_dof_index}});
+                face.parameter_of_node.assign(n_face,
+                                              {{numbers::invalid_dof_index,
+                                                numbers::invalid_dof_index}});
                 face_work(slot, face, W);
                 for (unsigned int c = 0; c < 2; ++c)
                   {
@@ -244,7 +244,7 @@ namespace coulomb_adapt
                             ++v;
                           Assert(v < cell->n_vertices(), ExcInternalError());
                           face.parameter_of_node[k][c] = name(c, v);
-                          Vector<double> &d = direction(name(c, v));
+                          Vector<double> &d            = direction(name(c, v));
                           for (unsigned int l = 0; l < n_face; ++l)
                             {
                               const double coefficient =
@@ -293,7 +293,8 @@ namespace coulomb_adapt
           }
       H.compress(VectorOperation::add);
       g.compress(VectorOperation::add);
-      result.error_squared_before_optimisation = Utilities::MPI::sum(before, comm);
+      result.error_squared_before_optimisation =
+        Utilities::MPI::sum(before, comm);
 
       // Names without a free parameter (vertices on loaded edges, edges
       // with known tractions, the interior DoF of Q2) get alpha = 0.
@@ -337,35 +338,36 @@ namespace coulomb_adapt
 
 
   EquilibratedStressErrors
-  equilibrated_stress_errors(const ElasticBody &                  body,
-                             const TrilinosWrappers::MPI::Vector &u_equilibrium,
-                             const TrilinosWrappers::MPI::Vector &u_kinematic_in,
-                             const ContactTractionData &          contact,
-                             const unsigned int                   degree_increase,
-                             const bool                           optimise_tractions)
+  equilibrated_stress_errors(
+    const ElasticBody                   &body,
+    const TrilinosWrappers::MPI::Vector &u_equilibrium,
+    const TrilinosWrappers::MPI::Vector &u_kinematic_in,
+    const ContactTractionData           &contact,
+    const unsigned int                   degree_increase,
+    const bool                           optimise_tractions)
   {
     // Ghosted copies: the node systems read the ghost cells too (the
     // corrected solutions come without ghost entries).
-    const MPI_Comm                      comm = body.triangulation().get_communicator();
-    TrilinosWrappers::MPI::Vector       u(body.locally_owned_dof_set(),
+    const MPI_Comm comm = body.triangulation().get_communicator();
+    TrilinosWrappers::MPI::Vector u(body.locally_owned_dof_set(),
                                     body.locally_relevant_dof_set(),
                                     comm);
-    TrilinosWrappers::MPI::Vector       u_kinematic(u);
+    TrilinosWrappers::MPI::Vector u_kinematic(u);
     u           = u_equilibrium;
     u_kinematic = u_kinematic_in;
 
-    const auto &           dof_handler = body.dof_handler();
-    const FiniteElement<2> &fe         = dof_handler.get_fe();
-    const FiniteElement<2> &base       = fe.base_element(0);
-    const unsigned int      p          = base.degree;
-    const unsigned int      n_nodes    = base.n_dofs_per_cell();
-    const ElasticMaterial & material   = body.material();
-    const BodyDescription & description = body.description();
+    const auto                      &dof_handler = body.dof_handler();
+    const FiniteElement<2>          &fe          = dof_handler.get_fe();
+    const FiniteElement<2>          &base        = fe.base_element(0);
+    const unsigned int               p           = base.degree;
+    const unsigned int               n_nodes     = base.n_dofs_per_cell();
+    const ElasticMaterial           &material    = body.material();
+    const BodyDescription           &description = body.description();
     const FEValuesExtractors::Vector displacement(0);
 
     // 1. The local cells (owned and ghost) and their element residuals.
-    std::vector<CellData>                 cells;
-    std::map<CellId, unsigned int>        slot_of;
+    std::vector<CellData>          cells;
+    std::map<CellId, unsigned int> slot_of;
     {
       FEValues<2> fe_values(body.mapping(),
                             fe,
@@ -374,27 +376,26 @@ namespace coulomb_adapt
                               update_quadrature_points | update_JxW_values);
       // The nodes' positions from one FEValues per cell (mapping the
       // support points point by point costs more than the rest).
-      FEValues<2> support_values(body.mapping(),
+      FEValues<2>                        support_values(body.mapping(),
                                  fe,
                                  Quadrature<2>(base.get_unit_support_points()),
                                  update_quadrature_points);
-      std::vector<SymmetricTensor<2, 2>>   strains(fe_values.n_quadrature_points);
+      std::vector<SymmetricTensor<2, 2>> strains(fe_values.n_quadrature_points);
       std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned() || cell->is_ghost())
           {
             for (const unsigned int f : cell->face_indices())
-              AssertThrow(cell->at_boundary(f) ||
-                            (!cell->face(f)->has_children() &&
-                             !cell->neighbor_is_coarser(f)),
-                          ExcMessage(
-                            "Error indicator/Estimator = cre: the mesh of " +
-                            body.name() +
-                            " has hanging nodes. The element equilibration "
-                            "is written for conforming meshes: use "
-                            "Adaptation/Strategy = remesh or uniform "
-                            "(quadrilaterals without a scene's local "
-                            "refinement, or triangles)."));
+              AssertThrow(
+                cell->at_boundary(f) || (!cell->face(f)->has_children() &&
+                                         !cell->neighbor_is_coarser(f)),
+                ExcMessage("Error indicator/Estimator = cre: the mesh of " +
+                           body.name() +
+                           " has hanging nodes. The element equilibration "
+                           "is written for conforming meshes: use "
+                           "Adaptation/Strategy = remesh or uniform "
+                           "(quadrilaterals without a scene's local "
+                           "refinement, or triangles)."));
             CellData data;
             data.cell  = cell;
             data.owned = cell->is_locally_owned();
@@ -413,16 +414,17 @@ namespace coulomb_adapt
                 if (c == 0)
                   data.nodes[k] = dofs[j];
                 data.component_dofs[k][c] = dofs[j];
-                double r = 0;
+                double r                  = 0;
                 for (const unsigned int q :
                      fe_values.quadrature_point_indices())
                   {
-                    double value = material.stress(strains[q]) *
-                                   fe_values[displacement].symmetric_gradient(j, q);
+                    double value =
+                      material.stress(strains[q]) *
+                      fe_values[displacement].symmetric_gradient(j, q);
                     if (description.body_force)
-                      value -= fe_values[displacement].value(j, q) *
-                               description.body_force(
-                                 fe_values.quadrature_point(q));
+                      value -=
+                        fe_values[displacement].value(j, q) *
+                        description.body_force(fe_values.quadrature_point(q));
                     r += value * fe_values.JxW(q);
                   }
                 data.residual[k][c] = r;
@@ -440,8 +442,8 @@ namespace coulomb_adapt
     for (const auto &t : description.tractions)
       traction_on[t.boundary_id] = &t.traction;
 
-    std::vector<FaceData>                    faces;
-    std::map<unsigned int, unsigned int>     face_of_index;
+    std::vector<FaceData>                faces;
+    std::map<unsigned int, unsigned int> face_of_index;
     for (unsigned int slot = 0; slot < cells.size(); ++slot)
       {
         const auto &cell = cells[slot].cell;
@@ -449,8 +451,8 @@ namespace coulomb_adapt
         for (const unsigned int f : cell->face_indices())
           {
             const unsigned int key = cell->face(f)->index();
-            auto [it, inserted] = face_of_index.emplace(key, faces.size());
-            cells[slot].faces[f] = it->second;
+            auto [it, inserted]    = face_of_index.emplace(key, faces.size());
+            cells[slot].faces[f]   = it->second;
             if (inserted)
               faces.emplace_back();
             FaceData &face = faces[it->second];
@@ -464,12 +466,12 @@ namespace coulomb_adapt
               }
             if (face.plus >= 0)
               face.minus = face.plus;
-            face.plus        = slot;
-            face.v0          = cell->face(f)->vertex(0);
-            face.v1          = cell->face(f)->vertex(1);
-            face.length      = face.v0.distance(face.v1);
-            face.normal[0]   = (face.v1 - face.v0)[1] / face.length;
-            face.normal[1]   = -(face.v1 - face.v0)[0] / face.length;
+            face.plus      = slot;
+            face.v0        = cell->face(f)->vertex(0);
+            face.v1        = cell->face(f)->vertex(1);
+            face.length    = face.v0.distance(face.v1);
+            face.normal[0] = (face.v1 - face.v0)[1] / face.length;
+            face.normal[1] = -(face.v1 - face.v0)[0] / face.length;
             if ((cell->face(f)->center() - cell->center()) * face.normal < 0)
               face.normal *= -1;
             face.at_boundary = cell->at_boundary(f);
@@ -477,8 +479,7 @@ namespace coulomb_adapt
               {
                 const auto d = dirichlet_on.find(cell->face(f)->boundary_id());
                 for (unsigned int c = 0; c < 2; ++c)
-                  face.unknown[c] =
-                    (d != dirichlet_on.end() && d->second[c]);
+                  face.unknown[c] = (d != dirichlet_on.end() && d->second[c]);
               }
             face.nodes.clear();
             face.s.clear();
@@ -490,10 +491,9 @@ namespace coulomb_adapt
               {
                 const Point<2> &x = cells[slot].points[k];
                 const double    s = face_parameter(face, x);
-                const double distance =
+                const double    distance =
                   x.distance(face.v0 + s * (face.v1 - face.v0));
-                if (s > -1e-8 && s < 1 + 1e-8 &&
-                    distance < 0.05 * face.length)
+                if (s > -1e-8 && s < 1 + 1e-8 && distance < 0.05 * face.length)
                   {
                     face.nodes.push_back(cells[slot].nodes[k]);
                     face.node_dofs.push_back(cells[slot].component_dofs[k]);
@@ -518,8 +518,8 @@ namespace coulomb_adapt
           face.kernel.assign(face.nodes.size(), {{0., 0.}});
           if (!face.at_boundary)
             continue;
-          const auto &cell = cells[face.plus].cell;
-          unsigned int f   = 0;
+          const auto  &cell = cells[face.plus].cell;
+          unsigned int f    = 0;
           for (; f < cell->n_faces(); ++f)
             if (cells[face.plus].faces[f] ==
                 static_cast<unsigned int>(&face - faces.data()))
@@ -528,10 +528,10 @@ namespace coulomb_adapt
           if (t != traction_on.end())
             for (unsigned int q = 0; q < face_gauss.size(); ++q)
               {
-                const double   s = face_gauss.point(q)[0];
-                const Point<2> x = face.v0 + s * (face.v1 - face.v0);
-                const Tensor<1, 2> F = (*t->second)(x, face.normal);
-                const auto phi = face_shape_values(face.s, s);
+                const double       s   = face_gauss.point(q)[0];
+                const Point<2>     x   = face.v0 + s * (face.v1 - face.v0);
+                const Tensor<1, 2> F   = (*t->second)(x, face.normal);
+                const auto         phi = face_shape_values(face.s, s);
                 for (unsigned int k = 0; k < face.nodes.size(); ++k)
                   for (unsigned int c = 0; c < 2; ++c)
                     face.moments[k][c] +=
@@ -552,14 +552,17 @@ namespace coulomb_adapt
                 if (faces[fi].at_boundary)
                   {
                     const double s =
-                      std::clamp(face_parameter(faces[fi], point.point), 0., 1.);
+                      std::clamp(face_parameter(faces[fi], point.point),
+                                 0.,
+                                 1.);
                     const double d = point.point.distance(
                       faces[fi].v0 + s * (faces[fi].v1 - faces[fi].v0));
                     if (d < best)
                       best = d, face = fi;
                   }
-              const auto phi = face_shape_values(
-                faces[face].s, face_parameter(faces[face], point.point));
+              const auto phi =
+                face_shape_values(faces[face].s,
+                                  face_parameter(faces[face], point.point));
               for (unsigned int k = 0; k < faces[face].nodes.size(); ++k)
                 for (unsigned int c = 0; c < 2; ++c)
                   if (!faces[face].unknown[c])
@@ -570,12 +573,13 @@ namespace coulomb_adapt
 
       // Averaged traction 1/2 (sigma_c|E+ + sigma_c|E-) n+ (the one side's
       // on Dirichlet edges), from each side's own face quadrature.
-      FEFaceValues<2> face_values(body.mapping(),
+      FEFaceValues<2>                    face_values(body.mapping(),
                                   fe,
                                   QGauss<1>(p + 1),
                                   update_gradients | update_quadrature_points |
                                     update_JxW_values);
-      std::vector<SymmetricTensor<2, 2>> strains(face_values.n_quadrature_points);
+      std::vector<SymmetricTensor<2, 2>> strains(
+        face_values.n_quadrature_points);
       for (unsigned int slot = 0; slot < cells.size(); ++slot)
         for (const unsigned int f : cells[slot].cell->face_indices())
           {
@@ -592,7 +596,8 @@ namespace coulomb_adapt
                 const Tensor<1, 2> F =
                   material.stress(strains[q]) * face.normal;
                 const auto phi = face_shape_values(
-                  face.s, face_parameter(face, face_values.quadrature_point(q)));
+                  face.s,
+                  face_parameter(face, face_values.quadrature_point(q)));
                 for (unsigned int k = 0; k < face.nodes.size(); ++k)
                   for (unsigned int c = 0; c < 2; ++c)
                     face.average[k][c] +=
@@ -666,9 +671,10 @@ namespace coulomb_adapt
                   for (unsigned int e = 0; e < node_faces.size(); ++e)
                     {
                       const FaceData &face = faces[node_faces[e].first];
-                      const int sign = face.plus == static_cast<int>(slot) ? 1 :
-                                       face.minus == static_cast<int>(slot) ? -1 :
-                                                                             0;
+                      const int       sign =
+                        face.plus == static_cast<int>(slot)  ? 1 :
+                              face.minus == static_cast<int>(slot) ? -1 :
+                                                                     0;
                       if (sign == 0)
                         continue;
                       const auto col =
@@ -700,7 +706,8 @@ namespace coulomb_adapt
               // columns scaled by sqrt|G|.
               std::vector<double> scale(n_cols);
               for (unsigned int j = 0; j < n_cols; ++j)
-                scale[j] = std::sqrt(faces[node_faces[columns[j]].first].length);
+                scale[j] =
+                  std::sqrt(faces[node_faces[columns[j]].first].length);
               LAPACKFullMatrix<double> svd(n_rows, n_cols);
               for (unsigned int row = 0; row < n_rows; ++row)
                 for (unsigned int j = 0; j < n_cols; ++j)
@@ -730,7 +737,8 @@ namespace coulomb_adapt
                 {
                   double largest = 0;
                   for (unsigned int j = 0; j < n_cols; ++j)
-                    largest = std::max(largest, std::abs(Vt(rank, j) * scale[j]));
+                    largest =
+                      std::max(largest, std::abs(Vt(rank, j) * scale[j]));
                   for (unsigned int j = 0; j < n_cols; ++j)
                     {
                       const auto &e = node_faces[columns[j]];
@@ -745,7 +753,7 @@ namespace coulomb_adapt
                 std::max(result.node_system_defect, defect.linfty_norm());
               for (unsigned int j = 0; j < n_cols; ++j)
                 {
-                  const auto &e = node_faces[columns[j]];
+                  const auto &e                       = node_faces[columns[j]];
                   faces[e.first].moments[e.second][c] = x0(j) + y(j);
                 }
             }
@@ -792,12 +800,12 @@ namespace coulomb_adapt
     LocalNeumannProblem local(body, p + degree_increase);
     const QGauss<1>     edge_rule(p + degree_increase + 2);
     const auto          add_face_load =
-      [&](Vector<double> &                          load,
+      [&](Vector<double>                           &load,
           const unsigned int                        slot,
-          const FaceData &                          face,
+          const FaceData                           &face,
           const std::vector<std::array<double, 2>> &coefficients,
-          const std::array<double, 2> &             bubble,
-          const std::array<bool, 2> &               mask) {
+          const std::array<double, 2>              &bubble,
+          const std::array<bool, 2>                &mask) {
         const double eta = face.plus == static_cast<int>(slot) ? 1 : -1;
         for (unsigned int q = 0; q < edge_rule.size(); ++q)
           {
@@ -820,28 +828,29 @@ namespace coulomb_adapt
     // The work W(m, j) of the face's traction basis j (its nodal
     // polynomials, then the bubble), with the cell's orientation eta, on
     // monomial m of the cell's local problem.
-    const auto face_work =
-      [&](const unsigned int slot, const FaceData &face, FullMatrix<double> &W) {
-        const unsigned int n   = face.nodes.size();
-        const unsigned int M   = local.n_coefficients() / 2;
-        const double       eta = face.plus == static_cast<int>(slot) ? 1 : -1;
-        W.reinit(M, n + 1);
-        for (unsigned int q = 0; q < edge_rule.size(); ++q)
-          {
-            const double s   = edge_rule.point(q)[0];
-            const auto   phi = face_shape_values(face.s, s);
-            const double L   = edge_bubble(p + 1, s);
-            const double w   = eta * edge_rule.weight(q) * face.length;
-            const auto & values =
-              local.monomial_values(face.v0 + s * (face.v1 - face.v0));
-            for (unsigned int m = 0; m < M; ++m)
-              {
-                for (unsigned int j = 0; j < n; ++j)
-                  W(m, j) += phi[j] * values[m] * w;
-                W(m, n) += L * values[m] * w;
-              }
-          }
-      };
+    const auto face_work = [&](const unsigned int  slot,
+                               const FaceData     &face,
+                               FullMatrix<double> &W) {
+      const unsigned int n   = face.nodes.size();
+      const unsigned int M   = local.n_coefficients() / 2;
+      const double       eta = face.plus == static_cast<int>(slot) ? 1 : -1;
+      W.reinit(M, n + 1);
+      for (unsigned int q = 0; q < edge_rule.size(); ++q)
+        {
+          const double s   = edge_rule.point(q)[0];
+          const auto   phi = face_shape_values(face.s, s);
+          const double L   = edge_bubble(p + 1, s);
+          const double w   = eta * edge_rule.weight(q) * face.length;
+          const auto  &values =
+            local.monomial_values(face.v0 + s * (face.v1 - face.v0));
+          for (unsigned int m = 0; m < M; ++m)
+            {
+              for (unsigned int j = 0; j < n; ++j)
+                W(m, j) += phi[j] * values[m] * w;
+              W(m, n) += L * values[m] * w;
+            }
+        }
+    };
     // ... and the whole load of a cell: the body force, eta F where the
     // moments were solved for, the prescribed data elsewhere, and the
     // contact traction. local must be reinit'ed on the cell.
@@ -850,10 +859,12 @@ namespace coulomb_adapt
       load             = local.body_force_load();
       for (const unsigned int f : cell->face_indices())
         {
-          const FaceData &          face   = faces[cells[slot].faces[f]];
-          const std::array<bool, 2> solved = {{face.unknown[0], face.unknown[1]}};
+          const FaceData           &face   = faces[cells[slot].faces[f]];
+          const std::array<bool, 2> solved = {
+            {face.unknown[0], face.unknown[1]}};
           if (solved[0] || solved[1])
-            add_face_load(load, slot, face, face.coefficients, face.bubble, solved);
+            add_face_load(
+              load, slot, face, face.coefficients, face.bubble, solved);
           const std::array<bool, 2> prescribed = {{!solved[0], !solved[1]}};
           if (face.at_boundary && (prescribed[0] || prescribed[1]))
             {
@@ -873,8 +884,8 @@ namespace coulomb_adapt
         }
       if (const auto c = contact.find(cell->id()); c != contact.end())
         for (const auto &point : c->second)
-          local.add_traction(load, point.point, point.traction, point.weight,
-                             {{true, true}});
+          local.add_traction(
+            load, point.point, point.traction, point.weight, {{true, true}});
     };
 
     // 5. The free parameters of the node systems (one per interior or
@@ -925,8 +936,10 @@ namespace coulomb_adapt
     if (!optimise_tractions)
       result.error_squared_before_optimisation =
         Utilities::MPI::sum(result.error_squared.l1_norm(), comm);
-    result.node_system_defect   = Utilities::MPI::max(result.node_system_defect, comm);
-    result.local_problem_defect = Utilities::MPI::max(result.local_problem_defect, comm);
+    result.node_system_defect =
+      Utilities::MPI::max(result.node_system_defect, comm);
+    result.local_problem_defect =
+      Utilities::MPI::max(result.local_problem_defect, comm);
     return result;
   }
 } // namespace coulomb_adapt

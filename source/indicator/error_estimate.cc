@@ -26,11 +26,11 @@ namespace coulomb_adapt
     // affine cells (sigma~ has the degree p of the displacement).
     double
     volume_terms(const QuadratureStress &raw_stress,
-                 const RecoveredStress & recovered,
-                 Vector<double> &        difference)
+                 const RecoveredStress  &recovered,
+                 Vector<double>         &difference)
     {
-      const ElasticBody &       body     = raw_stress.body();
-      const ElasticMaterial &   material = body.material();
+      const ElasticBody        &body     = raw_stress.body();
+      const ElasticMaterial    &material = body.material();
       std::vector<Tensor<1, 3>> smoothed(raw_stress.n_points());
 
       difference.reinit(body.triangulation().n_active_cells());
@@ -45,10 +45,11 @@ namespace coulomb_adapt
               {
                 const SymmetricTensor<2, 2> sigma_c =
                   stress_tensor(raw_stress.stress(owned_cell, q));
-                const SymmetricTensor<2, 2> sigma_s = stress_tensor(smoothed[q]);
-                const SymmetricTensor<2, 2> minus   = sigma_s - sigma_c;
-                const SymmetricTensor<2, 2> plus    = sigma_s + sigma_c;
-                const double JxW = raw_stress.JxW(owned_cell, q);
+                const SymmetricTensor<2, 2> sigma_s =
+                  stress_tensor(smoothed[q]);
+                const SymmetricTensor<2, 2> minus = sigma_s - sigma_c;
+                const SymmetricTensor<2, 2> plus  = sigma_s + sigma_c;
+                const double                JxW = raw_stress.JxW(owned_cell, q);
                 cell_difference += minus * material.strain(minus) * JxW;
                 sum_norm += plus * material.strain(plus) * JxW;
               }
@@ -67,7 +68,7 @@ namespace coulomb_adapt
   finish_error_estimate(const std::array<const ElasticBody *, 2> &bodies,
                         const std::array<double, 2> &volume_squared,
                         const double                 normalisation_squared,
-                        ErrorEstimate &              estimate)
+                        ErrorEstimate               &estimate)
   {
     // The contact term on the contact faces of each side's cells.
     if (estimate.has_contact)
@@ -96,7 +97,8 @@ namespace coulomb_adapt
         const auto n = bodies[b]->triangulation().n_active_cells();
         estimate.indicator[b].reinit(n);
         estimate.density[b].reinit(n);
-        for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
+        for (const auto &cell :
+             bodies[b]->triangulation().active_cell_iterators())
           if (cell->is_locally_owned())
             {
               const auto   i  = cell->active_cell_index();
@@ -111,12 +113,12 @@ namespace coulomb_adapt
 
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
-                 const ContactSolution *                   contact_solver,
+                 const ContactSolution                    *contact_solver,
                  const double                              mu,
                  const ErrorEstimator                      estimator,
-                 const parameters::ErrorIndicator &        indicator_parameters,
-                 const parameters::LinearSolver &          solver_parameters,
-                 const ErrorEstimateOptions &              options)
+                 const parameters::ErrorIndicator         &indicator_parameters,
+                 const parameters::LinearSolver           &solver_parameters,
+                 const ErrorEstimateOptions               &options)
   {
     if (estimator == ErrorEstimator::cre)
       return estimate_error_cre(bodies,
@@ -143,11 +145,11 @@ namespace coulomb_adapt
 
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
-                 const ContactSolution *                   contact,
+                 const ContactSolution                    *contact,
                  const double                              mu,
                  const StressRecoveryMethod                recovery,
-                 const parameters::LinearSolver &          solver_parameters,
-                 const ErrorEstimateOptions &              options)
+                 const parameters::LinearSolver           &solver_parameters,
+                 const ErrorEstimateOptions               &options)
   {
     ErrorEstimate estimate;
     estimate.recovery    = recovery;
@@ -160,22 +162,23 @@ namespace coulomb_adapt
         {
           const OptionalTimerSection section(options.timer,
                                              "error indicator: correction");
-          estimate.correction =
-            options.known_correction != nullptr ?
-              *options.known_correction :
-              correct_contact_solution(
-                *bodies[0], *bodies[1], *contact, mu, solver_parameters);
+          estimate.correction = options.known_correction != nullptr ?
+                                  *options.known_correction :
+                                  correct_contact_solution(*bodies[0],
+                                                           *bodies[1],
+                                                           *contact,
+                                                           mu,
+                                                           solver_parameters);
         }
         const OptionalTimerSection section(options.timer,
                                            "error indicator: contributions");
-        estimate.contact =
-          integrate_contact_error(contact->mortar_interface(),
-                                  estimate.correction.fields,
-                                  mu);
+        estimate.contact = integrate_contact_error(contact->mortar_interface(),
+                                                   estimate.correction.fields,
+                                                   mu);
       }
     else
-      estimate.correction.fe_displacement = {{&bodies[0]->solution(),
-                                             &bodies[1]->solution()}};
+      estimate.correction.fe_displacement = {
+        {&bodies[0]->solution(), &bodies[1]->solution()}};
 
     std::array<double, 2> volume_squared;
     double                normalisation_squared = 0;
@@ -189,24 +192,25 @@ namespace coulomb_adapt
                                              "error indicator: smoothing");
           raw_stress = std::make_unique<const QuadratureStress>(
             *bodies[b], estimate.correction.displacement(b));
-          estimate.recovered[b] =
-            std::make_unique<RecoveredStress>(*bodies[b]);
+          estimate.recovered[b] = std::make_unique<RecoveredStress>(*bodies[b]);
           estimate.recovered[b]->recover(*raw_stress, recovery);
         }
         const OptionalTimerSection section(options.timer,
                                            "error indicator: contributions");
-        normalisation_squared +=
-          volume_terms(*raw_stress,
-                       *estimate.recovered[b],
-                       estimate.contribution_squared[b]);
-        volume_squared[b] = Utilities::MPI::sum(
-          estimate.contribution_squared[b].l1_norm(),
-          bodies[b]->triangulation().get_communicator());
+        normalisation_squared += volume_terms(*raw_stress,
+                                              *estimate.recovered[b],
+                                              estimate.contribution_squared[b]);
+        volume_squared[b] =
+          Utilities::MPI::sum(estimate.contribution_squared[b].l1_norm(),
+                              bodies[b]->triangulation().get_communicator());
       }
 
     const OptionalTimerSection section(options.timer,
                                        "error indicator: contributions");
-    finish_error_estimate(bodies, volume_squared, normalisation_squared, estimate);
+    finish_error_estimate(bodies,
+                          volume_squared,
+                          normalisation_squared,
+                          estimate);
     return estimate;
   }
 } // namespace coulomb_adapt

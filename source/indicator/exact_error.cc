@@ -3,9 +3,9 @@
 
 #include <deal.II/fe/fe_values.h>
 
-#include <deal.II/numerics/vector_tools_evaluate.h>
-
 #include <deal.II/grid/cell_id.h>
+
+#include <deal.II/numerics/vector_tools_evaluate.h>
 
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/indicator/exact_error.h>
@@ -67,17 +67,16 @@ namespace coulomb_adapt
 
 
   double
-  strain_energy(const ElasticBody &                  body,
+  strain_energy(const ElasticBody                   &body,
                 const TrilinosWrappers::MPI::Vector &displacement)
   {
-    FEValues<2> fe_values(body.mapping(),
+    FEValues<2>                        fe_values(body.mapping(),
                           body.dof_handler().get_fe(),
                           body.cell_quadrature(),
                           update_gradients | update_JxW_values);
     const FEValuesExtractors::Vector   u(0);
-    std::vector<SymmetricTensor<2, 2>> strains(
-      body.cell_quadrature().size());
-    double energy = 0;
+    std::vector<SymmetricTensor<2, 2>> strains(body.cell_quadrature().size());
+    double                             energy = 0;
     for (const auto &cell : body.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -87,17 +86,16 @@ namespace coulomb_adapt
             energy += 0.5 * body.material().stress(strains[q]) * strains[q] *
                       fe_values.JxW(q);
         }
-    return Utilities::MPI::sum(energy,
-                               body.triangulation().get_communicator());
+    return Utilities::MPI::sum(energy, body.triangulation().get_communicator());
   }
 
 
 
   StressDifference
   compare_stresses(
-    const std::array<const ElasticBody *, 2> &                  bodies,
+    const std::array<const ElasticBody *, 2>                   &bodies,
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
-    const ReferenceStress &                                     reference,
+    const ReferenceStress                                      &reference,
     const unsigned int                                          subdivisions)
   {
     StressDifference result;
@@ -109,10 +107,11 @@ namespace coulomb_adapt
         // rule integrates each piece on its own.
         const Quadrature<2> quadrature =
           body.is_simplex_mesh() ?
-            Quadrature<2>(QIteratedSimplex<2>(
-              QGaussSimplex<2>(std::min(degree + 2, 4u)), subdivisions)) :
+            Quadrature<2>(
+              QIteratedSimplex<2>(QGaussSimplex<2>(std::min(degree + 2, 4u)),
+                                  subdivisions)) :
             Quadrature<2>(QIterated<2>(QGauss<1>(degree + 2), subdivisions));
-        FEValues<2> fe_values(body.mapping(),
+        FEValues<2>                        fe_values(body.mapping(),
                               body.dof_handler().get_fe(),
                               quadrature,
                               update_gradients | update_quadrature_points |
@@ -147,7 +146,7 @@ namespace coulomb_adapt
           {
             const SymmetricTensor<2, 2> minus = sigma[i] - sigma_h[i];
             const SymmetricTensor<2, 2> plus  = sigma[i] + sigma_h[i];
-            const double minus_squared =
+            const double                minus_squared =
               minus * body.material().strain(minus) * JxW[i];
             result.cell_squared[b](cell_of_point[i]) += minus_squared;
             result.difference_squared += minus_squared;
@@ -165,19 +164,19 @@ namespace coulomb_adapt
 
   ExactErrorComparison
   compare_with_exact_error(const std::array<const ElasticBody *, 2> &bodies,
-                           const ErrorEstimate &                     estimate,
-                           const ReferenceStress &                   reference)
+                           const ErrorEstimate                      &estimate,
+                           const ReferenceStress                    &reference)
   {
     const MPI_Comm   comm = bodies[0]->triangulation().get_communicator();
-    StressDifference d    = compare_stresses(
-      bodies,
-      {{&estimate.correction.displacement(0),
-        &estimate.correction.displacement(1)}},
-      reference,
-      reference.quadrature_subdivisions());
+    StressDifference d =
+      compare_stresses(bodies,
+                       {{&estimate.correction.displacement(0),
+                         &estimate.correction.displacement(1)}},
+                       reference,
+                       reference.quadrature_subdivisions());
     std::array<Vector<double>, 2> &exact_squared = d.cell_squared;
-    const double sum_minus = d.difference_squared;
-    const double sum_plus  = d.sum_squared;
+    const double                   sum_minus     = d.difference_squared;
+    const double                   sum_plus      = d.sum_squared;
 
     // The contact term is computable: the same as in the estimate.
     const double contact = 2 * estimate.contact.integral;
@@ -195,42 +194,43 @@ namespace coulomb_adapt
     ExactErrorComparison comparison;
     comparison.epsilon_exact =
       std::sqrt((sum_minus + contact) / std::max(sum_plus, 1e-300));
-    comparison.effectivity =
-      comparison.epsilon_exact > 0 ? estimate.epsilon / comparison.epsilon_exact :
-                                     0.;
+    comparison.effectivity = comparison.epsilon_exact > 0 ?
+                               estimate.epsilon / comparison.epsilon_exact :
+                               0.;
 
     double largest = 0;
     for (unsigned int b = 0; b < 2; ++b)
       largest = std::max(largest, exact_squared[b].linfty_norm());
-    largest = Utilities::MPI::max(largest, comm);
+    largest          = Utilities::MPI::max(largest, comm);
     double       sum = 0, sum_squares = 0;
     double       low = 1e300, high = 0;
-    unsigned int n   = 0;
+    unsigned int n = 0;
     for (unsigned int b = 0; b < 2; ++b)
-      for (const auto &cell : bodies[b]->triangulation().active_cell_iterators())
+      for (const auto &cell :
+           bodies[b]->triangulation().active_cell_iterators())
         if (cell->is_locally_owned())
           {
             const auto i = cell->active_cell_index();
             if (exact_squared[b](i) <= 1e-12 * largest)
               continue;
-            const double theta = std::sqrt(
-              std::max(0., estimate.contribution_squared[b](i)) /
-              exact_squared[b](i));
+            const double theta =
+              std::sqrt(std::max(0., estimate.contribution_squared[b](i)) /
+                        exact_squared[b](i));
             sum += theta;
             sum_squares += theta * theta;
             low  = std::min(low, theta);
             high = std::max(high, theta);
             ++n;
           }
-    n           = Utilities::MPI::sum(n, comm);
-    sum         = Utilities::MPI::sum(sum, comm);
-    sum_squares = Utilities::MPI::sum(sum_squares, comm);
+    n                     = Utilities::MPI::sum(n, comm);
+    sum                   = Utilities::MPI::sum(sum, comm);
+    sum_squares           = Utilities::MPI::sum(sum_squares, comm);
     comparison.n_elements = n;
     if (n > 0)
       {
         comparison.element_effectivity_mean = sum / n;
-        comparison.element_effectivity_std  = std::sqrt(
-          std::max(0., sum_squares / n - std::pow(sum / n, 2)));
+        comparison.element_effectivity_std =
+          std::sqrt(std::max(0., sum_squares / n - std::pow(sum / n, 2)));
         comparison.element_effectivity_min = Utilities::MPI::min(low, comm);
         comparison.element_effectivity_max = Utilities::MPI::max(high, comm);
       }

@@ -21,7 +21,7 @@ namespace coulomb_adapt
         std::unique_ptr<Quadrature<2>>(
           new QWitherdenVincentSimplex<2>(std::min(degree + 1, 7u))) :
         std::unique_ptr<Quadrature<2>>(new QGauss<2>(degree + 1));
-    fe_values = std::make_unique<FEValues<2>>(body.mapping(),
+    fe_values            = std::make_unique<FEValues<2>>(body.mapping(),
                                               body.dof_handler().get_fe(),
                                               *cell_rule,
                                               update_gradients |
@@ -98,13 +98,13 @@ namespace coulomb_adapt
     centre = cell->center();
     h      = cell->diameter();
     fe_values->reinit(cell);
-    const FEValuesExtractors::Vector displacement(0);
+    const FEValuesExtractors::Vector   displacement(0);
     std::vector<SymmetricTensor<2, 2>> strains(cell_rule->size());
     (*fe_values)[displacement].get_function_symmetric_gradients(u_kinematic,
                                                                 strains);
-    const ElasticMaterial & material    = body.material();
-    const BodyDescription & description = body.description();
-    const unsigned int      M           = exponents.size();
+    const ElasticMaterial &material    = body.material();
+    const BodyDescription &description = body.description();
+    const unsigned int     M           = exponents.size();
 
     // K from the Gram matrices G_de(m, n) = int d_d phi_m d_e phi_n of the
     // scalar monomials: with sigma = lambda tr(eps) I + 2 mu eps,
@@ -131,8 +131,8 @@ namespace coulomb_adapt
                   G[d][e](m, n) += gm[d] * gradients[n][e];
             // sigma_c : eps(phi_m e_c) = (sigma_c grad phi_m)_c.
             const Tensor<1, 2> work = sigma_c[q] * gm;
-            sigma_c_work(m)         += work[0];
-            sigma_c_work(M + m)     += work[1];
+            sigma_c_work(m) += work[0];
+            sigma_c_work(M + m) += work[1];
           }
         if (description.body_force)
           {
@@ -151,8 +151,8 @@ namespace coulomb_adapt
           for (unsigned int n = 0; n < M; ++n)
             stiffness(c * M + m, d * M + n) =
               lambda * G[c][d](m, n) +
-              mu * ((c == d ? G[0][0](m, n) + G[1][1](m, n) : 0.) +
-                    G[d][c](m, n));
+              mu *
+                ((c == d ? G[0][0](m, n) + G[1][1](m, n) : 0.) + G[d][c](m, n));
 
     // K + s R R^T has, for a load orthogonal to R, the solution of K u =
     // load that is orthogonal to R; it is symmetric positive definite, so
@@ -199,9 +199,9 @@ namespace coulomb_adapt
 
 
   void
-  LocalNeumannProblem::add_traction(Vector<double> &           load,
-                                    const Point<2> &           x,
-                                    const Tensor<1, 2> &       t,
+  LocalNeumannProblem::add_traction(Vector<double>            &load,
+                                    const Point<2>            &x,
+                                    const Tensor<1, 2>        &t,
                                     const double               w,
                                     const std::array<bool, 2> &components) const
   {
@@ -217,7 +217,7 @@ namespace coulomb_adapt
 
   double
   LocalNeumannProblem::solve(const Vector<double> &load,
-                             Vector<double> &      coefficients) const
+                             Vector<double>       &coefficients) const
   {
     double size = 0, rigid_load = 0;
     for (unsigned int a = 0; a < load.size(); ++a)

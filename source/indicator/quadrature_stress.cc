@@ -9,7 +9,7 @@
 namespace coulomb_adapt
 {
   QuadratureStress::QuadratureStress(
-    const ElasticBody &                  body,
+    const ElasticBody                   &body,
     const TrilinosWrappers::MPI::Vector &displacement)
     : QuadratureStress(body, displacement, body.cell_quadrature(), false)
   {}
@@ -17,9 +17,9 @@ namespace coulomb_adapt
 
 
   QuadratureStress::QuadratureStress(
-    const ElasticBody &                  body,
+    const ElasticBody                   &body,
     const TrilinosWrappers::MPI::Vector &displacement,
-    const Quadrature<2> &                quadrature,
+    const Quadrature<2>                 &quadrature,
     const bool                           with_points)
     : body_(body)
     , displacement_(displacement)
@@ -39,10 +39,10 @@ namespace coulomb_adapt
                           quadrature,
                           update_gradients | update_JxW_values |
                             (with_points ? update_quadrature_points :
-                                           update_default));
+                                                       update_default));
     if (with_points)
       points.reserve(body.triangulation().n_active_cells() * n_points_);
-    const unsigned int      n_dofs = displacement_fe.n_dofs_per_cell();
+    const unsigned int n_dofs = displacement_fe.n_dofs_per_cell();
     std::vector<std::pair<unsigned int, unsigned int>> component_node(n_dofs);
     for (unsigned int i = 0; i < n_dofs; ++i)
       component_node[i] = displacement_fe.system_to_component_index(i);

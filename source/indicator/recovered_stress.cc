@@ -69,7 +69,7 @@ namespace coulomb_adapt
 
 
   void
-  RecoveredStress::recover(const QuadratureStress &   raw_stress,
+  RecoveredStress::recover(const QuadratureStress    &raw_stress,
                            const StressRecoveryMethod method)
   {
     Assert(&raw_stress.body() == &body,
@@ -135,7 +135,7 @@ namespace coulomb_adapt
       {
         // Relative to the right-hand side of all three components: the
         // indicator measures sigma~ in a norm of the whole stress.
-        SolverControl control(1000, 1e-12 * rhs.l2_norm());
+        SolverControl             control(1000, 1e-12 * rhs.l2_norm());
         SolverCG<BlockVectorType> cg(control);
         PreconditionJacobi<ElementMassOperator> jacobi;
         jacobi.initialize(mass);
@@ -156,7 +156,7 @@ namespace coulomb_adapt
   void
   RecoveredStress::get_quadrature_values(
     const DoFHandler<2>::active_cell_iterator &cell,
-    std::vector<Tensor<1, 3>> &                values) const
+    std::vector<Tensor<1, 3>>                 &values) const
   {
     const unsigned int n_dofs = fe.n_dofs_per_cell();
     values.assign(shape_values.n(), Tensor<1, 3>());

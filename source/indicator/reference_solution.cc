@@ -3,9 +3,9 @@
 
 #include <deal.II/fe/fe_values.h>
 
-#include <deal.II/numerics/vector_tools_evaluate.h>
-
 #include <deal.II/grid/cell_id.h>
+
+#include <deal.II/numerics/vector_tools_evaluate.h>
 
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/indicator/exact_error.h>
@@ -60,7 +60,7 @@ namespace coulomb_adapt
                 }
           }
 
-      CoarseMeshData                              mesh;
+      CoarseMeshData                                    mesh;
       std::map<std::pair<double, double>, unsigned int> vertex_number;
       const auto vertex = [&](const double x, const double y) {
         const auto [it, inserted] =
@@ -69,8 +69,9 @@ namespace coulomb_adapt
           mesh.vertices.emplace_back(x, y);
         return it->second;
       };
-      for (const auto &part : Utilities::MPI::all_gather(
-             body.triangulation().get_communicator(), packed))
+      for (const auto &part :
+           Utilities::MPI::all_gather(body.triangulation().get_communicator(),
+                                      packed))
         for (std::size_t i = 0; i < part.size();)
           if (part[i] >= 0)
             {
@@ -112,20 +113,21 @@ namespace coulomb_adapt
         if (cell->is_locally_owned())
           owned.push_back(cell->id().template to_binary<2>());
       std::set<CellId> active, ancestors;
-      for (const auto &part : Utilities::MPI::all_gather(
-             judged.triangulation().get_communicator(), owned))
+      for (const auto &part :
+           Utilities::MPI::all_gather(judged.triangulation().get_communicator(),
+                                      owned))
         for (const auto &binary : part)
           {
             const CellId id(binary);
             active.insert(id);
             const auto children = id.get_child_indices();
             for (unsigned int level = 0; level < children.size(); ++level)
-              ancestors.insert(CellId(id.get_coarse_cell_id(),
-                                      level,
-                                      children.data()));
+              ancestors.insert(
+                CellId(id.get_coarse_cell_id(), level, children.data()));
           }
 
-      const unsigned int max_rounds = 2 * judged.triangulation().n_global_levels() + 4;
+      const unsigned int max_rounds =
+        2 * judged.triangulation().n_global_levels() + 4;
       for (unsigned int round = 0;; ++round)
         {
           std::vector<signed char> decisions(
@@ -155,9 +157,9 @@ namespace coulomb_adapt
 
   std::unique_ptr<ElasticBody>
   make_refined_body(const ElasticBody &judged,
-                    const Scene &      scene,
+                    const Scene       &scene,
                     const unsigned int body_index,
-                    const Parameters & parameters,
+                    const Parameters  &parameters,
                     const unsigned int refinements)
   {
     const MPI_Comm comm = judged.triangulation().get_communicator();
@@ -187,8 +189,8 @@ namespace coulomb_adapt
     // otherwise each on its own.
     unsigned int
     solve_quietly(std::array<std::unique_ptr<ElasticBody>, 2> &bodies,
-                  const Parameters &                           parameters,
-                  const ConditionalOStream &                   quiet)
+                  const Parameters                            &parameters,
+                  const ConditionalOStream                    &quiet)
     {
       if (bodies[0]->description().contact_boundary_id ==
             numbers::invalid_boundary_id ||
@@ -228,16 +230,16 @@ namespace coulomb_adapt
     // cells. The missing points are few: the cost is theirs times the
     // cells.
     std::vector<std::optional<Tensor<1, 2, Tensor<1, 2>>>>
-    gradients_by_search(const ElasticBody &              body,
-                        const std::vector<Point<2>> &    points,
+    gradients_by_search(const ElasticBody               &body,
+                        const std::vector<Point<2>>     &points,
                         const std::vector<unsigned int> &missing)
     {
-      const MPI_Comm comm = body.triangulation().get_communicator();
+      const MPI_Comm        comm = body.triangulation().get_communicator();
       std::vector<Point<2>> wanted;
       for (const unsigned int i : missing)
         wanted.push_back(points[i]);
-      const auto all_wanted = Utilities::MPI::all_gather(comm, wanted);
-      std::size_t n_wanted = 0;
+      const auto  all_wanted = Utilities::MPI::all_gather(comm, wanted);
+      std::size_t n_wanted   = 0;
       for (const auto &part : all_wanted)
         n_wanted += part.size();
       if (n_wanted == 0)
@@ -306,8 +308,8 @@ namespace coulomb_adapt
 
 
   ReferenceSolutionStress::ReferenceSolutionStress(
-    const Scene &                             scene,
-    const Parameters &                        parameters,
+    const Scene                              &scene,
+    const Parameters                         &parameters,
     const std::array<const ElasticBody *, 2> &judged,
     const unsigned int                        refinements,
     const bool                                estimate_own_error)
@@ -332,8 +334,8 @@ namespace coulomb_adapt
     if (refinements > 1)
       {
         for (unsigned int b = 0; b < 2; ++b)
-          coarser[b] =
-            make_refined_body(*judged[b], scene, b, parameters, refinements - 1);
+          coarser[b] = make_refined_body(
+            *judged[b], scene, b, parameters, refinements - 1);
         solve_quietly(coarser, parameters, quiet);
         coarser_bodies = pointers(coarser);
       }
@@ -347,12 +349,12 @@ namespace coulomb_adapt
       std::sqrt(d.difference_squared / std::max(d.sum_squared, 1e-300));
     double coarser_energy = 0;
     for (unsigned int b = 0; b < 2; ++b)
-      coarser_energy += coulomb_adapt::strain_energy(
-        *coarser_bodies[b], coarser_bodies[b]->solution());
+      coarser_energy +=
+        coulomb_adapt::strain_energy(*coarser_bodies[b],
+                                     coarser_bodies[b]->solution());
     const double energy = energies[0] + energies[1];
-    epsilon_own_energy =
-      std::sqrt(std::abs(energy - coarser_energy) /
-                std::max(4 * energy, 1e-300));
+    epsilon_own_energy  = std::sqrt(std::abs(energy - coarser_energy) /
+                                   std::max(4 * energy, 1e-300));
   }
 
 
@@ -365,7 +367,7 @@ namespace coulomb_adapt
   ReferenceSolutionStress::stresses(const unsigned int           b,
                                     const std::vector<Point<2>> &points) const
   {
-    const ElasticBody &                      body = *bodies[b];
+    const ElasticBody                       &body = *bodies[b];
     Utilities::MPI::RemotePointEvaluation<2> evaluation(1e-10);
     auto gradients = VectorTools::point_gradients<2>(
       body.mapping(), body.dof_handler(), body.solution(), points, evaluation);
@@ -406,8 +408,8 @@ namespace coulomb_adapt
   ReferenceSolutionStress::description() const
   {
     return "reference solution (the judged meshes refined " +
-           std::to_string(refinements) + " times, " +
-           std::to_string(n_dofs()) + " DoFs)";
+           std::to_string(refinements) + " times, " + std::to_string(n_dofs()) +
+           " DoFs)";
   }
 
 

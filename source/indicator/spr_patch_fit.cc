@@ -21,29 +21,29 @@ namespace coulomb_adapt
     // Q1 boundary fix a constant, not a plane).
     PatchFit
     fit_patch(const std::vector<double> &entries,
-              const PatchLayout &        layout,
+              const PatchLayout         &layout,
               const unsigned int         degree,
-              const Point<2> &           centre)
+              const Point<2>            &centre)
     {
       // cond(equilibrated matrix) up to ~1e8 is accepted.
       const double pivot_tolerance = 1e-8;
 
-      const unsigned int n = layout.n_fit_monomials();
+      const unsigned int                  n = layout.n_fit_monomials();
       std::array<double, max_n_monomials> scale{};
       for (unsigned int k = 0; k < n; ++k)
         {
           const double diagonal = entries[layout.matrix_entry(k, k)];
-          scale[k] = diagonal > 0 ? 1. / std::sqrt(diagonal) : 0.;
+          scale[k]              = diagonal > 0 ? 1. / std::sqrt(diagonal) : 0.;
         }
 
       // On the stack: one fit per vertex.
       std::array<std::array<double, max_n_monomials>, max_n_monomials>
-        cholesky_entries{};
+                 cholesky_entries{};
       const auto cholesky = [&](const unsigned int i,
                                 const unsigned int j) -> double & {
         return cholesky_entries[i][j];
       };
-      unsigned int       n_determined = 0;
+      unsigned int n_determined = 0;
       for (unsigned int k = 0; k < n && scale[k] > 0; ++k)
         {
           double pivot = 1.;
@@ -54,8 +54,8 @@ namespace coulomb_adapt
           cholesky(k, k) = std::sqrt(pivot);
           for (unsigned int i = k + 1; i < n; ++i)
             {
-              double a = scale[i] * entries[layout.matrix_entry(k, i)] *
-                         scale[k];
+              double a =
+                scale[i] * entries[layout.matrix_entry(k, i)] * scale[k];
               for (unsigned int j = 0; j < k; ++j)
                 a -= cholesky(i, j) * cholesky(k, j);
               cholesky(i, k) = a / cholesky(k, k);

@@ -19,11 +19,11 @@
 // adds the terms of its own cells into a distributed vector with one slot
 // per vertex and entry (vertex k, entry e at k * n_entries + e, the
 // vertices numbered by a scalar linear DoFHandler), and a compress(add)
-// leaves the complete sums with the vertex's owner. The owner solves the small system; a ghost update
-// then gives every rank the polynomials of all vertices of its cells and
-// ghost cells, which is all a node of an owned cell needs. No cell beyond
-// the ghost layer is ever used, and the result does not depend on the
-// partition (up to the order of floating-point sums).
+// leaves the complete sums with the vertex's owner. The owner solves the small
+// system; a ghost update then gives every rank the polynomials of all vertices
+// of its cells and ghost cells, which is all a node of an owned cell needs. No
+// cell beyond the ghost layer is ever used, and the result does not depend on
+// the partition (up to the order of floating-point sums).
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -35,10 +35,10 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
-#include <boost/container/small_vector.hpp>
-
 #include <coulomb_adapt/indicator/recovered_stress.h>
 #include <coulomb_adapt/indicator/spr_patch_fit.h>
+
+#include <boost/container/small_vector.hpp>
 
 #include <algorithm>
 #include <array>
@@ -75,7 +75,7 @@ namespace coulomb_adapt
     // The position of vertex @p k among @p relevant_vertices, where the
     // per-vertex patches and fits are stored.
     std::size_t
-    relevant_position(const IndexSet &              relevant_vertices,
+    relevant_position(const IndexSet               &relevant_vertices,
                       const types::global_dof_index k)
     {
       const auto position = relevant_vertices.index_within_set(k);
@@ -106,11 +106,11 @@ namespace coulomb_adapt
     // @p relevant_vertices.
     std::vector<VertexPatch>
     collect_vertex_patches(const DoFHandler<2> &vertex_dofs,
-                           const IndexSet &     relevant_vertices)
+                           const IndexSet      &relevant_vertices)
     {
       std::vector<VertexPatch> patches(relevant_vertices.n_elements());
-      const auto patch_of = [&](const types::global_dof_index vertex)
-        -> VertexPatch & {
+      const auto               patch_of =
+        [&](const types::global_dof_index vertex) -> VertexPatch & {
         return patches[relevant_position(relevant_vertices, vertex)];
       };
       for (const auto &cell : vertex_dofs.active_cell_iterators())
@@ -146,9 +146,9 @@ namespace coulomb_adapt
     // that vertex).
     void
     add_cell_contributions(
-      const QuadratureStress &                    sampled,
-      const DoFHandler<2> &                       vertex_dofs,
-      const PatchLayout &                         layout,
+      const QuadratureStress                     &sampled,
+      const DoFHandler<2>                        &vertex_dofs,
+      const PatchLayout                          &layout,
       LinearAlgebra::distributed::Vector<double> &normal_equations)
     {
       const unsigned int  n = layout.n_fit_monomials();
@@ -163,8 +163,8 @@ namespace coulomb_adapt
                 for (unsigned int q = 0; q < sampled.n_points(); ++q)
                   {
                     const Tensor<1, 3> &sigma = sampled.stress(owned_cell, q);
-                    const auto m = monomials(sampled.point(owned_cell, q) -
-                                             cell->vertex(v));
+                    const auto          m =
+                      monomials(sampled.point(owned_cell, q) - cell->vertex(v));
                     for (unsigned int i = 0; i < n; ++i)
                       {
                         for (unsigned int j = i; j < n; ++j)
@@ -193,14 +193,14 @@ namespace coulomb_adapt
     // only, and their values come from the constraints anyway.
     void
     fit_owned_patches(
-      const std::vector<VertexPatch> &                      patches,
-      const LinearAlgebra::distributed::Vector<double> &    normal_equations,
-      const AffineConstraints<double> &                     hanging_vertices,
-      const PatchLayout &                                   layout,
-      const unsigned int                                    degree,
-      LinearAlgebra::distributed::Vector<double> &          fits)
+      const std::vector<VertexPatch>                   &patches,
+      const LinearAlgebra::distributed::Vector<double> &normal_equations,
+      const AffineConstraints<double>                  &hanging_vertices,
+      const PatchLayout                                &layout,
+      const unsigned int                                degree,
+      LinearAlgebra::distributed::Vector<double>       &fits)
     {
-      const IndexSet &    owned = fits.get_partitioner()->locally_owned_range();
+      const IndexSet     &owned = fits.get_partitioner()->locally_owned_range();
       std::vector<double> entries(layout.n_entries());
       for (const VertexPatch &patch : patches)
         if (!patch.cells.empty() &&
@@ -232,9 +232,9 @@ namespace coulomb_adapt
     // The fits of all vertices this rank sees, from the ghosted vector, in
     // the order of @p patches.
     std::vector<PatchFit>
-    read_fits(const std::vector<VertexPatch> &                      patches,
-              const LinearAlgebra::distributed::Vector<double> &    fits,
-              const PatchLayout &                                   layout)
+    read_fits(const std::vector<VertexPatch>                   &patches,
+              const LinearAlgebra::distributed::Vector<double> &fits,
+              const PatchLayout                                &layout)
     {
       std::vector<PatchFit> result;
       result.reserve(patches.size());
@@ -278,14 +278,14 @@ namespace coulomb_adapt
     // next to the boundary): for the others the set would be wasted work.
     template <typename OwnVertices, typename CollectSurrounding>
     Tensor<1, 3>
-    node_value(const Point<2> &                             x,
-               const OwnVertices &                          own_vertices,
-               const CollectSurrounding &                  collect_surrounding,
-               const std::vector<PatchFit> &               fits,
-               const IndexSet &                            relevant_vertices)
+    node_value(const Point<2>              &x,
+               const OwnVertices           &own_vertices,
+               const CollectSurrounding    &collect_surrounding,
+               const std::vector<PatchFit> &fits,
+               const IndexSet              &relevant_vertices)
     {
-      const auto average = [&](const auto &vertices,
-                               const bool  centres_only,
+      const auto average = [&](const auto   &vertices,
+                               const bool    centres_only,
                                Tensor<1, 3> &sigma) {
         sigma                = Tensor<1, 3>();
         unsigned int n_found = 0;
@@ -306,7 +306,8 @@ namespace coulomb_adapt
       Tensor<1, 3> sigma;
       if (average(own_vertices, true, sigma))
         return sigma;
-      const std::set<types::global_dof_index> surrounding = collect_surrounding();
+      const std::set<types::global_dof_index> surrounding =
+        collect_surrounding();
       if (average(surrounding, true, sigma) ||
           average(own_vertices, false, sigma) ||
           average(surrounding, false, sigma))
@@ -322,7 +323,8 @@ namespace coulomb_adapt
 
 
   void
-  RecoveredStress::recover_spr(const TrilinosWrappers::MPI::Vector &displacement)
+  RecoveredStress::recover_spr(
+    const TrilinosWrappers::MPI::Vector &displacement)
   {
     const unsigned int degree = fe.degree;
     AssertThrow(degree >= 1 && degree <= max_spr_degree,
@@ -340,8 +342,8 @@ namespace coulomb_adapt
     // distribution and the DoF lookups per cell do not grow with the
     // number of entries. For p = 1 the stress space is that element
     // already; p = 2 needs one of its own.
-    const DoFHandler<2> *            vertex_numbering  = &dofs;
-    const IndexSet *                 relevant_numbered = &relevant_dofs;
+    const DoFHandler<2>             *vertex_numbering  = &dofs;
+    const IndexSet                  *relevant_numbered = &relevant_dofs;
     const AffineConstraints<double> *hanging_numbered  = &constraints;
     DoFHandler<2>                    linear_dofs;
     IndexSet                         linear_relevant;
@@ -361,10 +363,10 @@ namespace coulomb_adapt
         relevant_numbered = &linear_relevant;
         hanging_numbered  = &linear_hanging;
       }
-    const DoFHandler<2> &            vertex_dofs       = *vertex_numbering;
-    const IndexSet &                 relevant_vertices = *relevant_numbered;
+    const DoFHandler<2>             &vertex_dofs       = *vertex_numbering;
+    const IndexSet                  &relevant_vertices = *relevant_numbered;
     const AffineConstraints<double> &hanging_vertices  = *hanging_numbered;
-    const IndexSet owned_entries =
+    const IndexSet                   owned_entries =
       vertex_entries(vertex_dofs.locally_owned_dofs(), layout.n_entries());
     const IndexSet relevant_entries =
       vertex_entries(relevant_vertices, layout.n_entries());
@@ -377,13 +379,11 @@ namespace coulomb_adapt
 
     LinearAlgebra::distributed::Vector<double> normal_equations(
       owned_entries, relevant_entries, comm);
-    add_cell_contributions(QuadratureStress(body,
-                                            displacement,
-                                            sampling_points,
-                                            true),
-                           vertex_dofs,
-                           layout,
-                           normal_equations);
+    add_cell_contributions(
+      QuadratureStress(body, displacement, sampling_points, true),
+      vertex_dofs,
+      layout,
+      normal_equations);
 
     const auto patches = collect_vertex_patches(vertex_dofs, relevant_vertices);
     // The same layout: share the partitioner (set up with MPI).
@@ -408,7 +408,7 @@ namespace coulomb_adapt
                              Quadrature<2>(base.get_unit_support_points()),
                              update_quadrature_points);
     std::vector<types::global_dof_index> dof_indices(base.n_dofs_per_cell());
-    std::vector<bool> done(owned_dofs.n_elements(), false);
+    std::vector<bool>                    done(owned_dofs.n_elements(), false);
     // Only owned entries are written below; the constrained ones and the
     // ghosts are filled in at the end.
     for (auto &v : components)
@@ -420,7 +420,7 @@ namespace coulomb_adapt
           cell->get_dof_indices(dof_indices);
           if (node_positions)
             node_positions->reinit(cell);
-          const VertexCell vertex_cell(&body.triangulation(),
+          const VertexCell   vertex_cell(&body.triangulation(),
                                        cell->level(),
                                        cell->index(),
                                        &vertex_dofs);
@@ -441,22 +441,23 @@ namespace coulomb_adapt
               // A vertex, a line's two or a cell's three or four: on the
               // stack, this runs once per node.
               boost::container::small_vector<types::global_dof_index, 4>
-                own_vertices;
-              const auto vertices_of = [](const VertexCell &                   c,
-                                          std::set<types::global_dof_index> &set) {
-                for (const unsigned int v : c->vertex_indices())
-                  set.insert(c->vertex_dof_index(v, 0));
-              };
+                         own_vertices;
+              const auto vertices_of =
+                [](const VertexCell                  &c,
+                   std::set<types::global_dof_index> &set) {
+                  for (const unsigned int v : c->vertex_indices())
+                    set.insert(c->vertex_dof_index(v, 0));
+                };
               const Point<2> &x =
                 node < first_line_node ?
                   cell->vertex(node / base.n_dofs_per_vertex()) :
                   node_positions->quadrature_point(node);
-              Tensor<1, 3>    sigma;
+              Tensor<1, 3> sigma;
               if (node < first_line_node)
                 {
                   const auto vertex = vertex_cell->vertex_dof_index(
                     node / base.n_dofs_per_vertex(), 0);
-                  own_vertices = {vertex};
+                  own_vertices           = {vertex};
                   const auto surrounding = [&]() {
                     std::set<types::global_dof_index> set;
                     for (const auto &c :
@@ -471,10 +472,10 @@ namespace coulomb_adapt
               else if (node < first_interior_node)
                 {
                   // In 2D the lines of a cell are its faces.
-                  const auto line = vertex_cell->face(
-                    (node - first_line_node) / base.n_dofs_per_line());
-                  own_vertices = {line->vertex_dof_index(0, 0),
-                                  line->vertex_dof_index(1, 0)};
+                  const auto line = vertex_cell->face((node - first_line_node) /
+                                                      base.n_dofs_per_line());
+                  own_vertices    = {line->vertex_dof_index(0, 0),
+                                     line->vertex_dof_index(1, 0)};
                   const auto surrounding = [&]() {
                     std::set<types::global_dof_index> set;
                     for (const auto &c :

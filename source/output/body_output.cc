@@ -22,8 +22,8 @@ namespace coulomb_adapt
 
 
   void
-  BodyOutput::write(const ElasticBody & body,
-                    const unsigned int  cycle,
+  BodyOutput::write(const ElasticBody     &body,
+                    const unsigned int     cycle,
                     const BodyErrorFields &error_fields)
   {
     const Triangulation<2> &tria = body.triangulation();
@@ -46,7 +46,7 @@ namespace coulomb_adapt
       if (cell->is_locally_owned())
         {
           material_id(cell->active_cell_index()) = cell->material_id();
-          subdomain(cell->active_cell_index()) = cell->subdomain_id();
+          subdomain(cell->active_cell_index())   = cell->subdomain_id();
         }
     if (error_fields.indicator)
       data_out.add_data_vector(*error_fields.indicator, "error_indicator");
@@ -54,9 +54,8 @@ namespace coulomb_adapt
       data_out.add_data_vector(*error_fields.density, "error_density");
     if (error_fields.recovered)
       {
-        const std::array<std::string, 3> names = {{"smoothed_stress_xx",
-                                                   "smoothed_stress_yy",
-                                                   "smoothed_stress_xy"}};
+        const std::array<std::string, 3> names = {
+          {"smoothed_stress_xx", "smoothed_stress_yy", "smoothed_stress_xy"}};
         for (unsigned int c = 0; c < 3; ++c)
           data_out.add_data_vector(error_fields.recovered->dof_handler(),
                                    error_fields.recovered->component(c),
@@ -73,7 +72,8 @@ namespace coulomb_adapt
       {
         const std::string h5 =
           base_name + "_" + Utilities::int_to_string(cycle, 3) + ".h5";
-        xdmf_entries.push_back(write_hdf5(comm, data_out, directory, h5, cycle));
+        xdmf_entries.push_back(
+          write_hdf5(comm, data_out, directory, h5, cycle));
         write_xdmf_file(comm,
                         directory + "/" + base_name + ".xdmf",
                         xdmf_entries,
@@ -88,8 +88,8 @@ namespace coulomb_adapt
     DataOutBase::VtkFlags vtk_flags;
     vtk_flags.compression_level = DataOutBase::VtkFlags::best_speed;
     data_out.set_flags(vtk_flags);
-    const std::string pvtu = write_vtu_with_pvtu_record(
-      comm, data_out, directory, base_name, cycle);
+    const std::string pvtu =
+      write_vtu_with_pvtu_record(comm, data_out, directory, base_name, cycle);
 
     pvd_records.emplace_back(cycle, pvtu);
     write_file(comm,

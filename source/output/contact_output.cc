@@ -23,11 +23,11 @@ namespace coulomb_adapt
   void
   ContactOutput::write(const std::vector<ContactNodeState> &states,
                        const std::vector<double> &contact_error_density,
-                       const unsigned int                   cycle,
-                       const bool                           write_fields)
+                       const unsigned int         cycle,
+                       const bool                 write_fields)
   {
     // Every rank holds all slave nodes; rank 0 writes (write_file).
-    const bool with_density = !contact_error_density.empty();
+    const bool        with_density = !contact_error_density.empty();
     const std::string stem = "contact_" + Utilities::int_to_string(cycle, 3);
     const std::string base = directory + "/" + stem;
 
@@ -41,9 +41,8 @@ namespace coulomb_adapt
           const ContactNodeState &s = states[j];
           csv << s.position[0] << ',' << s.position[1] << ',' << s.normal[0]
               << ',' << s.normal[1] << ',' << s.weight << ',' << s.pressure
-              << ',' << s.tangential_traction << ',' << s.gap << ','
-              << s.slip << ',' << to_string(s.status) << ','
-              << (s.facing_master ? 1 : 0);
+              << ',' << s.tangential_traction << ',' << s.gap << ',' << s.slip
+              << ',' << to_string(s.status) << ',' << (s.facing_master ? 1 : 0);
           if (with_density)
             csv << ',' << contact_error_density[j];
           csv << '\n';
@@ -111,8 +110,10 @@ namespace coulomb_adapt
               write_hdf5_file(MPI_COMM_SELF,
                               base + ".h5",
                               [&](const std::string &temporary) {
-                                DataOutBase::write_hdf5_parallel(
-                                  patches, filter, temporary, MPI_COMM_SELF);
+                                DataOutBase::write_hdf5_parallel(patches,
+                                                                 filter,
+                                                                 temporary,
+                                                                 MPI_COMM_SELF);
                               });
               XDMFEntry entry(stem + ".h5",
                               stem + ".h5",

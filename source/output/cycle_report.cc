@@ -25,10 +25,10 @@ namespace coulomb_adapt
 
   CycleReport::CycleReport(const MPI_Comm            mpi_communicator,
                            const ConditionalOStream &pcout,
-                           const TimerOutput &       timer,
-                           const std::string &       summary_file,
-                           const std::string &       scene,
-                           const std::string &       parameter_file)
+                           const TimerOutput        &timer,
+                           const std::string        &summary_file,
+                           const std::string        &scene,
+                           const std::string        &parameter_file)
     : mpi_communicator(mpi_communicator)
     , pcout(pcout)
     , timer(timer)
@@ -38,7 +38,8 @@ namespace coulomb_adapt
 
 
   void
-  CycleReport::set_run_entry(const std::string &key, const nlohmann::json &value)
+  CycleReport::set_run_entry(const std::string    &key,
+                             const nlohmann::json &value)
   {
     summary.set(key, value);
   }
@@ -61,7 +62,7 @@ namespace coulomb_adapt
   // The plan (the optimal mesh for epsilon_0 and how the size ratios were
   // bounded) for the size-ratio strategies, the flags for refine.
   void
-  CycleReport::record_mesh_adaptation(const MeshAdaptationReport &  r,
+  CycleReport::record_mesh_adaptation(const MeshAdaptationReport   &r,
                                       const parameters::Adaptation &a,
                                       const unsigned int            degree,
                                       const double                  calibration)
@@ -74,15 +75,15 @@ namespace coulomb_adapt
       pcout << "optimal mesh for epsilon_0 = " << 100 * a.target_error
             << " %, planned for " << std::setprecision(3)
             << 100 * r.aimed_epsilon << " % (safety factor "
-            << a.target_safety_factor << ", measured/predicted "
-            << calibration << "): N* = " << std::llround(r.predicted_n_cells)
+            << a.target_safety_factor << ", measured/predicted " << calibration
+            << "): N* = " << std::llround(r.predicted_n_cells)
             << " cells, predicted epsilon " << std::setprecision(3)
             << 100 * r.predicted_epsilon << " % (r_E bounded to ["
             << a.min_size_ratio << " ("
             << lowest_size_ratio(a.min_size_ratio, true)
-            << " at singular points), " << a.max_size_ratio << "]: "
-            << r.n_at_min_ratio << " cells at the lower, " << r.n_at_max_ratio
-            << " at the upper bound; q reduced to "
+            << " at singular points), " << a.max_size_ratio
+            << "]: " << r.n_at_min_ratio << " cells at the lower, "
+            << r.n_at_max_ratio << " at the upper bound; q reduced to "
             << std::min<double>(degree, a.singular_rate) << " in "
             << r.n_singular_cells << " cells at singular points)";
     if (r.limited_by_max_dofs)
@@ -102,7 +103,7 @@ namespace coulomb_adapt
 
   void
   CycleReport::record_meshes(const std::array<const ElasticBody *, 2> &bodies,
-                             const std::string &                       strategy,
+                             const std::string                        &strategy,
                              const MeshAdaptationReport *last_adaptation,
                              const double                calibration)
   {
@@ -130,9 +131,9 @@ namespace coulomb_adapt
         const double obtained =
           bodies[0]->triangulation().n_global_active_cells() +
           bodies[1]->triangulation().n_global_active_cells();
-        pcout << "  cells: " << std::llround(obtained) << " obtained, N* = "
-              << std::llround(a.predicted_n_cells) << " predicted ("
-              << std::showpos << std::setprecision(3)
+        pcout << "  cells: " << std::llround(obtained)
+              << " obtained, N* = " << std::llround(a.predicted_n_cells)
+              << " predicted (" << std::showpos << std::setprecision(3)
               << 100 * (obtained / a.predicted_n_cells - 1) << std::noshowpos
               << " %)" << std::endl;
         record["adaptation"] = {{"predicted_n_cells", a.predicted_n_cells},
@@ -164,7 +165,7 @@ namespace coulomb_adapt
   CycleReport::record_contact_solve(const ContactSolveOutcome &outcome)
   {
     const ContactSolverReport &report = outcome.report;
-    record["warm_start"] = outcome.warm_start;
+    record["warm_start"]              = outcome.warm_start;
     if (outcome.nested_iteration)
       {
         nlohmann::json nested = {{"levels", nlohmann::json::array()}};
@@ -189,8 +190,8 @@ namespace coulomb_adapt
     record["initial_overlap"]   = outcome.initial_overlap;
     record["initial_clearance"] = outcome.initial_clearance;
     record["linear_solver"]     = {
-      {{"method", outcome.linear_solver.method},
-       {"iterations", outcome.linear_solver.n_iterations}}};
+          {{"method", outcome.linear_solver.method},
+           {"iterations", outcome.linear_solver.n_iterations}}};
     pcout << "  contact: " << report.newton_iterations << " Newton steps, "
           << report.n_active << " active nodes, "
           << "contact force (" << report.contact_force[0] << ", "
@@ -200,12 +201,12 @@ namespace coulomb_adapt
     if (outcome.newton_iterations_of_stopped_starts > 0)
       record["newton_iterations_of_stopped_starts"] =
         outcome.newton_iterations_of_stopped_starts;
-    record["converged"]    = report.converged;
-    record["active_nodes"] = report.n_active;
-    record["stick_nodes"]  = report.n_stick;
-    record["slip_nodes"]   = report.n_slip;
-    record["contact_force"] = {report.contact_force[0],
-                               report.contact_force[1]};
+    record["converged"]            = report.converged;
+    record["active_nodes"]         = report.n_active;
+    record["stick_nodes"]          = report.n_stick;
+    record["slip_nodes"]           = report.n_slip;
+    record["contact_force"]        = {report.contact_force[0],
+                                      report.contact_force[1]};
     record["max_contact_pressure"] = report.max_contact_pressure;
     record["frictionless"]         = report.frictionless;
     if (report.slave_rotation_free)
@@ -217,7 +218,7 @@ namespace coulomb_adapt
 
 
   void
-  CycleReport::record_linear_solve(const ElasticBody &       body,
+  CycleReport::record_linear_solve(const ElasticBody        &body,
                                    const LinearSolverReport &report,
                                    const double              wall_time)
   {
@@ -261,7 +262,7 @@ namespace coulomb_adapt
 
   void
   CycleReport::record_error_estimate(
-    const ErrorEstimate &                     e,
+    const ErrorEstimate                      &e,
     const std::vector<const ErrorEstimate *> &compared,
     const unsigned int                        cre_degree_increase)
   {
@@ -286,8 +287,7 @@ namespace coulomb_adapt
             << 100 * estimate.epsilon_volume[0] << " %, body 2 "
             << 100 * estimate.epsilon_volume[1] << " %; contact "
             << 100 * estimate.epsilon_contact << " %)" << std::defaultfloat
-            << (&estimate == &e ? "" : " [compared, not driving]")
-            << std::endl;
+            << (&estimate == &e ? "" : " [compared, not driving]") << std::endl;
     };
     log_epsilon(e);
     for (const ErrorEstimate *other : compared)
@@ -346,9 +346,8 @@ namespace coulomb_adapt
           << "): epsilon_exact = " << std::fixed << std::setprecision(3)
           << 100 * c.epsilon_exact << " %, effectivity " << c.effectivity
           << " (elements: mean " << c.element_effectivity_mean << ", std "
-          << c.element_effectivity_std << ", min "
-          << c.element_effectivity_min << ", max "
-          << c.element_effectivity_max << ")" << std::defaultfloat
+          << c.element_effectivity_std << ", min " << c.element_effectivity_min
+          << ", max " << c.element_effectivity_max << ")" << std::defaultfloat
           << std::endl;
     record["epsilon_exact"]         = c.epsilon_exact;
     record["effectivity"]           = c.effectivity;
@@ -363,10 +362,9 @@ namespace coulomb_adapt
            {"effectivity", x.effectivity},
            {"element_effectivity", element_effectivity_record(x)}});
         pcout << "  exact error of " << to_string(estimator)
-              << "'s corrected solution: " << std::fixed
-              << std::setprecision(3) << 100 * x.epsilon_exact
-              << " %, effectivity " << x.effectivity << std::defaultfloat
-              << std::endl;
+              << "'s corrected solution: " << std::fixed << std::setprecision(3)
+              << 100 * x.epsilon_exact << " %, effectivity " << x.effectivity
+              << std::defaultfloat << std::endl;
       }
   }
 
@@ -383,9 +381,8 @@ namespace coulomb_adapt
           << std::setprecision(3) << 100 * reference.own_error()
           << " % (from the energies " << 100 * reference.own_error_from_energy()
           << " %); energy check: epsilon_energy = " << 100 * epsilon_energy
-          << " % (strain energy " << std::scientific << energy
-          << ", reference " << reference_energy << ")" << std::defaultfloat
-          << std::endl;
+          << " % (strain energy " << std::scientific << energy << ", reference "
+          << reference_energy << ")" << std::defaultfloat << std::endl;
     record["exact_error_reference_error"] = reference.own_error();
     record["exact_error_reference_error_energy"] =
       reference.own_error_from_energy();
@@ -399,7 +396,7 @@ namespace coulomb_adapt
 
   void
   CycleReport::record_body_error(const unsigned int      b,
-                                 const ElasticBody &     body,
+                                 const ElasticBody      &body,
                                  const ElasticityErrors &e)
   {
     pcout << "  " << body.name() << ": error against the exact solution: L2 "
@@ -452,8 +449,9 @@ namespace coulomb_adapt
     const unsigned int newton = record.value("newton_iterations", 0u);
     pcout << "Cycle " << cycle << ": " << n_dofs_of_cycle
           << " DoFs, epsilon = " << std::fixed << std::setprecision(3)
-          << 100 * estimate.epsilon << " %, epsilon_contact = "
-          << 100 * estimate.epsilon_contact << " %" << std::defaultfloat;
+          << 100 * estimate.epsilon
+          << " %, epsilon_contact = " << 100 * estimate.epsilon_contact << " %"
+          << std::defaultfloat;
     if (has_contact)
       pcout << ", " << newton << " Newton steps";
     pcout << ", " << std::setprecision(3) << cycle_timer.wall_time() << " s"

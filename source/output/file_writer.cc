@@ -2,10 +2,10 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <deal.II/grid/reference_cell.h>
+
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/output/file_writer.h>
-
-#include <deal.II/grid/reference_cell.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -32,7 +32,7 @@ namespace coulomb_adapt
     // Write @p path + ".tmp" on this rank; an empty string, or what went
     // wrong, naming @p path. The temporary file is removed on failure.
     std::string
-    write_temporary(const std::string &                        path,
+    write_temporary(const std::string                         &path,
                     const std::function<void(std::ostream &)> &write)
     {
       const std::string temporary = path + ".tmp";
@@ -52,9 +52,9 @@ namespace coulomb_adapt
               // deal.II's writers report a failed stream as a generic
               // ExcIO: the system's reason is more useful.
               const int error_number = errno;
-              error = "writing it failed" +
-                      (error_number != 0 ? system_reason(error_number) :
-                                           ": " + user_message(e));
+              error = "writing it failed" + (error_number != 0 ?
+                                               system_reason(error_number) :
+                                               ": " + user_message(e));
             }
           // A full disk shows at the latest when the buffer is flushed and
           // the file closed.
@@ -110,7 +110,7 @@ namespace coulomb_adapt
 
   void
   write_file(const MPI_Comm                             comm,
-             const std::string &                        path,
+             const std::string                         &path,
              const std::function<void(std::ostream &)> &write)
   {
     std::string error;
@@ -127,10 +127,10 @@ namespace coulomb_adapt
 
 
   std::string
-  write_vtu_with_pvtu_record(const MPI_Comm                 comm,
+  write_vtu_with_pvtu_record(const MPI_Comm                comm,
                              const DataOutInterface<2, 2> &data_out,
-                             const std::string &           directory,
-                             const std::string &           base_name,
+                             const std::string            &directory,
+                             const std::string            &base_name,
                              const unsigned int            cycle)
   {
     // deal.II's file names (DataOutInterface::write_vtu_with_pvtu_record
@@ -150,10 +150,10 @@ namespace coulomb_adapt
     // is written. Every rank learns of any rank's failure.
     const std::string piece =
       directory + "/" + pieces[Utilities::MPI::this_mpi_process(comm)];
-    std::string error = first_error(
-      comm, write_temporary(piece, [&](std::ostream &out) {
-        data_out.write_vtu(out);
-      }));
+    std::string error =
+      first_error(comm, write_temporary(piece, [&](std::ostream &out) {
+                    data_out.write_vtu(out);
+                  }));
     if (!error.empty())
       {
         std::remove((piece + ".tmp").c_str());
@@ -172,7 +172,7 @@ namespace coulomb_adapt
 
   void
   write_hdf5_file(const MPI_Comm                                  comm,
-                  const std::string &                             path,
+                  const std::string                              &path,
                   const std::function<void(const std::string &)> &write)
   {
     const std::string temporary = path + ".tmp";
@@ -209,8 +209,8 @@ namespace coulomb_adapt
   XDMFEntry
   write_hdf5(const MPI_Comm                comm,
              const DataOutInterface<2, 2> &data_out,
-             const std::string &           directory,
-             const std::string &           file_name,
+             const std::string            &directory,
+             const std::string            &file_name,
              const double                  time)
   {
     // Duplicate vertices are kept: the indicator and the material id are
@@ -231,9 +231,9 @@ namespace coulomb_adapt
 
   void
   write_xdmf_file(const MPI_Comm                comm,
-                  const std::string &           path,
+                  const std::string            &path,
                   const std::vector<XDMFEntry> &entries,
-                  const ReferenceCell &         cell_type)
+                  const ReferenceCell          &cell_type)
   {
     write_file(comm, path, [&](std::ostream &xdmf) {
       xdmf << "<?xml version=\"1.0\" ?>\n"

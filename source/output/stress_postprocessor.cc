@@ -11,7 +11,7 @@ namespace coulomb_adapt
   void
   StressPostprocessor::evaluate_vector_field(
     const DataPostprocessorInputs::Vector<2> &inputs,
-    std::vector<Vector<double>> &             computed_quantities) const
+    std::vector<Vector<double>>              &computed_quantities) const
   {
     for (unsigned int p = 0; p < inputs.solution_gradients.size(); ++p)
       {
@@ -20,11 +20,11 @@ namespace coulomb_adapt
           grad[c] = inputs.solution_gradients[p][c];
         const SymmetricTensor<2, 2> strain = symmetrize(grad);
         const SymmetricTensor<2, 2> stress = material.stress(strain);
-        const double szz = material.out_of_plane_stress(strain);
-        computed_quantities[p][0] = stress[0][0];
-        computed_quantities[p][1] = stress[1][1];
-        computed_quantities[p][2] = stress[0][1];
-        computed_quantities[p][3] = szz;
+        const double                szz = material.out_of_plane_stress(strain);
+        computed_quantities[p][0]       = stress[0][0];
+        computed_quantities[p][1]       = stress[1][1];
+        computed_quantities[p][2]       = stress[0][1];
+        computed_quantities[p][3]       = szz;
         computed_quantities[p][4] =
           ElasticMaterial::von_mises_stress(stress, szz);
       }
@@ -43,7 +43,8 @@ namespace coulomb_adapt
   std::vector<DataComponentInterpretation::DataComponentInterpretation>
   StressPostprocessor::get_data_component_interpretation() const
   {
-    return std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+    return std::vector<
+      DataComponentInterpretation::DataComponentInterpretation>(
       5, DataComponentInterpretation::component_is_scalar);
   }
 

@@ -75,7 +75,7 @@ namespace coulomb_adapt
     void
     Blocks::create_coarse_mesh(const unsigned int body,
                                const CellType     cell_type,
-                               Triangulation<2> & tria) const
+                               Triangulation<2>  &tria) const
     {
       using namespace boundary_ids;
       if (body == 0)
@@ -104,13 +104,12 @@ namespace coulomb_adapt
       d.contact_boundary_id = boundary_ids::contact;
       if (body == 0)
         {
-          d.name           = "upper block";
-          const double p   = pressure;
-          d.tractions.push_back(
-            {boundary_ids::traction,
-             [p](const Point<2> &, const Tensor<1, 2> &) {
-               return Tensor<1, 2>({0., -p});
-             }});
+          d.name         = "upper block";
+          const double p = pressure;
+          d.tractions.push_back({boundary_ids::traction,
+                                 [p](const Point<2> &, const Tensor<1, 2> &) {
+                                   return Tensor<1, 2>({0., -p});
+                                 }});
           if (hold_centre_line)
             d.point_constraints.push_back(
               // The centre line above the contact face (contact nodes stay
@@ -119,7 +118,8 @@ namespace coulomb_adapt
                  return std::abs(x[0] - 100.) < 1e-8 && x[1] > 200. + 1e-8;
                },
                ComponentMask(std::vector<bool>{true, false}),
-               std::array<Point<2>, 2>{{Point<2>(100, 200), Point<2>(100, 300)}}});
+               std::array<Point<2>, 2>{
+                 {Point<2>(100, 200), Point<2>(100, 300)}}});
         }
       else
         {

@@ -29,7 +29,8 @@ namespace coulomb_adapt
       double a = 0;
       for (unsigned int i = 0; i < polygon.size(); ++i)
         {
-          const Point<2> &p = polygon[i], &q = polygon[(i + 1) % polygon.size()];
+          const Point<2> &p = polygon[i],
+                         &q = polygon[(i + 1) % polygon.size()];
           a += p[0] * q[1] - q[0] * p[1];
         }
       return 0.5 * a;
@@ -42,22 +43,22 @@ namespace coulomb_adapt
   // the boundary lines of the named curve groups.
   CoarseMeshData
   build_body_mesh(const std::vector<std::vector<std::size_t>> &elements,
-                  const std::map<std::size_t, Point<2>> &      all_nodes,
+                  const std::map<std::size_t, Point<2>>       &all_nodes,
                   const std::map<types::boundary_id,
                                  std::vector<std::vector<std::size_t>>> &lines,
                   const types::material_id material_id,
-                  const std::string &      file_name)
+                  const std::string       &file_name)
   {
     CoarseMeshData                  mesh;
     std::map<std::size_t, unsigned> local_index;
-    const unsigned int corners = elements.front().size();
+    const unsigned int              corners = elements.front().size();
     for (const auto &element : elements)
       {
         if (element.size() != corners)
           throw ParameterError("gmsh file '" + file_name +
                                "': a body mixes triangles and "
                                "quadrangles, which is not supported");
-        CellData<2> cell(corners);
+        CellData<2>           cell(corners);
         std::vector<Point<2>> polygon;
         for (unsigned int v = 0; v < corners; ++v)
           {
@@ -97,7 +98,7 @@ namespace coulomb_adapt
           const auto b = local_index.find(line[1]);
           if (a == local_index.end() || b == local_index.end())
             continue;
-          const auto edge = std::minmax(a->second, b->second);
+          const auto edge  = std::minmax(a->second, b->second);
           const auto count = edge_count.find(edge);
           if (count == edge_count.end() || count->second != 1)
             continue;

@@ -61,8 +61,7 @@ namespace coulomb_adapt
 
       // "x", "y", "x y", each optionally "=value" (mm).
       std::array<std::optional<double>, 2>
-      parse_fixed_components(const std::string &text,
-                             const std::string &group)
+      parse_fixed_components(const std::string &text, const std::string &group)
       {
         const std::string allowed =
           "the fixed components: 'x', 'y' or 'x y', each optionally with a "
@@ -269,8 +268,7 @@ namespace coulomb_adapt
             }
             prm.leave_subsection();
           }
-        const auto pair =
-          Utilities::split_string_list(prm.get("Contact pair"));
+        const auto pair = Utilities::split_string_list(prm.get("Contact pair"));
         use.contact_pair  = {{pair[0], pair[1]}};
         use.contact_entry = scene_path + "/Contact pair";
 
@@ -300,20 +298,19 @@ namespace coulomb_adapt
           }
         for (const auto &[group, value] : group_map(prm, "Normal pressures"))
           {
-            conditions[group].pressure =
-              parse_number(value,
-                           "Normal pressures",
-                           group,
-                           "a pressure p (MPa)");
-            conditions[group].loaded = true;
+            conditions[group].pressure = parse_number(value,
+                                                      "Normal pressures",
+                                                      group,
+                                                      "a pressure p (MPa)");
+            conditions[group].loaded   = true;
             add_group(group, "Normal pressures");
           }
 
         if (conditions.empty())
           {
             // The old syntax: the fixed groups of GmshGroupUse's defaults.
-            use.condition_groups = GmshGroupUse().condition_groups;
-            conditions["dirichlet"].fixed = {{0., 0.}};
+            use.condition_groups            = GmshGroupUse().condition_groups;
+            conditions["dirichlet"].fixed   = {{0., 0.}};
             conditions["traction"].traction = get_vector(prm, "Traction");
             conditions["traction"].loaded   = true;
           }
@@ -332,8 +329,9 @@ namespace coulomb_adapt
                 group + ": x y",
                 "loads only on curves that are not fixed in both components "
                 "(group '" +
-                  group + "' also has a traction or pressure, which would "
-                          "have no effect)");
+                  group +
+                  "' also has a traction or pressure, which would "
+                  "have no effect)");
             if (c.fixed[0] && c.fixed[1] && *c.fixed[0] == 0 &&
                 *c.fixed[1] == 0)
               use.clamped_groups.insert(group);
@@ -448,8 +446,8 @@ namespace coulomb_adapt
             }
           if (fixed[0] || fixed[1])
             {
-              const std::vector<bool> mask = {fixed[0].has_value(),
-                                              fixed[1].has_value()};
+              const std::vector<bool>   mask   = {fixed[0].has_value(),
+                                                  fixed[1].has_value()};
               const std::vector<double> values = {fixed[0].value_or(0.),
                                                   fixed[1].value_or(0.)};
               std::shared_ptr<const Function<2>> displacement;
@@ -475,7 +473,7 @@ namespace coulomb_adapt
       for (const auto &support : geometry.point_supports)
         if (support.body == body)
           {
-            const auto &   fixed     = conditions.at(support.group).fixed;
+            const auto    &fixed     = conditions.at(support.group).fixed;
             const Point<2> position  = support.position;
             const double   tolerance = 1e-12 * extent;
             d.point_constraints.push_back(

@@ -52,17 +52,17 @@ namespace coulomb_adapt
         {
           std::string name;
           gmsh::model::getPhysicalName(dim, tag, name);
-          const auto [it, inserted] = by_name.emplace(name, std::pair(dim, tag));
+          const auto [it, inserted] =
+            by_name.emplace(name, std::pair(dim, tag));
           if (inserted)
             continue;
           const auto [other_dim, other_tag] = it->second;
           if (other_dim == dim)
-            throw ParameterError("gmsh file '" + file_name +
-                                 "' has two physical " + dimension_name(dim) +
-                                 "s named '" + name + "' (tags " +
-                                 std::to_string(other_tag) + " and " +
-                                 std::to_string(tag) +
-                                 "); give each name to one group");
+            throw ParameterError(
+              "gmsh file '" + file_name + "' has two physical " +
+              dimension_name(dim) + "s named '" + name + "' (tags " +
+              std::to_string(other_tag) + " and " + std::to_string(tag) +
+              "); give each name to one group");
           throw ParameterError("gmsh file '" + file_name + "' has a physical " +
                                dimension_name(other_dim) + " and a physical " +
                                dimension_name(dim) + " named '" + name +
@@ -74,8 +74,7 @@ namespace coulomb_adapt
 
 
     std::string
-    list_of_groups(
-      const std::map<std::string, std::pair<int, int>> &groups)
+    list_of_groups(const std::map<std::string, std::pair<int, int>> &groups)
     {
       std::string list;
       for (const auto &[name, group] : groups)
@@ -91,7 +90,7 @@ namespace coulomb_adapt
     std::vector<std::vector<std::size_t>>
     elements_of_entities(const int               dim,
                          const std::vector<int> &entities,
-                         const std::string &    file_name)
+                         const std::string      &file_name)
     {
       std::vector<std::vector<std::size_t>> elements;
       for (const int entity : entities)
@@ -119,9 +118,9 @@ namespace coulomb_adapt
                                      "' is not supported (allowed: lines, "
                                      "triangles, quadrangles)");
               for (std::size_t e = 0; e < element_tags[t].size(); ++e)
-                elements.emplace_back(
-                  node_tags[t].begin() + e * n_nodes,
-                  node_tags[t].begin() + e * n_nodes + corners);
+                elements.emplace_back(node_tags[t].begin() + e * n_nodes,
+                                      node_tags[t].begin() + e * n_nodes +
+                                        corners);
             }
         }
       return elements;

@@ -8,7 +8,6 @@
 #include <boost/serialization/map.hpp>
 #include <boost/serialization/string.hpp>
 #include <boost/serialization/vector.hpp>
-
 #include <gmsh.h>
 
 #include <algorithm>
@@ -53,7 +52,7 @@ namespace coulomb_adapt
 
     // Read and check the file with gmsh (on one rank).
     TwoBodyGmshMeshes
-    read_with_gmsh(const std::string & file_name,
+    read_with_gmsh(const std::string  &file_name,
                    const CellType      requested_cell_type,
                    const double        mesh_size_factor,
                    const GmshGroupUse &use)
@@ -117,15 +116,16 @@ namespace coulomb_adapt
         const auto group = groups.find(name);
         if (group == groups.end())
           throw ParameterError(in_file + " has no physical " +
-                               dimension_name(dim) + " named '" + name +
-                               "' (" + entry + " names it); the file's "
-                               "physical groups: " + list_of_groups(groups));
+                               dimension_name(dim) + " named '" + name + "' (" +
+                               entry +
+                               " names it); the file's "
+                               "physical groups: " +
+                               list_of_groups(groups));
         if (group->second.first != dim)
-          throw ParameterError(in_file + ": '" + name + "' (" + entry +
-                               ") is a physical " +
-                               dimension_name(group->second.first) +
-                               ", not a physical " + dimension_name(dim) +
-                               ": " + why);
+          throw ParameterError(
+            in_file + ": '" + name + "' (" + entry + ") is a physical " +
+            dimension_name(group->second.first) + ", not a physical " +
+            dimension_name(dim) + ": " + why);
         std::vector<int> tags;
         gmsh::model::getEntitiesForPhysicalGroup(dim,
                                                  group->second.second,
@@ -134,14 +134,14 @@ namespace coulomb_adapt
       };
       const auto require_known_nodes =
         [&](const std::vector<std::vector<std::size_t>> &elements,
-            const std::string &                           what) {
+            const std::string                           &what) {
           // An element may name a node that the file does not define (a
           // hand-edited or truncated file); gmsh does not check it.
           for (const auto &element : elements)
             for (const std::size_t node : element)
               if (nodes.count(node) == 0)
-                throw ParameterError(in_file + ": " + what + " refers to node " +
-                                     std::to_string(node) +
+                throw ParameterError(in_file + ": " + what +
+                                     " refers to node " + std::to_string(node) +
                                      ", which is not in $Nodes");
         };
 
@@ -153,11 +153,8 @@ namespace coulomb_adapt
         {
           std::vector<int> surfaces;
           for (const auto &name : use.body_surfaces[b])
-            for (const int s :
-                 entities_of(name,
-                             2,
-                             use.body_entries[b],
-                             "a body is made of surfaces"))
+            for (const int s : entities_of(
+                   name, 2, use.body_entries[b], "a body is made of surfaces"))
               {
                 const auto [it, inserted] =
                   body_of_surface.emplace(s, std::pair(b, name));
@@ -173,7 +170,7 @@ namespace coulomb_adapt
                     surfaces.end())
                   surfaces.push_back(s);
               }
-          body_elements[b] = elements_of_entities(2, surfaces, file_name);
+          body_elements[b]       = elements_of_entities(2, surfaces, file_name);
           const std::string name = "body " + std::to_string(b + 1);
           if (body_elements[b].empty())
             throw ParameterError(in_file + ": " + name + " (" +
@@ -205,19 +202,18 @@ namespace coulomb_adapt
 
       // The contact pair: the slave group on body 1, the master on body 2.
       const auto &[slave_name, master_name] = use.contact_pair;
-      const std::string contact_why =
-        "contact acts on boundary curves";
-      const auto slave_lines =
+      const std::string contact_why         = "contact acts on boundary curves";
+      const auto        slave_lines =
         lines_of(slave_name, use.contact_entry, contact_why);
       const auto master_lines =
         slave_name == master_name ?
           slave_lines :
           lines_of(master_name, use.contact_entry, contact_why);
       {
-        const unsigned int s1 = count_on(slave_lines, 0),
-                           s2 = count_on(slave_lines, 1),
-                           m1 = count_on(master_lines, 0),
-                           m2 = count_on(master_lines, 1);
+        const unsigned int s1  = count_on(slave_lines, 0),
+                           s2  = count_on(slave_lines, 1),
+                           m1  = count_on(master_lines, 0),
+                           m2  = count_on(master_lines, 1);
         const std::string pair = "the contact pair '" + slave_name + "', '" +
                                  master_name + "' (" + use.contact_entry + ")";
         for (unsigned int b = 0; b < 2; ++b)
@@ -250,9 +246,9 @@ namespace coulomb_adapt
         if (slave_name != master_name && (s2 > 0 || m1 > 0))
           throw ParameterError(
             in_file + ": " + pair + ": the " +
-            (s2 > 0 ? "slave group '" + slave_name + "' also lies on body 2" :
-                      "master group '" + master_name +
-                        "' also lies on body 1") +
+            (s2 > 0 ?
+               "slave group '" + slave_name + "' also lies on body 2" :
+               "master group '" + master_name + "' also lies on body 1") +
             "; two different contact groups each lie on one body (one group "
             "named as both slave and master may lie on both)");
       }
@@ -270,7 +266,7 @@ namespace coulomb_adapt
       for (unsigned int g = 0; g < use.condition_groups.size(); ++g)
         {
           const auto &[name, entry] = use.condition_groups[g];
-          const auto  group         = groups.find(name);
+          const auto group          = groups.find(name);
           if (group != groups.end() && group->second.first == 0 &&
               use.point_groups_allowed.count(name) > 0)
             {
@@ -344,8 +340,7 @@ namespace coulomb_adapt
       // Boundary ids: contact, clamped, then one per set of groups.
       std::map<std::vector<unsigned int>, types::boundary_id> id_of_set;
       types::boundary_id next_id = boundary_ids::traction;
-      std::map<types::boundary_id, std::vector<std::vector<std::size_t>>>
-        lines;
+      std::map<types::boundary_id, std::vector<std::vector<std::size_t>>> lines;
       for (const auto &[edge, curve] : slave_lines)
         lines[boundary_ids::contact].push_back({edge.first, edge.second});
       if (slave_name != master_name)
@@ -353,15 +348,16 @@ namespace coulomb_adapt
           lines[boundary_ids::contact].push_back({edge.first, edge.second});
       for (const Edge &edge : condition_lines)
         {
-          const auto &set = groups_of_line[edge];
+          const auto  &set       = groups_of_line[edge];
           unsigned int n_clamped = 0;
           for (const unsigned int g : set)
-            n_clamped += use.clamped_groups.count(use.condition_groups[g].first);
+            n_clamped +=
+              use.clamped_groups.count(use.condition_groups[g].first);
           if (n_clamped > 0 && set.size() > 1)
             {
               const auto is_clamped = [&](const unsigned int g) {
-                return use.clamped_groups.count(
-                         use.condition_groups[g].first) > 0;
+                return use.clamped_groups.count(use.condition_groups[g].first) >
+                       0;
               };
               const unsigned int clamped =
                 *std::find_if(set.begin(), set.end(), is_clamped);
@@ -384,9 +380,8 @@ namespace coulomb_adapt
               if (inserted)
                 {
                   if (next_id == numbers::internal_face_boundary_id - 1)
-                    throw ParameterError(in_file +
-                                         ": too many combinations of "
-                                         "condition groups");
+                    throw ParameterError(in_file + ": too many combinations of "
+                                                   "condition groups");
                   ++next_id;
                 }
               id = it->second;
@@ -420,7 +415,8 @@ namespace coulomb_adapt
     catch (...)
       {}
     std::string message = last_error.empty() ? thrown : last_error;
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+    while (!message.empty() &&
+           (message.back() == '\n' || message.back() == ' '))
       message.pop_back();
     return message.empty() ? "an error without a message" : message;
   }
@@ -428,7 +424,7 @@ namespace coulomb_adapt
 
 
   TwoBodyGmshMeshes
-  read_two_body_gmsh_geometry(const std::string & file_name,
+  read_two_body_gmsh_geometry(const std::string  &file_name,
                               const CellType      requested_cell_type,
                               const double        mesh_size_factor,
                               const GmshGroupUse &use,

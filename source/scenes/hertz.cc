@@ -30,9 +30,13 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Hertz");
       {
-        prm.declare_entry("Radius", "100", Patterns::Double(0),
+        prm.declare_entry("Radius",
+                          "100",
+                          Patterns::Double(0),
                           "Radius R of the half disc (mm).");
-        prm.declare_entry("Line load", "1000", Patterns::Double(0),
+        prm.declare_entry("Line load",
+                          "1000",
+                          Patterns::Double(0),
                           "Total load P' per unit thickness pressing the "
                           "disc down (N/mm), applied as a uniform traction "
                           "P'/(2R) on its flat top.");
@@ -43,9 +47,13 @@ namespace coulomb_adapt
                           "nodes on its axis x = 0 (exact by symmetry); "
                           "needed without friction, where nothing else "
                           "holds the disc sideways.");
-        prm.declare_entry("Block width", "200", Patterns::Double(0),
+        prm.declare_entry("Block width",
+                          "200",
+                          Patterns::Double(0),
                           "Width 2L of the block (mm).");
-        prm.declare_entry("Block height", "100", Patterns::Double(0),
+        prm.declare_entry("Block height",
+                          "100",
+                          Patterns::Double(0),
                           "Height H of the block (mm).");
         prm.declare_entry("Block subdivisions",
                           "2, 1",
@@ -114,7 +122,7 @@ namespace coulomb_adapt
           prm.enter_subsection("Cattaneo");
           normal_displacement     = prm.get_double("Normal displacement");
           tangential_displacement = prm.get_double("Tangential displacement");
-          n_tangential_steps = prm.get_integer("Tangential load steps");
+          n_tangential_steps      = prm.get_integer("Tangential load steps");
           // Without it the disc does not press on the block: no contact
           // force, no strain, and a tangential displacement of the holder
           // only moves the disc rigidly; the relative error is then a
@@ -137,16 +145,15 @@ namespace coulomb_adapt
                           path + "/Radius",
                           radius,
                           "must be > 0 (mm)");
-        line_load              = prm.get_double("Line load");
+        line_load = prm.get_double("Line load");
         // A tangential load must not be carried by a support on the axis.
-        hold_axis = prm.get_bool("Hold axis") && !cattaneo;
-        block_width            = prm.get_double("Block width");
-        block_height           = prm.get_double("Block height");
-        block_subdivisions =
-          get_subdivisions(prm, "Block subdivisions", path);
+        hold_axis           = prm.get_bool("Hold axis") && !cattaneo;
+        block_width         = prm.get_double("Block width");
+        block_height        = prm.get_double("Block height");
+        block_subdivisions  = get_subdivisions(prm, "Block subdivisions", path);
         contact_mesh_factor = prm.get_double("Contact mesh size");
         refined_zone_factor = prm.get_double("Refined zone size");
-        materials = parse_body_materials(prm, path);
+        materials           = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
       check_graded_mesh_size(parameters);
@@ -174,10 +181,10 @@ namespace coulomb_adapt
         return;
       const bool quadrilaterals =
         parameters.mesh.cell_type == CellType::quadrilateral;
-      const double a    = contact_half_width();
-      const double h    = contact_mesh_size();
-      const double zone = refined_zone_factor * a;
-      const double p    = parameters.finite_elements.degree;
+      const double a      = contact_half_width();
+      const double h      = contact_mesh_size();
+      const double zone   = refined_zone_factor * a;
+      const double p      = parameters.finite_elements.degree;
       double       n_dofs = 0;
       for (unsigned int b = 0; b < 2; ++b)
         {
@@ -197,8 +204,7 @@ namespace coulomb_adapt
                 coarse_edge /= 2;
               edge = coarse_edge > 0 ? coarse_edge : h;
             }
-          const double cells = numbers::PI / 2 * (zone / edge) *
-                               (zone / edge) *
+          const double cells = numbers::PI / 2 * (zone / edge) * (zone / edge) *
                                (quadrilaterals ? 1. : 4. / std::sqrt(3.));
           n_dofs += cells * (quadrilaterals ? 2. : 1.) * p * p;
         }
@@ -207,11 +213,12 @@ namespace coulomb_adapt
         return;
       // The count goes as 1 / c^2 (in steps of 4 for quadrilaterals).
       const double smallest =
-        contact_mesh_factor * std::sqrt(n_dofs / parameters.adaptation.max_dofs);
+        contact_mesh_factor *
+        std::sqrt(n_dofs / parameters.adaptation.max_dofs);
       std::ostringstream s;
       s << std::setprecision(3) << "the graded meshes would have at least "
-        << n_dofs << " DoFs (elements of " << h << " mm in a zone of "
-        << zone << " mm around the first contact point, "
+        << n_dofs << " DoFs (elements of " << h << " mm in a zone of " << zone
+        << " mm around the first contact point, "
         << (quadrilaterals ? "quadrilaterals" : "triangles") << " of degree "
         << p << ", " << parameters.mesh.global_refinements
         << " global refinements), above 'Adaptation/Maximum number of "
@@ -265,13 +272,10 @@ namespace coulomb_adapt
 
 
 
-
-
-
     void
     Hertz::create_coarse_mesh(const unsigned int body,
                               const CellType     cell_type,
-                              Triangulation<2> & tria) const
+                              Triangulation<2>  &tria) const
     {
       using namespace boundary_ids;
       // Triangles: gmsh meshes both bodies with the size field of the
@@ -306,7 +310,7 @@ namespace coulomb_adapt
       // turned by -90 degrees so that its arc points down, then lifted so
       // that its lowest point is the origin.
       Triangulation<2> &quads = tria;
-      const Point<2>   centre(0, radius);
+      const Point<2>    centre(0, radius);
       tria.clear();
       GridGenerator::half_hyper_ball(quads, Point<2>(), radius);
       GridTools::rotate(-numbers::PI / 2, quads);
@@ -335,10 +339,10 @@ namespace coulomb_adapt
     {
       if (!gmsh_meshes)
         {
-          const double a      = contact_half_width();
-          const double h_min  = contact_mesh_size();
-          const double h_max  = radius / 4;
-          const double zone   = refined_zone_factor * a;
+          const double       a     = contact_half_width();
+          const double       h_min = contact_mesh_size();
+          const double       h_max = radius / 4;
+          const double       zone  = refined_zone_factor * a;
           std::ostringstream geo;
           geo << std::setprecision(17) << "R = " << radius
               << "; L = " << block_width / 2 << "; H = " << block_height
@@ -397,9 +401,8 @@ namespace coulomb_adapt
 
 
 
-  void
-    Hertz::refine_initial_mesh(const unsigned int,
-                               Triangulation<2> &tria) const
+    void
+    Hertz::refine_initial_mesh(const unsigned int, Triangulation<2> &tria) const
     {
       if (contact_mesh_factor > 0)
         refine_towards_point(tria,
@@ -418,7 +421,7 @@ namespace coulomb_adapt
       d.contact_boundary_id = boundary_ids::contact;
       if (body == 0)
         {
-          d.name         = "half disc";
+          d.name = "half disc";
           if (cattaneo)
             // The disc's top is moved by a rigid holder: down by the normal
             // displacement, then sideways in steps. The holder keeps the
@@ -432,7 +435,9 @@ namespace coulomb_adapt
                    [this](const Point<2> &) {
                      return tangential_fraction * tangential_displacement;
                    },
-                   [this](const Point<2> &) { return -normal_displacement; }})});
+                   [this](const Point<2> &) {
+                     return -normal_displacement;
+                   }})});
           else
             d.tractions.push_back(
               {boundary_ids::traction,

@@ -25,7 +25,7 @@ namespace coulomb_adapt
 
 
     double
-    ManufacturedDisplacement::value(const Point<2> &   p,
+    ManufacturedDisplacement::value(const Point<2>    &p,
                                     const unsigned int component) const
     {
       const double A = gradient_amplitude, B = rotational_amplitude;
@@ -37,7 +37,7 @@ namespace coulomb_adapt
 
 
     Tensor<1, 2>
-    ManufacturedDisplacement::gradient(const Point<2> &   p,
+    ManufacturedDisplacement::gradient(const Point<2>    &p,
                                        const unsigned int component) const
     {
       const double A = gradient_amplitude, B = rotational_amplitude;
@@ -51,7 +51,7 @@ namespace coulomb_adapt
 
 
     SymmetricTensor<2, 2>
-    ManufacturedDisplacement::stress(const Point<2> &       p,
+    ManufacturedDisplacement::stress(const Point<2>        &p,
                                      const ElasticMaterial &material) const
     {
       Tensor<2, 2> grad;
@@ -63,7 +63,7 @@ namespace coulomb_adapt
 
 
     Tensor<1, 2>
-    ManufacturedDisplacement::body_force(const Point<2> &       p,
+    ManufacturedDisplacement::body_force(const Point<2>        &p,
                                          const ElasticMaterial &material) const
     {
       const double A = gradient_amplitude, B = rotational_amplitude;
@@ -71,8 +71,7 @@ namespace coulomb_adapt
       const double sy = std::sin(k * p[1]), cy = std::cos(k * p[1]);
       const double a = (material.lambda() + 2. * material.mu()) * A;
       const double b = material.mu() * B;
-      return 2. * k * k *
-             Tensor<1, 2>({(a + b) * sx * cy, (a - b) * cx * sy});
+      return 2. * k * k * Tensor<1, 2>({(a + b) * sx * cy, (a - b) * cx * sy});
     }
 
 
@@ -82,7 +81,9 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Manufactured");
       {
-        prm.declare_entry("Amplitude", "0.01", Patterns::Double(0),
+        prm.declare_entry("Amplitude",
+                          "0.01",
+                          Patterns::Double(0),
                           "Amplitude A of the manufactured displacement "
                           "(mm).");
         prm.declare_entry("Body 1 subdivisions",
@@ -107,11 +108,11 @@ namespace coulomb_adapt
       prm.enter_subsection("Manufactured");
       {
         const std::string path = "Scene/Manufactured";
-        exact           = std::make_shared<ManufacturedDisplacement>(
+        exact                  = std::make_shared<ManufacturedDisplacement>(
           prm.get_double("Amplitude"));
         subdivisions[0] = get_subdivisions(prm, "Body 1 subdivisions", path);
         subdivisions[1] = get_subdivisions(prm, "Body 2 subdivisions", path);
-        materials = parse_body_materials(prm, path);
+        materials       = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
     }
@@ -129,7 +130,7 @@ namespace coulomb_adapt
     void
     Manufactured::create_coarse_mesh(const unsigned int body,
                                      const CellType     cell_type,
-                                     Triangulation<2> & tria) const
+                                     Triangulation<2>  &tria) const
     {
       using namespace boundary_ids;
       const double y0 = (body == 0) ? 1. : 0.;
@@ -147,19 +148,19 @@ namespace coulomb_adapt
     Manufactured::describe_body(const unsigned int body) const
     {
       BodyDescription d;
-      d.name     = body == 0 ? "upper square" : "lower square";
-      d.material = materials[body];
+      d.name               = body == 0 ? "upper square" : "lower square";
+      d.material           = materials[body];
       d.exact_displacement = exact;
       d.dirichlet.push_back(
         {boundary_ids::dirichlet, ComponentMask(2, true), exact});
 
       const ElasticMaterial material(materials[body], plane_model);
       const auto            u = exact;
-      d.tractions.push_back({boundary_ids::traction,
-                             [u, material](const Point<2> &    x,
-                                           const Tensor<1, 2> &n) {
-                               return u->stress(x, material) * n;
-                             }});
+      d.tractions.push_back(
+        {boundary_ids::traction,
+         [u, material](const Point<2> &x, const Tensor<1, 2> &n) {
+           return u->stress(x, material) * n;
+         }});
       d.body_force = [u, material](const Point<2> &x) {
         return u->body_force(x, material);
       };

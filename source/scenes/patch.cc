@@ -10,11 +10,17 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Patch");
       {
-        prm.declare_entry("Width", "10", Patterns::Double(0),
+        prm.declare_entry("Width",
+                          "10",
+                          Patterns::Double(0),
                           "Width of both blocks (mm).");
-        prm.declare_entry("Upper body height", "5", Patterns::Double(0),
+        prm.declare_entry("Upper body height",
+                          "5",
+                          Patterns::Double(0),
                           "Height of the upper block (mm).");
-        prm.declare_entry("Lower body height", "5", Patterns::Double(0),
+        prm.declare_entry("Lower body height",
+                          "5",
+                          Patterns::Double(0),
                           "Height of the lower block (mm).");
         prm.declare_entry("Upper body subdivisions",
                           "3, 2",
@@ -26,10 +32,14 @@ namespace coulomb_adapt
                           "Cells of the lower block in x and y; a count in "
                           "x different from the upper block's makes the "
                           "interface non-matching.");
-        prm.declare_entry("Pressure", "1", Patterns::Double(0),
+        prm.declare_entry("Pressure",
+                          "1",
+                          Patterns::Double(0),
                           "Uniform pressure on top of the upper block "
                           "(MPa).");
-        prm.declare_entry("Shear traction", "0", Patterns::Double(),
+        prm.declare_entry("Shear traction",
+                          "0",
+                          Patterns::Double(),
                           "Uniform tangential traction (+x) on top of the "
                           "upper block (MPa): a block pushed sideways. "
                           "Beyond mu times the pressure the block slides "
@@ -57,12 +67,14 @@ namespace coulomb_adapt
         width                  = prm.get_double("Width");
         heights[0]             = prm.get_double("Upper body height");
         heights[1]             = prm.get_double("Lower body height");
-        subdivisions[0] = get_subdivisions(prm, "Upper body subdivisions", path);
-        subdivisions[1] = get_subdivisions(prm, "Lower body subdivisions", path);
+        subdivisions[0] =
+          get_subdivisions(prm, "Upper body subdivisions", path);
+        subdivisions[1] =
+          get_subdivisions(prm, "Lower body subdivisions", path);
         pressure        = prm.get_double("Pressure");
         hold_upper_body = prm.get_bool("Hold upper body");
         shear_traction  = prm.get_double("Shear traction");
-        materials = parse_body_materials(prm, path);
+        materials       = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
     }
@@ -80,7 +92,7 @@ namespace coulomb_adapt
     void
     Patch::create_coarse_mesh(const unsigned int body,
                               const CellType     cell_type,
-                              Triangulation<2> & tria) const
+                              Triangulation<2>  &tria) const
     {
       using namespace boundary_ids;
       if (body == 0)

@@ -11,13 +11,21 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Punch");
       {
-        prm.declare_entry("Punch width", "20", Patterns::Double(0),
+        prm.declare_entry("Punch width",
+                          "20",
+                          Patterns::Double(0),
                           "Width w of the punch (mm).");
-        prm.declare_entry("Punch height", "10", Patterns::Double(0),
+        prm.declare_entry("Punch height",
+                          "10",
+                          Patterns::Double(0),
                           "Height h of the punch (mm).");
-        prm.declare_entry("Block width", "100", Patterns::Double(0),
+        prm.declare_entry("Block width",
+                          "100",
+                          Patterns::Double(0),
                           "Width 2L of the block (mm).");
-        prm.declare_entry("Block height", "50", Patterns::Double(0),
+        prm.declare_entry("Block height",
+                          "50",
+                          Patterns::Double(0),
                           "Height H of the block (mm).");
         prm.declare_entry("Punch subdivisions",
                           "4, 2",
@@ -27,7 +35,9 @@ namespace coulomb_adapt
                           "10, 5",
                           Patterns::List(Patterns::Integer(1), 2, 2),
                           "Cells of the block in x and y.");
-        prm.declare_entry("Pressure", "100", Patterns::Double(0),
+        prm.declare_entry("Pressure",
+                          "100",
+                          Patterns::Double(0),
                           "Uniform pressure on top of the punch (MPa).");
         prm.declare_entry("Hold centre line",
                           "true",
@@ -51,9 +61,9 @@ namespace coulomb_adapt
         punch_height           = prm.get_double("Punch height");
         block_width            = prm.get_double("Block width");
         block_height           = prm.get_double("Block height");
-        subdivisions[0] = get_subdivisions(prm, "Punch subdivisions", path);
-        subdivisions[1] = get_subdivisions(prm, "Block subdivisions", path);
-        pressure        = prm.get_double("Pressure");
+        subdivisions[0]  = get_subdivisions(prm, "Punch subdivisions", path);
+        subdivisions[1]  = get_subdivisions(prm, "Block subdivisions", path);
+        pressure         = prm.get_double("Pressure");
         hold_centre_line = prm.get_bool("Hold centre line");
         if (hold_centre_line && subdivisions[0][0] % 2 != 0)
           throw ParameterError(path + "/Punch subdivisions",
@@ -78,7 +88,7 @@ namespace coulomb_adapt
     void
     Punch::create_coarse_mesh(const unsigned int body,
                               const CellType     cell_type,
-                              Triangulation<2> & tria) const
+                              Triangulation<2>  &tria) const
     {
       using namespace boundary_ids;
       if (body == 0)
@@ -109,11 +119,10 @@ namespace coulomb_adapt
         {
           d.name         = "punch";
           const double p = pressure;
-          d.tractions.push_back(
-            {boundary_ids::traction,
-             [p](const Point<2> &, const Tensor<1, 2> &) {
-               return Tensor<1, 2>({0., -p});
-             }});
+          d.tractions.push_back({boundary_ids::traction,
+                                 [p](const Point<2> &, const Tensor<1, 2> &) {
+                                   return Tensor<1, 2>({0., -p});
+                                 }});
           if (hold_centre_line)
             d.point_constraints.push_back(
               // The centre line above the contact face (contact nodes stay

@@ -34,8 +34,8 @@ namespace coulomb_adapt
     std::unique_ptr<Scene>
     create_scene(const Parameters &parameters, ParameterHandler &prm)
     {
-      const std::string &name  = parameters.scene.name;
-      const PlaneModel   model = parameters.finite_elements.plane_model;
+      const std::string     &name  = parameters.scene.name;
+      const PlaneModel       model = parameters.finite_elements.plane_model;
       std::unique_ptr<Scene> scene;
       prm.enter_subsection("Scene");
       try
@@ -51,9 +51,8 @@ namespace coulomb_adapt
           else if (name == "punch")
             scene = std::make_unique<Punch>(prm, model);
           else if (name == "gmsh")
-            scene = std::make_unique<GmshFile>(prm,
-                                               model,
-                                               parameters.mesh.cell_type);
+            scene =
+              std::make_unique<GmshFile>(prm, model, parameters.mesh.cell_type);
           else if (name == "manufactured")
             scene = std::make_unique<Manufactured>(prm, model);
         }

@@ -6,10 +6,10 @@
 namespace coulomb_adapt
 {
   void
-  make_rectangle(Triangulation<2> &                       tria,
-                 const Point<2> &                         p1,
-                 const Point<2> &                         p2,
-                 const std::vector<unsigned int> &        subdivisions,
+  make_rectangle(Triangulation<2>                        &tria,
+                 const Point<2>                          &p1,
+                 const Point<2>                          &p2,
+                 const std::vector<unsigned int>         &subdivisions,
                  const std::array<types::boundary_id, 4> &side_ids,
                  const CellType                           cell_type)
   {
@@ -32,7 +32,7 @@ namespace coulomb_adapt
 
 
   std::vector<unsigned int>
-  get_subdivisions(ParameterHandler & prm,
+  get_subdivisions(ParameterHandler  &prm,
                    const std::string &entry,
                    const std::string &path)
   {
@@ -52,7 +52,7 @@ namespace coulomb_adapt
 
   void
   refine_towards_point(Triangulation<2> &tria,
-                       const Point<2> &  point,
+                       const Point<2>   &point,
                        const double      radius,
                        const double      target_size)
   {

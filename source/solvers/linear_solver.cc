@@ -1,6 +1,6 @@
 #include <deal.II/lac/solver_cg.h>
-#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 
@@ -15,13 +15,13 @@ namespace coulomb_adapt
   {
     LinearSolverReport
     solve_direct(const TrilinosWrappers::SparseMatrix &A,
-                 TrilinosWrappers::MPI::Vector &       x,
-                 const TrilinosWrappers::MPI::Vector & b,
-                 const std::string &                   package)
+                 TrilinosWrappers::MPI::Vector        &x,
+                 const TrilinosWrappers::MPI::Vector  &b,
+                 const std::string                    &package)
     {
-      SolverControl                       control(1, 0);
+      SolverControl                                  control(1, 0);
       TrilinosWrappers::SolverDirect::AdditionalData data(false, package);
-      TrilinosWrappers::SolverDirect      solver(control, data);
+      TrilinosWrappers::SolverDirect                 solver(control, data);
       solver.initialize(A);
       solver.solve(x, b);
       // One step of iterative refinement with the same factorisation (a
@@ -40,11 +40,11 @@ namespace coulomb_adapt
 
 
     LinearSolverReport
-    solve_amg(const TrilinosWrappers::SparseMatrix &  A,
-              TrilinosWrappers::MPI::Vector &         x,
-              const TrilinosWrappers::MPI::Vector &   b,
+    solve_amg(const TrilinosWrappers::SparseMatrix   &A,
+              TrilinosWrappers::MPI::Vector          &x,
+              const TrilinosWrappers::MPI::Vector    &b,
               const std::vector<std::vector<double>> &near_null_space,
-              const parameters::LinearSolver &        settings,
+              const parameters::LinearSolver         &settings,
               const bool                              symmetric)
     {
       ElasticityAMG amg;
@@ -57,7 +57,7 @@ namespace coulomb_adapt
 
   void
   ElasticityAMG::initialize(
-    const TrilinosWrappers::SparseMatrix &  A,
+    const TrilinosWrappers::SparseMatrix   &A,
     const std::vector<std::vector<double>> &near_null_space)
   {
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
@@ -83,8 +83,8 @@ namespace coulomb_adapt
     std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
     data.set_parameters(ml_parameters, unused_constant_modes, A);
 
-    const unsigned int  n_modes = near_null_space.size();
-    const unsigned int  n_local = A.local_size();
+    const unsigned int n_modes = near_null_space.size();
+    const unsigned int n_local = A.local_size();
     // ML is handed a pointer to the mode values: they live as long as
     // the preconditioner, which may be kept across solves.
     modes.assign(n_modes * n_local, 0.);
@@ -113,12 +113,12 @@ namespace coulomb_adapt
 
 
   LinearSolverReport
-  solve_krylov(const TrilinosWrappers::SparseMatrix &A,
-               TrilinosWrappers::MPI::Vector &       x,
-               const TrilinosWrappers::MPI::Vector & b,
+  solve_krylov(const TrilinosWrappers::SparseMatrix     &A,
+               TrilinosWrappers::MPI::Vector            &x,
+               const TrilinosWrappers::MPI::Vector      &b,
                const TrilinosWrappers::PreconditionBase &preconditioner,
-               const parameters::LinearSolver &      settings,
-               const bool                            symmetric)
+               const parameters::LinearSolver           &settings,
+               const bool                                symmetric)
   {
     SolverControl control(settings.max_iterations,
                           settings.relative_tolerance * b.l2_norm());
@@ -143,11 +143,11 @@ namespace coulomb_adapt
 
 
   LinearSolverReport
-  solve_linear_system(const TrilinosWrappers::SparseMatrix &  A,
-                      TrilinosWrappers::MPI::Vector &         x,
-                      const TrilinosWrappers::MPI::Vector &   b,
+  solve_linear_system(const TrilinosWrappers::SparseMatrix   &A,
+                      TrilinosWrappers::MPI::Vector          &x,
+                      const TrilinosWrappers::MPI::Vector    &b,
                       const std::vector<std::vector<double>> &near_null_space,
-                      const parameters::LinearSolver &        settings,
+                      const parameters::LinearSolver         &settings,
                       const bool                              symmetric)
   {
     const bool direct =

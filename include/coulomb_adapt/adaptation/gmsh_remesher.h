@@ -53,11 +53,11 @@ namespace coulomb_adapt
    * point constraints hold): the new mesh has a line of nodes on each.
    */
   CoarseMeshData
-  remesh_with_gmsh(const Triangulation<2> &              geometry,
-                   const std::vector<SizeFieldTriangle> &size_field,
-                   const std::string &                   body_name,
-                   const MPI_Comm                        comm,
-                   const std::string &                   algorithm,
+  remesh_with_gmsh(const Triangulation<2>                     &geometry,
+                   const std::vector<SizeFieldTriangle>       &size_field,
+                   const std::string                          &body_name,
+                   const MPI_Comm                              comm,
+                   const std::string                          &algorithm,
                    const std::vector<std::array<Point<2>, 2>> &interior_lines);
 } // namespace coulomb_adapt
 

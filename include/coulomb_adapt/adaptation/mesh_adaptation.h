@@ -18,12 +18,12 @@ namespace coulomb_adapt
     std::string strategy;
     /** Predicted cell count N* (both bodies) and epsilon of the optimal
      * mesh, when the size ratios were used; -1 otherwise. */
-    double       predicted_n_cells = -1;
-    double       predicted_epsilon = -1;
+    double predicted_n_cells = -1;
+    double predicted_epsilon = -1;
     /** The epsilon the mesh was planned for (TargetCalibration::aim);
      * -1 when no plan was made. */
-    double       aimed_epsilon = -1;
-    unsigned int n_singular_cells  = 0;
+    double       aimed_epsilon    = -1;
+    unsigned int n_singular_cells = 0;
     unsigned int n_at_min_ratio = 0, n_at_max_ratio = 0;
     /** Whether the optimal mesh for epsilon_0 exceeded 'Maximum number of
      * DoFs' and the optimal mesh of that size was taken instead. */
@@ -43,10 +43,10 @@ namespace coulomb_adapt
    * what the previous plans achieved (TargetCalibration).
    */
   MeshAdaptationReport
-  adapt_meshes(const std::array<ElasticBody *, 2> & bodies,
-               ErrorEstimate &                      estimate,
+  adapt_meshes(const std::array<ElasticBody *, 2>  &bodies,
+               ErrorEstimate                       &estimate,
                const std::vector<ContactNodeState> &contact_states,
-               const parameters::Adaptation &       parameters,
+               const parameters::Adaptation        &parameters,
                const unsigned int                   degree,
                const double                         aimed_error);
 } // namespace coulomb_adapt

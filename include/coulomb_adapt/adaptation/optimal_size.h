@@ -27,10 +27,10 @@ namespace coulomb_adapt
     std::array<Vector<double>, 2> rate;
     /** Predicted cell count sum_E r_E^-d of the optimal mesh (both bodies,
      * all ranks), after bounding. */
-    double       predicted_n_cells = 0;
+    double predicted_n_cells = 0;
     /** Predicted epsilon sqrt(sum_E r_E^2q epsilon_E^2), after bounding:
      * epsilon_0 unless the bounds prevent it. */
-    double       predicted_epsilon = 0;
+    double predicted_epsilon = 0;
     /** Cells whose rate was reduced (singular points). */
     unsigned int n_singular_cells = 0;
     /** Cells at the lower / upper bound of r_E. */
@@ -59,7 +59,7 @@ namespace coulomb_adapt
    */
   std::vector<Point<2>>
   find_singular_points(const std::array<const ElasticBody *, 2> &bodies,
-                       const std::vector<ContactNodeState> &     contact_states);
+                       const std::vector<ContactNodeState> &contact_states);
 
   /**
    * Minimise the cell count sum_E r_E^-d subject to the predicted error
@@ -67,7 +67,8 @@ namespace coulomb_adapt
    * @p max_ratio in the optimisation and a lower bound imposed afterwards
    * (the predicted epsilon is then above epsilon_0 and the next cycle goes
    * on): r_E >= @p min_ratio where q_E = p and r_E >= @p min_ratio^{3/2}
-   * at singular points, where the error falls more slowly with h. q_E = p (@p degree) except in cells
+   * at singular points, where the error falls more slowly with h. q_E = p (@p
+   * degree) except in cells
    * touching a point of @p singular_points, where q_E = min(p,
    * @p singular_rate). With one q for all cells this is the closed form of
    * theory.md section 4; with several, the Lagrange condition
@@ -83,8 +84,8 @@ namespace coulomb_adapt
    */
   OptimalSizeRatios
   optimal_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
-                      const ErrorEstimate &                     estimate,
-                      const std::vector<Point<2>> &             singular_points,
+                      const ErrorEstimate                      &estimate,
+                      const std::vector<Point<2>>              &singular_points,
                       const double                              target_error,
                       const unsigned int                        degree,
                       const double                              singular_rate,

@@ -27,8 +27,8 @@ namespace coulomb_adapt
    */
   RefinementDecisions
   decisions_from_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
-                             const ErrorEstimate &                     estimate,
-                             const OptimalSizeRatios &                 ratios,
+                             const ErrorEstimate                      &estimate,
+                             const OptimalSizeRatios                  &ratios,
                              const double target_error);
 
   /**
@@ -47,11 +47,11 @@ namespace coulomb_adapt
    */
   RefinementDecisions
   decisions_from_indicator(const std::array<const ElasticBody *, 2> &bodies,
-                           const ErrorEstimate &estimate,
-                           const std::string &  criterion,
-                           const double         refine_fraction,
-                           const double         coarsen_fraction,
-                           const unsigned int   degree);
+                           const ErrorEstimate                      &estimate,
+                           const std::string                        &criterion,
+                           const double       refine_fraction,
+                           const double       coarsen_fraction,
+                           const unsigned int degree);
 } // namespace coulomb_adapt
 
 #endif

@@ -52,7 +52,7 @@ namespace coulomb_adapt
      * the model (a changed contact zone, a mesh too coarse for the
      * estimator) than a global factor can fix. */
     static constexpr double min_correction = 0.5, max_correction = 2;
-    double                  correction_factor = 1;
+    double                  correction_factor  = 1;
     double                  pending_prediction = -1;
   };
 } // namespace coulomb_adapt

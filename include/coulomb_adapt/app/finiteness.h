@@ -33,7 +33,7 @@ namespace coulomb_adapt
   void
   check_finite_solution(
     const std::array<std::unique_ptr<ElasticBody>, 2> &bodies,
-    const ContactSolver *                               contact_solver);
+    const ContactSolver                               *contact_solver);
 
   /**
    * After an error estimate: epsilon and its parts, the normalisation D^2
@@ -43,7 +43,7 @@ namespace coulomb_adapt
   void
   check_finite_estimate(
     const std::array<std::unique_ptr<ElasticBody>, 2> &bodies,
-    const ErrorEstimate &                               estimate);
+    const ErrorEstimate                               &estimate);
 } // namespace coulomb_adapt
 
 #endif

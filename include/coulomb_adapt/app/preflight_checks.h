@@ -21,9 +21,9 @@ namespace coulomb_adapt
    * messages ("gmsh file 'x.msh': "; empty for the built-in scenes).
    */
   void
-  check_before_meshing(const Scene &             scene,
-                       const Parameters &        parameters,
-                       const std::string &       mesh_source,
+  check_before_meshing(const Scene              &scene,
+                       const Parameters         &parameters,
+                       const std::string        &mesh_source,
                        const ConditionalOStream &pcout);
 } // namespace coulomb_adapt
 

@@ -6,7 +6,6 @@
 
 #include <coulomb_adapt/adaptation/mesh_adaptation.h>
 #include <coulomb_adapt/adaptation/target_calibration.h>
-
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/contact_solve_driver.h>
 #include <coulomb_adapt/contact/contact_solver.h>
@@ -41,10 +40,10 @@ namespace coulomb_adapt
   public:
     /** The log goes to @p log on rank 0 (tests pass a string stream). */
     TwoBodyProblem(const MPI_Comm     mpi_communicator,
-                   const Parameters & parameters,
-                   ParameterHandler & prm,
+                   const Parameters  &parameters,
+                   ParameterHandler  &prm,
                    const std::string &parameter_file,
-                   std::ostream &     log = std::cout);
+                   std::ostream      &log = std::cout);
 
     void
     run();
@@ -91,37 +90,37 @@ namespace coulomb_adapt
     refine_grid();
     /** Whether another cycle is wanted after @p cycle, with the reason. */
     bool
-    continue_cycles(const unsigned int      cycle,
+    continue_cycles(const unsigned int            cycle,
                     const types::global_dof_index n_dofs,
-                    std::string &           reason) const;
+                    std::string                  &reason) const;
     std::array<const ElasticBody *, 2>
     body_pointers() const;
 
     /** Where the meshes come from, for messages ("gmsh file 'x.msh': "),
      * empty for the built-in scenes. */
-    std::string mesh_source;
-    MPI_Comm                                  mpi_communicator;
-    const Parameters &                        parameters;
-    ConditionalOStream                        pcout;
-    TimerOutput                               computing_timer;
-    std::unique_ptr<Scene>                    scene;
+    std::string                                 mesh_source;
+    MPI_Comm                                    mpi_communicator;
+    const Parameters                           &parameters;
+    ConditionalOStream                          pcout;
+    TimerOutput                                 computing_timer;
+    std::unique_ptr<Scene>                      scene;
     std::array<std::unique_ptr<ElasticBody>, 2> bodies;
     std::array<std::unique_ptr<BodyOutput>, 2>  body_outputs;
     /** The log lines and summary.json record of each cycle. */
-    std::unique_ptr<CycleReport>              cycle_report;
-    std::unique_ptr<ContactSolveDriver>       contact_solve_driver;
-    std::unique_ptr<ContactSolver>            contact_solver;
-    std::unique_ptr<ContactOutput>            contact_output;
-    std::unique_ptr<ErrorEstimate>            error_estimate;
+    std::unique_ptr<CycleReport>        cycle_report;
+    std::unique_ptr<ContactSolveDriver> contact_solve_driver;
+    std::unique_ptr<ContactSolver>      contact_solver;
+    std::unique_ptr<ContactOutput>      contact_output;
+    std::unique_ptr<ErrorEstimate>      error_estimate;
     /** With `Compare estimators`: the other estimators on the same
      * solution (they do not drive the adaptation). */
     std::vector<std::unique_ptr<ErrorEstimate>> compared_estimates;
     /** The contact sets of the previous cycle, for the warm start. */
-    std::vector<ContactNodeState>             previous_contact_states;
+    std::vector<ContactNodeState> previous_contact_states;
     /** The adaptation that made the current meshes (none on cycle 0). */
-    std::optional<MeshAdaptationReport>       last_adaptation;
+    std::optional<MeshAdaptationReport> last_adaptation;
     /** epsilon_0 corrected by what the previous plans achieved. */
-    TargetCalibration                         target_calibration;
+    TargetCalibration target_calibration;
   };
 } // namespace coulomb_adapt
 

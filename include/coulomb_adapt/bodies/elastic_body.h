@@ -3,6 +3,7 @@
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature.h>
 
 #include <deal.II/distributed/tria_base.h>
 
@@ -15,8 +16,6 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
-
-#include <deal.II/base/quadrature.h>
 
 #include <coulomb_adapt/core/elastic_material.h>
 #include <coulomb_adapt/core/parameters.h>
@@ -35,7 +34,7 @@ namespace coulomb_adapt
    * zero-area triangle): its stiffness would be singular or non-finite. */
   void
   check_mesh_cells(const Triangulation<2> &mesh,
-                   const std::string &     name,
+                   const std::string      &name,
                    const unsigned int      body_index);
 
   /**
@@ -57,12 +56,12 @@ namespace coulomb_adapt
      * the scene's local refinement (quadrilaterals), then
      * @p global_refinements uniform refinements.
      */
-    ElasticBody(const MPI_Comm                        mpi_communicator,
-                const Scene &                         scene,
-                const unsigned int                    body_index,
-                const CellType                        cell_type,
-                const unsigned int                    global_refinements,
-                const parameters::FiniteElements &    fe_parameters);
+    ElasticBody(const MPI_Comm                    mpi_communicator,
+                const Scene                      &scene,
+                const unsigned int                body_index,
+                const CellType                    cell_type,
+                const unsigned int                global_refinements,
+                const parameters::FiniteElements &fe_parameters);
 
     ~ElasticBody();
 
@@ -165,32 +164,32 @@ namespace coulomb_adapt
     void
     make_constraints();
 
-    MPI_Comm                                     mpi_communicator;
-    const Scene &                                scene;
-    const unsigned int                           body_index;
-    const CellType                               cell_type;
-    const BodyDescription                        body_description;
-    const ElasticMaterial                        elastic_material;
-    bool                                         simplex;
-    unsigned int                                 n_global_refinements;
+    MPI_Comm              mpi_communicator;
+    const Scene          &scene;
+    const unsigned int    body_index;
+    const CellType        cell_type;
+    const BodyDescription body_description;
+    const ElasticMaterial elastic_material;
+    bool                  simplex;
+    unsigned int          n_global_refinements;
     /** The remesher's mesh, used instead of the scene's coarse mesh. */
-    std::optional<CoarseMeshData>                remeshed;
+    std::optional<CoarseMeshData> remeshed;
 
     std::unique_ptr<parallel::TriangulationBase<2>> tria;
-    std::unique_ptr<FESystem<2>>                 fe;
-    std::unique_ptr<Mapping<2>>                  mapping_;
-    std::unique_ptr<Quadrature<2>>               quadrature;
-    std::unique_ptr<Quadrature<1>>               face_quadrature;
-    DoFHandler<2>                                dofs;
+    std::unique_ptr<FESystem<2>>                    fe;
+    std::unique_ptr<Mapping<2>>                     mapping_;
+    std::unique_ptr<Quadrature<2>>                  quadrature;
+    std::unique_ptr<Quadrature<1>>                  face_quadrature;
+    DoFHandler<2>                                   dofs;
 
-    IndexSet                                     locally_owned_dofs;
-    IndexSet                                     locally_relevant_dofs;
-    AffineConstraints<double>                    constraints_;
+    IndexSet                  locally_owned_dofs;
+    IndexSet                  locally_relevant_dofs;
+    AffineConstraints<double> constraints_;
     /** DoFs fixed by Dirichlet data or point constraints. */
-    std::set<types::global_dof_index>            supported_dofs;
-    TrilinosWrappers::SparseMatrix               matrix;
-    TrilinosWrappers::MPI::Vector                rhs;
-    TrilinosWrappers::MPI::Vector                displacement;
+    std::set<types::global_dof_index> supported_dofs;
+    TrilinosWrappers::SparseMatrix    matrix;
+    TrilinosWrappers::MPI::Vector     rhs;
+    TrilinosWrappers::MPI::Vector     displacement;
   };
 } // namespace coulomb_adapt
 

@@ -24,15 +24,15 @@ namespace coulomb_adapt
   void
   add_rigid_motion_constraint(FullMatrix<double> &gram,
                               const Tensor<1, 2> &direction,
-                              const Point<2> &    x,
-                              const Point<2> &    centre);
+                              const Point<2>     &x,
+                              const Point<2>     &centre);
 
   /** The Gram matrix of the same constraints with the rotation about
    * centre + @p shift instead of centre: the rotation about the new centre
    * is the old one plus the translation (shift_2, -shift_1). */
   FullMatrix<double>
   move_rotation_centre(const FullMatrix<double> &gram,
-                       const Tensor<1, 2> &      shift);
+                       const Tensor<1, 2>       &shift);
 
   /**
    * Whether the constraints in @p gram hold every rigid motion. The
@@ -54,7 +54,7 @@ namespace coulomb_adapt
    * component has |t_c| > 1e-3). */
   bool
   holds_translation_along(const FullMatrix<double> &gram,
-                          const Tensor<1, 2> &      direction);
+                          const Tensor<1, 2>       &direction);
 } // namespace coulomb_adapt
 
 #endif

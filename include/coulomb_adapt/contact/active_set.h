@@ -29,12 +29,12 @@ namespace coulomb_adapt
    */
   struct ActiveSetRule
   {
-    double              friction_coefficient = 0;
+    double friction_coefficient = 0;
     /** Contact/Tolerance: also the width of the cone's edge within which
      * stick and slip are the same state. */
-    double              tolerance = 0;
+    double tolerance = 0;
     /** E_c = E1 E2 / (E1 + E2). */
-    double              combined_modulus = 0;
+    double combined_modulus = 0;
     /** c_j = c_n = c_t of each slave node. */
     std::vector<double> complementarity_constant;
   };
@@ -70,9 +70,9 @@ namespace coulomb_adapt
   /** Apply the active set rule to every node; returns the number of nodes
    * whose status (or slip direction) changed. */
   unsigned int
-  update_sets(const ActiveSetRule &           rule,
-              const std::vector<double> &     previous_weighted_slip,
-              std::vector<ContactNodeState> & states);
+  update_sets(const ActiveSetRule           &rule,
+              const std::vector<double>     &previous_weighted_slip,
+              std::vector<ContactNodeState> &states);
 
   /** The largest contact pressure (1 if there is none). */
   double
@@ -81,7 +81,7 @@ namespace coulomb_adapt
   /** A node's term of the complementarity residual, normalised by the
    * largest pressure @p p. */
   double
-  node_residual(const ActiveSetRule &   rule,
+  node_residual(const ActiveSetRule    &rule,
                 const ContactNodeState &state,
                 const double            previous_weighted_slip,
                 const double            p);
@@ -89,8 +89,8 @@ namespace coulomb_adapt
   /** max_j of node_residual(): zero exactly when the contact conditions
    * hold. */
   double
-  complementarity_residual(const ActiveSetRule &                rule,
-                           const std::vector<double> &          previous_weighted_slip,
+  complementarity_residual(const ActiveSetRule       &rule,
+                           const std::vector<double> &previous_weighted_slip,
                            const std::vector<ContactNodeState> &states);
 
   /** Restricted set update: of the nodes whose sets changed from
@@ -98,18 +98,18 @@ namespace coulomb_adapt
    * largest keep the change; the others return to @p before. Returns the
    * number of nodes that keep their change. */
   unsigned int
-  restrict_set_changes(const ActiveSetRule &                rule,
-                       const std::vector<double> &          previous_weighted_slip,
+  restrict_set_changes(const ActiveSetRule       &rule,
+                       const std::vector<double> &previous_weighted_slip,
                        const std::vector<ContactNodeState> &before,
                        const double                         fraction,
-                       std::vector<ContactNodeState> &      states);
+                       std::vector<ContactNodeState>       &states);
 
   /** With friction and no stick node in the sets: the active node whose
    * trial traction lies deepest inside the Coulomb cone. states.size() if
    * there is a stick node, no friction or no such node. */
   unsigned int
-  node_nearest_to_sticking(const ActiveSetRule &                rule,
-                           const std::vector<double> &          previous_weighted_slip,
+  node_nearest_to_sticking(const ActiveSetRule       &rule,
+                           const std::vector<double> &previous_weighted_slip,
                            const std::vector<ContactNodeState> &states);
 
   /** The sets as a string, one character per node: 'o' open, 't' stick,

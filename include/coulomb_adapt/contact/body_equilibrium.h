@@ -39,16 +39,16 @@ namespace coulomb_adapt
     double       load_moment = 0, contact_moment = 0;
     Point<2>     centre;
     /** Largest |z^T (f + c)| over the free unit modes (N/mm). */
-    double       imbalance = 0;
+    double imbalance = 0;
     /** Round-off bound of that sum: (terms per row + 2 + sqrt(rows)) eps
      * times the sum of the magnitudes of the terms of z^T (f - K u) and
      * z^T c, plus the linear solver's tolerance on |f|. */
-    double       round_off = 0;
+    double round_off = 0;
     /** The scale of the forces that balance: sum |z_i f_i| + sum |z c|. */
-    double       force_scale = 0;
+    double force_scale = 0;
     /** Whether the imbalance is mostly a moment (the body tips) rather
      * than a force (it slides). */
-    bool         tips = false;
+    bool tips = false;
 
     /** Balanced to round-off, and the round-off itself below the forces
      * (@p force_scale), without which the balance says nothing: a
@@ -66,9 +66,9 @@ namespace coulomb_adapt
    * every rank gets the same result. @p linear_tolerance: the relative
    * tolerance on |f| of the last linear solve (0 for a direct solve). */
   BodyEquilibrium
-  body_equilibrium(const ElasticBody &                  body,
+  body_equilibrium(const ElasticBody                   &body,
                    const bool                           slave,
-                   const MortarInterface &              mortar,
+                   const MortarInterface               &mortar,
                    const std::vector<ContactNodeState> &states,
                    const double                         linear_tolerance);
 
@@ -76,8 +76,7 @@ namespace coulomb_adapt
    * imbalance, and what that means (it slides or tips: no static
    * equilibrium, or the contact sets do not hold it). */
   std::string
-  equilibrium_message(const std::string &    body_label,
-                      const BodyEquilibrium &e);
+  equilibrium_message(const std::string &body_label, const BodyEquilibrium &e);
 } // namespace coulomb_adapt
 
 #endif

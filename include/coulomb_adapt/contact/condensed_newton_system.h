@@ -48,8 +48,8 @@ namespace coulomb_adapt
      * no covered slave node carries Dirichlet data. */
     void
     reinit(const MortarInterface &mortar,
-           const ElasticBody &    slave,
-           const ElasticBody &    master);
+           const ElasticBody     &slave,
+           const ElasticBody     &master);
 
     /** The multipliers lambda_j at every slave node (zero at nodes the
      * master side does not cover) for body 1's displacement @p u1, and
@@ -61,19 +61,19 @@ namespace coulomb_adapt
       double                    round_off = 0;
     };
     Multipliers
-    multipliers(const MortarInterface &              mortar,
+    multipliers(const MortarInterface               &mortar,
                 const TrilinosWrappers::MPI::Vector &u1) const;
 
-    MPI_Comm                communicator;
+    MPI_Comm communicator;
     /** n_dofs of body 1: the shift of body 2's indices. */
     types::global_dof_index offset = 0;
     /** Locally owned indices of the combined space. */
-    IndexSet                owned;
+    IndexSet owned;
     /** Slave nodes whose rows this rank owns. */
     std::vector<unsigned int>            owned_slave_nodes;
     std::vector<std::array<SlaveRow, 2>> slave_rows;
     /** D_jj of each slave node. */
-    std::vector<double>                  weights;
+    std::vector<double> weights;
     /** For a master DoF: its node and component. */
     std::map<types::global_dof_index, std::pair<unsigned int, unsigned int>>
       master_dof_node;
@@ -88,7 +88,7 @@ namespace coulomb_adapt
   struct SlaveNodeConditions
   {
     /** Index of the node among the mortar interface's slave nodes. */
-    unsigned int                           index;
+    unsigned int index;
     /** Combined indices of the node's x and y displacement. */
     std::array<types::global_dof_index, 2> dofs;
     Tensor<1, 2>                           normal;
@@ -122,9 +122,9 @@ namespace coulomb_adapt
   /** The conditions of the slave nodes this rank owns, for the sets of
    * @p states. */
   std::vector<SlaveNodeConditions>
-  slave_node_conditions(const SlaveCondensation &            condensation,
-                        const MortarInterface &              mortar,
-                        const ElasticBody &                  master,
+  slave_node_conditions(const SlaveCondensation             &condensation,
+                        const MortarInterface               &mortar,
+                        const ElasticBody                   &master,
                         const std::vector<ContactNodeState> &states,
                         const std::vector<double> &previous_weighted_slip,
                         const double               friction_coefficient);
@@ -153,9 +153,9 @@ namespace coulomb_adapt
     /** Once per mesh and load step, after SlaveCondensation::reinit:
      * the bodies' systems must be assembled. */
     virtual void
-    reinit(const MortarInterface &  mortar,
-           const ElasticBody &      slave,
-           const ElasticBody &      master,
+    reinit(const MortarInterface   &mortar,
+           const ElasticBody       &slave,
+           const ElasticBody       &master,
            const SlaveCondensation &condensation) = 0;
 
     /** The system for the sets in @p nodes (the slave nodes this rank
@@ -167,8 +167,8 @@ namespace coulomb_adapt
      * (owned entries). @p near_null_space is used by AMG only. */
     virtual LinearSolverReport
     solve(const std::vector<std::vector<double>> &near_null_space,
-          const parameters::LinearSolver &        settings,
-          TrilinosWrappers::MPI::Vector &         solution) = 0;
+          const parameters::LinearSolver         &settings,
+          TrilinosWrappers::MPI::Vector          &solution) = 0;
   };
 } // namespace coulomb_adapt
 

@@ -64,11 +64,11 @@ namespace coulomb_adapt
   class ContactSolveDriver
   {
   public:
-    ContactSolveDriver(const MPI_Comm                            mpi_communicator,
-                       const Scene &                             scene,
-                       const std::array<ElasticBody *, 2> &      bodies,
-                       const Parameters &                        parameters,
-                       const ConditionalOStream &                pcout);
+    ContactSolveDriver(const MPI_Comm                      mpi_communicator,
+                       const Scene                        &scene,
+                       const std::array<ElasticBody *, 2> &bodies,
+                       const Parameters                   &parameters,
+                       const ConditionalOStream           &pcout);
 
     /**
      * Solve the contact problem on the bodies' current (assembled) systems.
@@ -95,7 +95,7 @@ namespace coulomb_adapt
     /** A new solver with contact parameters @p c, from the initial gap or
      * from @p predicted_sets. */
     std::unique_ptr<ContactSolver>
-    new_solver(const parameters::Contact &          c,
+    new_solver(const parameters::Contact           &c,
                const std::vector<ContactNodeState> *predicted_sets) const;
     /** The restarts a static solve may take, in order. */
     std::vector<Restart>
@@ -104,21 +104,21 @@ namespace coulomb_adapt
      * @p predicted_sets and true, or false with the reason in @p record. */
     bool
     start_from_coarser_meshes(std::vector<ContactNodeState> &predicted_sets,
-                              NestedIterationRecord &        record) const;
+                              NestedIterationRecord         &record) const;
     /** The load steps of the scene, each restarted as @p restarts allow. */
     void
-    solve_load_steps(const std::vector<Restart> &         restarts,
+    solve_load_steps(const std::vector<Restart>          &restarts,
                      const std::vector<ContactNodeState> &predicted_sets,
-                     ContactSolveOutcome &                outcome) const;
+                     ContactSolveOutcome                 &outcome) const;
     /** Largest overlap and clearance of the initial gap. */
     void
     measure_initial_gap(ContactSolveOutcome &outcome) const;
 
     const MPI_Comm                     mpi_communicator;
-    const Scene &                      scene;
+    const Scene                       &scene;
     const std::array<ElasticBody *, 2> bodies;
-    const Parameters &                 parameters;
-    const ConditionalOStream &         pcout;
+    const Parameters                  &parameters;
+    const ConditionalOStream          &pcout;
   };
 } // namespace coulomb_adapt
 

@@ -25,9 +25,9 @@ namespace coulomb_adapt
   /** What a contact solve did, for the log and summary.json. */
   struct ContactSolverReport
   {
-    unsigned int        newton_iterations = 0;
-    bool                converged         = false;
-    unsigned int        n_active = 0, n_stick = 0, n_slip = 0;
+    unsigned int newton_iterations = 0;
+    bool         converged         = false;
+    unsigned int n_active = 0, n_stick = 0, n_slip = 0;
     /** Force of body 2 on body 1, sum of D_jj R_j (N/mm). */
     Tensor<1, 2>        contact_force;
     double              max_contact_pressure = 0;
@@ -35,14 +35,14 @@ namespace coulomb_adapt
     /** Round-off floor of the multipliers at the last Newton step
      * (residual_round_off_floor()); convergence accepts a residual up to
      * max(Contact/Tolerance, this). */
-    double              residual_round_off_floor = 0;
+    double residual_round_off_floor = 0;
     /** Krylov solves repeated with a tighter tolerance because unchanged
      * sets missed Contact/Tolerance (0 or 1). */
-    unsigned int        n_tighter_linear_solves = 0;
-    bool                frictionless = false;
+    unsigned int n_tighter_linear_solves = 0;
+    bool         frictionless            = false;
     /** The converged sets and body 1's Dirichlet data leave its rigid
      * rotation free: its displacement is fixed only up to it. */
-    bool                slave_rotation_free = false;
+    bool slave_rotation_free = false;
   };
 
   /**
@@ -74,11 +74,11 @@ namespace coulomb_adapt
   class ContactSolver : public ContactSolution
   {
   public:
-    ContactSolver(ElasticBody &                   slave,
-                  ElasticBody &                   master,
-                  const parameters::Contact &     contact_parameters,
+    ContactSolver(ElasticBody                    &slave,
+                  ElasticBody                    &master,
+                  const parameters::Contact      &contact_parameters,
                   const parameters::LinearSolver &solver_parameters,
-                  const ConditionalOStream &      pcout);
+                  const ConditionalOStream       &pcout);
 
     /** Solve one load step; the bodies' solutions are set. Throws with a
      * diagnosis when the iteration does not converge. The bodies' systems
@@ -161,8 +161,8 @@ namespace coulomb_adapt
               const SetChangeControl::SetUpdate &update,
               const double                       residual,
               const bool                         turning,
-              SetChangeControl &                 control,
-              ContactSolverReport &              report);
+              SetChangeControl                  &control,
+              ContactSolverReport               &report);
     /** The force balance of both bodies for the converged sets of step
      * @p k; throws the diagnosis if one does not balance. */
     void
@@ -187,11 +187,11 @@ namespace coulomb_adapt
     Tensor<1, 2>
     interface_tangent() const;
 
-    ElasticBody &                  slave;
-    ElasticBody &                  master;
+    ElasticBody                   &slave;
+    ElasticBody                   &master;
     const parameters::Contact      contact_parameters;
     const parameters::LinearSolver solver_parameters;
-    const ConditionalOStream &     pcout;
+    const ConditionalOStream      &pcout;
     const double                   mu;
 
     MortarInterface   mortar;
@@ -203,7 +203,7 @@ namespace coulomb_adapt
     FullMatrix<double> master_gram;
     /** Bound on the round-off of the nodal multipliers at the last
      * evaluation (MPa). */
-    double            multiplier_round_off = 0;
+    double multiplier_round_off = 0;
 
     /** Krylov + AMG: the Newton systems are solved with the contact
      * conditions eliminated; direct solves take the row-replacing
@@ -215,16 +215,16 @@ namespace coulomb_adapt
     LinearSolverReport                     last_linear_solve;
     /** rigid_body_modes() of this load step, for the AMG path; empty for
      * direct solves. */
-    std::vector<std::vector<double>>       near_null_space;
+    std::vector<std::vector<double>> near_null_space;
     /** Factor on the Krylov tolerance: 1, and 1e-2 when unchanged
      * sets miss the complementarity tolerance (ContactSolver::solve). */
-    double                                 linear_tolerance_factor = 1;
+    double linear_tolerance_factor = 1;
 
     std::vector<ContactNodeState> states;
     /** States of a previous mesh to start from (warm_start_from). */
     std::vector<ContactNodeState> warm_start_states;
     /** Weighted tangential jump at the end of the previous load step. */
-    std::vector<double>           previous_weighted_slip;
+    std::vector<double> previous_weighted_slip;
   };
 } // namespace coulomb_adapt
 

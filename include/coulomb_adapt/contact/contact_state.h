@@ -28,31 +28,31 @@ namespace coulomb_adapt
   /** The contact state at one slave node after the solve. */
   struct ContactNodeState
   {
-    Point<2>      position;
-    Tensor<1, 2>  normal;
-    Tensor<1, 2>  tangent;
+    Point<2>     position;
+    Tensor<1, 2> normal;
+    Tensor<1, 2> tangent;
     /** Mortar weight D_jj (mm). */
-    double        weight;
+    double weight;
     /** lambda_n = -R_n >= 0 (MPa). */
-    double        pressure;
+    double pressure;
     /** lambda_t = -R_t (MPa): the traction body 2 receives from body 1
      * along t; body 1 receives its opposite. */
-    double        tangential_traction;
+    double tangential_traction;
     /** Normal gap (mm), >= 0 when open. */
-    double        gap;
+    double gap;
     /** Tangential jump W_t = (u^1 - u^2) . t (mm). */
-    double        slip;
+    double slip;
     /** W_t gained in the last load step (mm): the slip of the static
      * problem, the increment of a quasi-static one (the slip of the
      * incremental Coulomb law and of its error indicator). */
-    double        slip_increment;
+    double slip_increment;
     /** Whether the master surface lies opposite the node (covers its
      * support); if not, the node cannot touch and gap/slip are not
      * defined (reported as 0). */
     bool          facing_master;
     ContactStatus status;
     /** Sign of the slip direction (slip nodes). */
-    int           slip_sign;
+    int slip_sign;
   };
 
   /**

@@ -21,7 +21,8 @@ namespace coulomb_adapt
 
   /**
    * The Newton system of one active-set step with the contact conditions
-   * eliminated, for Krylov + AMG solves (doc/contact.md section 2, "Linear solvers").
+   * eliminated, for Krylov + AMG solves (doc/contact.md section 2, "Linear
+   * solvers").
    *
    * The row-replacing system that the direct solver takes puts gap rows
    * (scaled D and M entries) and traction rows in place of the slave rows
@@ -57,9 +58,9 @@ namespace coulomb_adapt
      * @p condensation (body 2 shifted); once per mesh and load step.
      */
     void
-    reinit(const MortarInterface &  mortar,
-           const ElasticBody &      slave,
-           const ElasticBody &      master,
+    reinit(const MortarInterface   &mortar,
+           const ElasticBody       &slave,
+           const ElasticBody       &master,
            const SlaveCondensation &condensation) override;
 
     /**
@@ -85,8 +86,8 @@ namespace coulomb_adapt
      */
     LinearSolverReport
     solve(const std::vector<std::vector<double>> &near_null_space,
-          const parameters::LinearSolver &        settings,
-          TrilinosWrappers::MPI::Vector &         solution) override;
+          const parameters::LinearSolver         &settings,
+          TrilinosWrappers::MPI::Vector          &solution) override;
 
   private:
     IndexSet                       owned;
@@ -109,7 +110,7 @@ namespace coulomb_adapt
     std::vector<std::array<int, 3>> node_states;
     /** (weighted gap, weighted slip) of each owned slave node. */
     std::vector<std::array<double, 2>> node_data;
-    std::vector<std::array<int, 3>> states_at_build;
+    std::vector<std::array<int, 3>>    states_at_build;
     /** A stale hierarchy costs GMRES iterations roughly in proportion to
      * the nodes that changed, a new one its setup: reuse pays for a few
      * changed nodes only (measurements in doc/contact.md section 2). */

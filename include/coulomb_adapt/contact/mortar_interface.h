@@ -133,8 +133,8 @@ namespace coulomb_adapt
       /** Index into overlaps(). */
       unsigned int overlap;
       /** Parameters on the slave and master chords, in [0, 1]. */
-      double xi;
-      double eta;
+      double   xi;
+      double   eta;
       Point<2> slave_point;
       Point<2> master_point;
       /** Gauss weight times the slave chord length (mm). */
@@ -178,33 +178,32 @@ namespace coulomb_adapt
     /** The displacements at @p nodes (of either side) from a distributed
      * displacement vector, gathered on every rank. */
     static std::vector<Tensor<1, 2>>
-    gather_nodal_displacements(const std::vector<Node> &            nodes,
+    gather_nodal_displacements(const std::vector<Node>             &nodes,
                                const TrilinosWrappers::MPI::Vector &u);
 
   private:
-
     /** Returns the degree of the body's elements. */
     static unsigned int
-    collect_contact_boundary(const ElasticBody &   body,
-                             std::vector<Node> &   nodes,
+    collect_contact_boundary(const ElasticBody    &body,
+                             std::vector<Node>    &nodes,
                              std::vector<Segment> &segments);
 
     void
     integrate_segment_pair(const unsigned int slave_segment_index,
                            const unsigned int master_segment_index);
 
-    std::vector<Node>                       slave;
-    std::vector<Node>                       master;
-    std::vector<Segment>                    slave_segments;
-    std::vector<Segment>                    master_segments;
-    std::vector<double>                     D;
+    std::vector<Node>                           slave;
+    std::vector<Node>                           master;
+    std::vector<Segment>                        slave_segments;
+    std::vector<Segment>                        master_segments;
+    std::vector<double>                         D;
     std::vector<std::map<unsigned int, double>> M;
-    std::vector<double>                     gaps;
-    std::vector<Overlap>                    overlap_list;
-    unsigned int                            slave_degree  = 1;
-    unsigned int                            master_degree = 1;
+    std::vector<double>                         gaps;
+    std::vector<Overlap>                        overlap_list;
+    unsigned int                                slave_degree  = 1;
+    unsigned int                                master_degree = 1;
     /** Dual basis of the slave segments: psi_i = sum_k A_ik phi_k. */
-    FullMatrix<double>                      dual_coefficients;
+    FullMatrix<double> dual_coefficients;
   };
 } // namespace coulomb_adapt
 

@@ -42,14 +42,14 @@ namespace coulomb_adapt
    */
   std::vector<ContactNodeState>
   predict_contact_sets_on_coarser_meshes(
-    const MPI_Comm                    mpi_communicator,
-    const Scene &                     scene,
-    const CellType                    cell_type,
-    const unsigned int                fine_refinements,
-    const unsigned int                n_levels,
-    const parameters::FiniteElements &fe_parameters,
-    const parameters::Contact &       contact_parameters,
-    const parameters::LinearSolver &  solver_parameters,
+    const MPI_Comm                     mpi_communicator,
+    const Scene                       &scene,
+    const CellType                     cell_type,
+    const unsigned int                 fine_refinements,
+    const unsigned int                 n_levels,
+    const parameters::FiniteElements  &fe_parameters,
+    const parameters::Contact         &contact_parameters,
+    const parameters::LinearSolver    &solver_parameters,
     std::vector<NestedIterationLevel> &levels);
 } // namespace coulomb_adapt
 

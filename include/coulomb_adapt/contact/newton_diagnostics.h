@@ -30,11 +30,11 @@ namespace coulomb_adapt
      * Dirichlet data do: the system would be singular, and the static
      * problem has no solution. Throws the diagnosis if not. */
     void
-    check_support(const SlaveSupport &                 support,
+    check_support(const SlaveSupport                  &support,
                   const std::vector<ContactNodeState> &states,
                   const double                         friction_coefficient,
                   const unsigned int                   step,
-                  const std::string &                  body_name);
+                  const std::string                   &body_name);
 
     /** The Krylov solver of Newton step @p step did not converge. */
     ContactDiagnosis
@@ -61,32 +61,32 @@ namespace coulomb_adapt
     ContactDiagnosis
     cycling(const unsigned int                   step,
             const unsigned int                   repeated,
-            const std::vector<double> &          residual_history,
+            const std::vector<double>           &residual_history,
             const std::vector<ContactNodeState> &states,
-            const std::vector<unsigned int> &    changed,
+            const std::vector<unsigned int>     &changed,
             const unsigned int                   n_damping_steps,
             const bool                           iterative_solver_chosen);
 
     /** The iteration limit @p max_steps was reached. */
     ContactDiagnosis
     iteration_limit(const unsigned int                   max_steps,
-                    const std::vector<double> &          residual_history,
+                    const std::vector<double>           &residual_history,
                     const std::vector<ContactNodeState> &states,
-                    const std::vector<unsigned int> &    changed,
+                    const std::vector<unsigned int>     &changed,
                     const unsigned int                   n_turning_steps);
 
     /** The log line of Newton step @p step. @p linear_solve is given for
      * iterative solves (its iterations are shown). */
     void
-    log_newton_step(const ConditionalOStream &          pcout,
-                    const unsigned int                  step,
-                    const ContactSolverReport &         report,
-                    const double                        friction_coefficient,
-                    const SetChangeControl::SetUpdate & update,
-                    const double                        residual,
-                    const double                        assembly_time,
-                    const double                        solve_time,
-                    const LinearSolverReport *          linear_solve);
+    log_newton_step(const ConditionalOStream          &pcout,
+                    const unsigned int                 step,
+                    const ContactSolverReport         &report,
+                    const double                       friction_coefficient,
+                    const SetChangeControl::SetUpdate &update,
+                    const double                       residual,
+                    const double                       assembly_time,
+                    const double                       solve_time,
+                    const LinearSolverReport          *linear_solve);
 
     /** The notes on converged sets: body 1's rotation left free, or a
      * residual accepted within the round-off @p floor. */

@@ -33,9 +33,9 @@ namespace coulomb_adapt
   public:
     /** The sparsity pattern, which does not depend on the sets. */
     void
-    reinit(const MortarInterface &  mortar,
-           const ElasticBody &      slave,
-           const ElasticBody &      master,
+    reinit(const MortarInterface   &mortar,
+           const ElasticBody       &slave,
+           const ElasticBody       &master,
            const SlaveCondensation &condensation) override;
 
     void
@@ -43,8 +43,8 @@ namespace coulomb_adapt
 
     LinearSolverReport
     solve(const std::vector<std::vector<double>> &near_null_space,
-          const parameters::LinearSolver &        settings,
-          TrilinosWrappers::MPI::Vector &         solution) override;
+          const parameters::LinearSolver         &settings,
+          TrilinosWrappers::MPI::Vector          &solution) override;
 
   private:
     /** Body 1's rows away from the slave nodes, and body 2's rows with
@@ -57,12 +57,12 @@ namespace coulomb_adapt
     void
     add_row(const types::global_dof_index row, const double right_hand_side);
 
-    const ElasticBody *            slave        = nullptr;
-    const ElasticBody *            master       = nullptr;
-    const SlaveCondensation *      condensation = nullptr;
+    const ElasticBody       *slave        = nullptr;
+    const ElasticBody       *master       = nullptr;
+    const SlaveCondensation *condensation = nullptr;
     /** The gap rows are scaled like the rows of K^1 they replace: by
      * body 1's Young's modulus. */
-    double                         row_scale    = 1;
+    double                         row_scale = 1;
     TrilinosWrappers::SparseMatrix matrix;
     TrilinosWrappers::MPI::Vector  rhs;
     /** The row being built (add_row). */

@@ -43,12 +43,12 @@ namespace coulomb_adapt
   public:
     /** Acts on @p states and on the constants of @p rule (damping) during
      * one load step. */
-    SetChangeControl(ActiveSetRule &                rule,
+    SetChangeControl(ActiveSetRule                 &rule,
                      std::vector<ContactNodeState> &states,
-                     const std::vector<double> &    previous_weighted_slip,
-                     const SlaveSupport &           support,
+                     const std::vector<double>     &previous_weighted_slip,
+                     const SlaveSupport            &support,
                      const bool                     restriction_allowed,
-                     const ConditionalOStream &     pcout);
+                     const ConditionalOStream      &pcout);
 
     /** Newton step @p k is about to solve with the current sets. */
     void
@@ -58,11 +58,11 @@ namespace coulomb_adapt
     struct SetUpdate
     {
       /** Nodes the full rule changes. */
-      unsigned int              n_changed = 0;
+      unsigned int n_changed = 0;
       /** Of those, the nodes that keep their change (restricted). */
-      unsigned int              n_moved = 0;
+      unsigned int n_moved = 0;
       /** Nodes the full rule sends back to a status held before. */
-      unsigned int              n_reversed = 0;
+      unsigned int n_reversed = 0;
       /** Nodes whose sets differ from those of the step's solve. */
       std::vector<unsigned int> changed;
     };
@@ -101,29 +101,29 @@ namespace coulomb_adapt
     void
     keep_body_held();
 
-    ActiveSetRule &                rule;
+    ActiveSetRule                 &rule;
     std::vector<ContactNodeState> &states;
-    const std::vector<double> &    previous_weighted_slip;
-    const SlaveSupport &           support;
+    const std::vector<double>     &previous_weighted_slip;
+    const SlaveSupport            &support;
     const bool                     restriction_allowed;
-    const ConditionalOStream &     pcout;
+    const ConditionalOStream      &pcout;
 
     /** The sets of the steps since the start or the last damping. */
-    std::vector<std::string>      history;
+    std::vector<std::string> history;
     /** The states as the last step solved with them. */
     std::vector<ContactNodeState> states_before;
     /** For each node, the statuses (bits: open, stick, slip +, slip -) of
      * the sets that Newton steps 2, 3, ... solved with; the initial or
      * predicted sets of step 1 do not count. */
-    std::vector<unsigned char>    statuses_held;
+    std::vector<unsigned char> statuses_held;
 
-    unsigned int n_damping = 0;
-    bool         restricted     = false;
+    unsigned int n_damping  = 0;
+    bool         restricted = false;
     unsigned int best_changed;
     double       best_residual;
-    unsigned int n_stalled      = 0;
-    bool         was_reversing  = false;
-    unsigned int n_kept_stuck   = 0;
+    unsigned int n_stalled     = 0;
+    bool         was_reversing = false;
+    unsigned int n_kept_stuck  = 0;
 
     static constexpr unsigned int max_damping_steps   = 4;
     static constexpr unsigned int stagnation_window   = 4;

@@ -29,7 +29,8 @@ namespace coulomb_adapt
   {
   public:
     void
-    reinit(const ElasticBody &slave, const std::vector<ContactNodeState> &states);
+    reinit(const ElasticBody                   &slave,
+           const std::vector<ContactNodeState> &states);
 
     /** Whether body 1's Dirichlet data alone hold all its rigid motions. */
     bool

@@ -6,7 +6,8 @@
 
 namespace coulomb_adapt
 {
-  /** The a posteriori estimators of the program (`Error indicator/Estimator`). */
+  /** The a posteriori estimators of the program (`Error indicator/Estimator`).
+   */
   enum class ErrorEstimator
   {
     /** The seed's: global L2 projection of the corrected stress. */

@@ -97,12 +97,12 @@ namespace coulomb_adapt
     /** Subsection `Contact`. */
     struct Contact
     {
-      double       friction_coefficient;
+      double friction_coefficient;
       /** c_n = c_t = scale * E / h at each slave node (dimensionless). */
       double       complementarity_scale;
       unsigned int max_newton_iterations;
       /** Relative residual of the complementarity functions. */
-      double       tolerance;
+      double tolerance;
       /** Coarser meshes solved first for the initial sets (0: none). */
       unsigned int nested_iteration_levels;
       /** Nested iteration only for problems with more DoFs than this. */
@@ -120,15 +120,15 @@ namespace coulomb_adapt
       /** The estimator that drives the adaptation. */
       ErrorEstimator estimator;
       /** Compute all estimators on the same solution every cycle. */
-      bool         compare_estimators;
+      bool compare_estimators;
       /** k of the cre estimator's local problems (degree p + k). */
       unsigned int cre_degree_increase;
       /** Choose the equilibration's free parameters to minimise the cre
        * estimate (else: closest to the averaged traction). */
-      bool         cre_traction_optimisation;
+      bool cre_traction_optimisation;
       /** Compare with the exact error: the scene's exact solution if it
        * has one, else a reference solution on a finer mesh. */
-      bool         compute_exact_error;
+      bool compute_exact_error;
       /** Uniform refinements of the reference mesh beyond the current one. */
       unsigned int reference_refinements;
 
@@ -144,35 +144,35 @@ namespace coulomb_adapt
       /** "uniform": every cycle refines all cells once; "refine":
        * quadrilaterals refined and coarsened with hanging nodes; "remesh":
        * each body remeshed by gmsh from the optimal size field. */
-      std::string  strategy;
+      std::string strategy;
       /** Maximum number of solve cycles. */
       unsigned int n_cycles;
       /** Cycles run even if the target is met earlier. */
       unsigned int min_cycles;
       /** remesh: below this fraction of epsilon_0 a mesh is optimised
        * again rather than accepted (0: never). */
-      double       over_refinement_ratio;
+      double over_refinement_ratio;
       /** epsilon_0 as a fraction (the file gives percent); 0: no target. */
-      double       target_error;
+      double target_error;
       /** The optimal mesh is planned for this fraction of epsilon_0
        * (times the correction measured on the previous plans). */
-      double       target_safety_factor;
+      double target_safety_factor;
       /** No further cycle once a cycle has at least this many DoFs. */
-      double       max_dofs;
+      double max_dofs;
       /** For "refine": "size ratio", "fixed fraction", "fixed number" or
        * "optimize". */
-      std::string  refinement_criterion;
-      double       refine_fraction;
-      double       coarsen_fraction;
+      std::string refinement_criterion;
+      double      refine_fraction;
+      double      coarsen_fraction;
       /** Bounds of r_E = h*_E / h_E. */
-      double       min_size_ratio;
-      double       max_size_ratio;
+      double min_size_ratio;
+      double max_size_ratio;
       /** Local convergence rate q used in cells at singular points. */
-      double       singular_rate;
+      double singular_rate;
       /** Start Newton from the previous cycle's contact sets. */
-      bool         warm_start;
+      bool warm_start;
       /** gmsh's 2D algorithm for remesh: "frontal-delaunay", "delaunay". */
-      std::string  remeshing_algorithm;
+      std::string remeshing_algorithm;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -75,31 +75,33 @@ namespace coulomb_adapt
    * them, so the correction adds no rigid motion.
    */
   CorrectedContactSolution
-  correct_contact_solution(const ElasticBody &               slave,
-                           const ElasticBody &               master,
-                           const ContactSolution &           contact,
-                           const double                      friction_coefficient,
-                           const parameters::LinearSolver &  solver_parameters,
-                           const ContactLoadForm load_form = ContactLoadForm::mortar);
+  correct_contact_solution(
+    const ElasticBody              &slave,
+    const ElasticBody              &master,
+    const ContactSolution          &contact,
+    const double                    friction_coefficient,
+    const parameters::LinearSolver &solver_parameters,
+    const ContactLoadForm           load_form = ContactLoadForm::mortar);
 
   /** The same, for given nodal contact states on @p mortar (the
    * solver's, or modified ones in tests). */
   CorrectedContactSolution
-  correct_contact_solution(const ElasticBody &                  slave,
-                           const ElasticBody &                  master,
-                           const MortarInterface &              mortar,
-                           const std::vector<ContactNodeState> &states,
-                           const double                         friction_coefficient,
-                           const parameters::LinearSolver &     solver_parameters,
-                           const ContactLoadForm load_form = ContactLoadForm::mortar);
+  correct_contact_solution(
+    const ElasticBody                   &slave,
+    const ElasticBody                   &master,
+    const MortarInterface               &mortar,
+    const std::vector<ContactNodeState> &states,
+    const double                         friction_coefficient,
+    const parameters::LinearSolver      &solver_parameters,
+    const ContactLoadForm                load_form = ContactLoadForm::mortar);
 
   /** The contact traction on body 1, R = -lambda, at the points of
    * MortarInterface::overlap_quadrature(): the nodal values of @p fields
    * interpolated with the standard slave basis (body 2 carries -R at the
    * projected points). */
   std::vector<Tensor<1, 2>>
-  contact_traction_at(const MortarInterface &                      mortar,
-                      const std::vector<ContactNodeFields> &       fields,
+  contact_traction_at(const MortarInterface                            &mortar,
+                      const std::vector<ContactNodeFields>             &fields,
                       const std::vector<MortarInterface::OverlapPoint> &points);
 
   /** Gauss points per overlap for the consistent contact load and the

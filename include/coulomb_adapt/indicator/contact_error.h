@@ -58,9 +58,9 @@ namespace coulomb_adapt
    * same numbers and sum(epsilon_E^2) = epsilon^2 holds to round-off.
    */
   ContactErrorTerm
-  integrate_contact_error(const MortarInterface &              mortar,
+  integrate_contact_error(const MortarInterface                &mortar,
                           const std::vector<ContactNodeFields> &fields,
-                          const double                          friction_coefficient);
+                          const double friction_coefficient);
 } // namespace coulomb_adapt
 
 #endif

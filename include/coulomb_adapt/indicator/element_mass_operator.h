@@ -65,11 +65,11 @@ namespace coulomb_adapt
      * nodes): the operator is linear only then.
      */
     ElementMassOperator(
-      const DoFHandler<2> &                                     dofs,
-      const AffineConstraints<double> &                         constraints,
+      const DoFHandler<2>                                      &dofs,
+      const AffineConstraints<double>                          &constraints,
       const std::shared_ptr<const Utilities::MPI::Partitioner> &partitioner,
-      const FullMatrix<double> &                                shape_values,
-      const QuadratureStress &                                  weights);
+      const FullMatrix<double>                                 &shape_values,
+      const QuadratureStress                                   &weights);
 
     /** A vector with the locally owned and ghost entries of this space. */
     void
@@ -86,7 +86,7 @@ namespace coulomb_adapt
     /** dst = omega D^-1 src, block by block, with D the diagonal of the
      * operator: for deal.II's PreconditionJacobi. */
     void
-    precondition_Jacobi(BlockVectorType &      dst,
+    precondition_Jacobi(BlockVectorType       &dst,
                         const BlockVectorType &src,
                         const double           omega) const;
 
@@ -97,9 +97,9 @@ namespace coulomb_adapt
      * dst.compress(VectorOperation::add) after the last cell.
      */
     void
-    distribute_local_to_global(const unsigned int          cell,
+    distribute_local_to_global(const unsigned int             cell,
                                const ArrayView<const double> &cell_vector,
-                               VectorType &                dst) const;
+                               VectorType                    &dst) const;
 
   private:
     void
@@ -109,10 +109,10 @@ namespace coulomb_adapt
      * many as the element has, not known at compile time). */
     template <unsigned int n_static>
     void
-    apply_element_matrices(BlockVectorType &      dst,
+    apply_element_matrices(BlockVectorType       &dst,
                            const BlockVectorType &src) const;
 
-    const AffineConstraints<double> &                  constraints;
+    const AffineConstraints<double>                   &constraints;
     std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
     unsigned int                                       n_dofs_per_cell;
     /** Per owned cell, n_dofs_per_cell entries each: the DoFs as indices

@@ -27,7 +27,8 @@ namespace coulomb_adapt
   };
 
   /** The traction points of a body's contact boundary, by cell. */
-  using ContactTractionData = std::map<CellId, std::vector<BoundaryTractionPoint>>;
+  using ContactTractionData =
+    std::map<CellId, std::vector<BoundaryTractionPoint>>;
 
   /** The volume part of the CRE on one body (theory.md section 7). */
   struct EquilibratedStressErrors
@@ -83,12 +84,12 @@ namespace coulomb_adapt
    *    removed; sigma^ = K eps(u^).
    */
   EquilibratedStressErrors
-  equilibrated_stress_errors(const ElasticBody &                  body,
+  equilibrated_stress_errors(const ElasticBody                   &body,
                              const TrilinosWrappers::MPI::Vector &u_equilibrium,
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
-                             const ContactTractionData &          contact,
-                             const unsigned int                   degree_increase,
-                             const bool optimise_tractions = true);
+                             const ContactTractionData           &contact,
+                             const unsigned int degree_increase,
+                             const bool         optimise_tractions = true);
 } // namespace coulomb_adapt
 
 #endif

@@ -7,9 +7,9 @@
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/contact_state.h>
+#include <coulomb_adapt/core/error_estimator.h>
 #include <coulomb_adapt/indicator/contact_correction.h>
 #include <coulomb_adapt/indicator/contact_error.h>
-#include <coulomb_adapt/core/error_estimator.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 
 #include <array>
@@ -24,7 +24,7 @@ namespace coulomb_adapt
     double epsilon = 0;
     /** Its parts: epsilon^2 = sum_l epsilon_volume[l]^2 +
      * epsilon_contact^2. */
-    std::array<double, 2> epsilon_volume = {{0, 0}};
+    std::array<double, 2> epsilon_volume  = {{0, 0}};
     double                epsilon_contact = 0;
     /** D^2 = sum_l ||sigma~ + sigma_c||^2 (N per unit thickness). */
     double normalisation_squared = 0;
@@ -34,13 +34,13 @@ namespace coulomb_adapt
     std::array<Vector<float>, 2> density;
     /** e_E^2 = epsilon_E^2 D^2 per cell, unrounded, for the sums. */
     std::array<Vector<double>, 2> contribution_squared;
-    StressRecoveryMethod          recovery = StressRecoveryMethod::l2_projection;
+    StressRecoveryMethod recovery = StressRecoveryMethod::l2_projection;
     /** Which estimator computed it. */
-    ErrorEstimator                estimator = ErrorEstimator::zz;
+    ErrorEstimator estimator = ErrorEstimator::zz;
     /** cre only: the equilibration's defects (equilibrated_stress.h), the
      * larger of the two bodies'. */
-    double                        node_system_defect   = 0;
-    double                        local_problem_defect = 0;
+    double node_system_defect   = 0;
+    double local_problem_defect = 0;
     /** cre: the estimate with the classical edge tractions (closest to the
      * averaged traction), before its free parameters are optimised, and
      * the CG steps of that optimisation (0: not optimised). */
@@ -64,8 +64,8 @@ namespace coulomb_adapt
      * "error indicator: correction" (the corrected contact fields),
      * "error indicator: smoothing" (sigma_c at the quadrature points, the
      * stress space and the recovery; for cre "error indicator:
-     * equilibration") and "error indicator: contributions" (volume and contact terms, epsilon
-     * and epsilon_E). */
+     * equilibration") and "error indicator: contributions" (volume and contact
+     * terms, epsilon and epsilon_E). */
     TimerOutput *timer = nullptr;
     /** The seed's corrected solution of this same contact solution if
      * another estimator has already computed it (`Compare estimators`);
@@ -90,11 +90,11 @@ namespace coulomb_adapt
    */
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
-                 const ContactSolution *                   contact,
+                 const ContactSolution                    *contact,
                  const double                              friction_coefficient,
                  const StressRecoveryMethod                recovery,
-                 const parameters::LinearSolver &          solver_parameters,
-                 const ErrorEstimateOptions &options = {});
+                 const parameters::LinearSolver           &solver_parameters,
+                 const ErrorEstimateOptions               &options = {});
 
   /**
    * The estimator @p estimator (zz, spr or cre) for the current solution:
@@ -103,12 +103,12 @@ namespace coulomb_adapt
    */
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
-                 const ContactSolution *                   contact_solver,
+                 const ContactSolution                    *contact_solver,
                  const double                              friction_coefficient,
                  const ErrorEstimator                      estimator,
-                 const parameters::ErrorIndicator &        indicator_parameters,
-                 const parameters::LinearSolver &          solver_parameters,
-                 const ErrorEstimateOptions &options = {});
+                 const parameters::ErrorIndicator         &indicator_parameters,
+                 const parameters::LinearSolver           &solver_parameters,
+                 const ErrorEstimateOptions               &options = {});
 
   /**
    * The error in constitutive relation (theory.md section 7): the
@@ -124,12 +124,12 @@ namespace coulomb_adapt
    */
   ErrorEstimate
   estimate_error_cre(const std::array<const ElasticBody *, 2> &bodies,
-                     const ContactSolution *                   contact_solver,
-                     const double                              friction_coefficient,
-                     const unsigned int                        degree_increase,
-                     const bool                                optimise_tractions,
-                     const parameters::LinearSolver &          solver_parameters,
-                     const ErrorEstimateOptions &options = {});
+                     const ContactSolution                    *contact_solver,
+                     const double                    friction_coefficient,
+                     const unsigned int              degree_increase,
+                     const bool                      optimise_tractions,
+                     const parameters::LinearSolver &solver_parameters,
+                     const ErrorEstimateOptions     &options = {});
 
   /** The common end of every estimator: the contact term added to the
    * contact cells of each side (the factor 2 of (3-10)), the seed's
@@ -140,7 +140,7 @@ namespace coulomb_adapt
   finish_error_estimate(const std::array<const ElasticBody *, 2> &bodies,
                         const std::array<double, 2> &volume_squared,
                         const double                 normalisation_squared,
-                        ErrorEstimate &              estimate);
+                        ErrorEstimate               &estimate);
 
   /** For a per-cell quantity on the boundary (the contact term): the
    * locally owned boundary cells' CellId and active index. Interior cells

@@ -23,7 +23,8 @@ namespace coulomb_adapt
     /** sigma at @p points of body @p b (collective: every rank calls it,
      * with its own points). */
     virtual std::vector<SymmetricTensor<2, 2>>
-    stresses(const unsigned int b, const std::vector<Point<2>> &points) const = 0;
+    stresses(const unsigned int           b,
+             const std::vector<Point<2>> &points) const = 0;
 
     /** Subdivisions per direction of the quadrature of a cell of the
      * judged meshes, so that a piecewise reference field is integrated on
@@ -42,7 +43,8 @@ namespace coulomb_adapt
   public:
     ExactSolutionStress(const std::array<const ElasticBody *, 2> &bodies);
     std::vector<SymmetricTensor<2, 2>>
-    stresses(const unsigned int b, const std::vector<Point<2>> &points) const override;
+    stresses(const unsigned int           b,
+             const std::vector<Point<2>> &points) const override;
     unsigned int
     quadrature_subdivisions() const override;
     std::string
@@ -64,15 +66,15 @@ namespace coulomb_adapt
    */
   std::unique_ptr<ElasticBody>
   make_refined_body(const ElasticBody &judged,
-                    const Scene &      scene,
+                    const Scene       &scene,
                     const unsigned int body_index,
-                    const Parameters & parameters,
+                    const Parameters  &parameters,
                     const unsigned int refinements);
 
   /** The strain energy U = 1/2 int sigma : epsilon of the displacement
    * @p displacement (with ghost entries) of @p body. */
   double
-  strain_energy(const ElasticBody &                  body,
+  strain_energy(const ElasticBody                   &body,
                 const TrilinosWrappers::MPI::Vector &displacement);
 
   /**
@@ -93,14 +95,15 @@ namespace coulomb_adapt
   class ReferenceSolutionStress : public ReferenceStress
   {
   public:
-    ReferenceSolutionStress(const Scene &                             scene,
-                            const Parameters &                        parameters,
+    ReferenceSolutionStress(const Scene      &scene,
+                            const Parameters &parameters,
                             const std::array<const ElasticBody *, 2> &judged,
                             const unsigned int refinements,
                             const bool         estimate_own_error = true);
     ~ReferenceSolutionStress() override;
     std::vector<SymmetricTensor<2, 2>>
-    stresses(const unsigned int b, const std::vector<Point<2>> &points) const override;
+    stresses(const unsigned int           b,
+             const std::vector<Point<2>> &points) const override;
     /** 2^refinements: the judged cells' pieces. */
     unsigned int
     quadrature_subdivisions() const override;
@@ -132,9 +135,9 @@ namespace coulomb_adapt
     unsigned int                                refinements;
     std::array<std::unique_ptr<ElasticBody>, 2> bodies;
     unsigned int                                n_newton_iterations = 0;
-    std::array<double, 2>                       energies = {{0, 0}};
-    double                                      epsilon_own = 0;
-    double                                      epsilon_own_energy = 0;
+    std::array<double, 2>                       energies            = {{0, 0}};
+    double                                      epsilon_own         = 0;
+    double                                      epsilon_own_energy  = 0;
   };
 
   /** The stress difference of displacement fields on the judged meshes and
@@ -155,16 +158,17 @@ namespace coulomb_adapt
    * @p subdivisions pieces. Collective. */
   StressDifference
   compare_stresses(
-    const std::array<const ElasticBody *, 2> &                  bodies,
+    const std::array<const ElasticBody *, 2>                   &bodies,
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
-    const ReferenceStress &                                     reference,
+    const ReferenceStress                                      &reference,
     const unsigned int                                          subdivisions);
 
   /** The exact error of a solution and the effectivity of its estimate. */
   struct ExactErrorComparison
   {
     /** (3-8) normalised like (3-13), with sigma~ replaced by the reference:
-     * sqrt((sum ||sigma - sigma_c||^2 + 2 int c) / sum ||sigma + sigma_c||^2). */
+     * sqrt((sum ||sigma - sigma_c||^2 + 2 int c) / sum ||sigma + sigma_c||^2).
+     */
     double epsilon_exact = 0;
     /** epsilon / epsilon_exact. */
     double effectivity = 0;
@@ -180,8 +184,8 @@ namespace coulomb_adapt
 
   ExactErrorComparison
   compare_with_exact_error(const std::array<const ElasticBody *, 2> &bodies,
-                           const ErrorEstimate &                     estimate,
-                           const ReferenceStress &                   reference);
+                           const ErrorEstimate                      &estimate,
+                           const ReferenceStress                    &reference);
 } // namespace coulomb_adapt
 
 #endif

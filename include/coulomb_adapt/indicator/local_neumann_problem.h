@@ -43,7 +43,7 @@ namespace coulomb_adapt
      * quadrature points: the FE stress the errors are measured against. */
     void
     reinit(const DoFHandler<2>::active_cell_iterator &cell,
-           const TrilinosWrappers::MPI::Vector &      u_kinematic);
+           const TrilinosWrappers::MPI::Vector       &u_kinematic);
 
     /** Number of coefficients of a solution (x block, then y block). */
     unsigned int
@@ -62,9 +62,9 @@ namespace coulomb_adapt
     /** Add the work of the traction @p t at @p x with weight @p w to
      * @p load, on the components marked in @p components. */
     void
-    add_traction(Vector<double> &           load,
-                 const Point<2> &           x,
-                 const Tensor<1, 2> &       t,
+    add_traction(Vector<double>            &load,
+                 const Point<2>            &x,
+                 const Tensor<1, 2>        &t,
                  const double               w,
                  const std::array<bool, 2> &components) const;
 
@@ -90,26 +90,26 @@ namespace coulomb_adapt
     void
     evaluate(const Point<2> &x) const;
 
-    const ElasticBody &                        body;
-    const unsigned int                         degree;
-    std::vector<std::array<unsigned int, 2>>   exponents;
-    std::unique_ptr<Quadrature<2>>             cell_rule;
-    std::unique_ptr<FEValues<2>>               fe_values;
-    Point<2>                                   centre;
-    double                                     h = 1;
+    const ElasticBody                       &body;
+    const unsigned int                       degree;
+    std::vector<std::array<unsigned int, 2>> exponents;
+    std::unique_ptr<Quadrature<2>>           cell_rule;
+    std::unique_ptr<FEValues<2>>             fe_values;
+    Point<2>                                 centre;
+    double                                   h = 1;
     // Scratch of evaluate().
-    mutable std::vector<double>                values;
-    mutable std::vector<Tensor<1, 2>>          gradients;
+    mutable std::vector<double>       values;
+    mutable std::vector<Tensor<1, 2>> gradients;
     // Per quadrature point: the monomials' gradients, JxW, sigma_c.
-    std::vector<std::vector<Tensor<1, 2>>>     gradients_at;
-    std::vector<double>                        JxW;
-    std::vector<SymmetricTensor<2, 2>>         sigma_c;
+    std::vector<std::vector<Tensor<1, 2>>> gradients_at;
+    std::vector<double>                    JxW;
+    std::vector<SymmetricTensor<2, 2>>     sigma_c;
     // The stiffness matrix, the Cholesky factor of it with the rigid
     // motions penalised, the body force load and the work of sigma_c on
     // each basis function.
-    FullMatrix<double>                         stiffness, factor;
-    Vector<double>                             body_force, sigma_c_work;
-    std::array<std::vector<double>, 3>         rigid;
+    FullMatrix<double>                 stiffness, factor;
+    Vector<double>                     body_force, sigma_c_work;
+    std::array<std::vector<double>, 3> rigid;
   };
 } // namespace coulomb_adapt
 

@@ -55,14 +55,14 @@ namespace coulomb_adapt
   public:
     /** Evaluate on @p body's current mesh for @p displacement (a ghosted
      * vector of the body's displacement space). Keeps references to both. */
-    QuadratureStress(const ElasticBody &                  body,
+    QuadratureStress(const ElasticBody                   &body,
                      const TrilinosWrappers::MPI::Vector &displacement);
     /** The same at the points of @p quadrature instead (SPR samples the
      * Gauss points of order p), with the points' positions if
      * @p with_points. */
-    QuadratureStress(const ElasticBody &                  body,
+    QuadratureStress(const ElasticBody                   &body,
                      const TrilinosWrappers::MPI::Vector &displacement,
-                     const Quadrature<2> &                quadrature,
+                     const Quadrature<2>                 &quadrature,
                      const bool                           with_points);
     /** The reference kept to the displacement must not dangle. */
     QuadratureStress(const ElasticBody &,
@@ -70,7 +70,7 @@ namespace coulomb_adapt
     QuadratureStress(const ElasticBody &,
                      TrilinosWrappers::MPI::Vector &&,
                      const Quadrature<2> &,
-                     const bool) = delete;
+                     const bool)                       = delete;
 
     const ElasticBody &
     body() const;
@@ -101,7 +101,7 @@ namespace coulomb_adapt
     point(const unsigned int cell, const unsigned int q) const;
 
   private:
-    const ElasticBody &                  body_;
+    const ElasticBody                   &body_;
     const TrilinosWrappers::MPI::Vector &displacement_;
     unsigned int                         n_points_;
     std::vector<Tensor<1, 3>>            stresses;

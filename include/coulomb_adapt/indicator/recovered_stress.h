@@ -65,7 +65,7 @@ namespace coulomb_adapt
      * holds; SPR samples K eps(u) of its displacement at its own points
      * (the Gauss points of order p). */
     void
-    recover(const QuadratureStress &raw_stress,
+    recover(const QuadratureStress    &raw_stress,
             const StressRecoveryMethod method);
 
     /** The scalar space that each component lives in. */
@@ -90,13 +90,13 @@ namespace coulomb_adapt
     void
     recover_spr(const TrilinosWrappers::MPI::Vector &displacement);
 
-    const ElasticBody &                          body;
+    const ElasticBody &body;
     /** The scalar base element of the body's displacement space. */
-    const FiniteElement<2> &                     fe;
-    DoFHandler<2>                                dofs;
-    IndexSet                                     owned_dofs;
-    IndexSet                                     relevant_dofs;
-    AffineConstraints<double>                    constraints;
+    const FiniteElement<2>   &fe;
+    DoFHandler<2>             dofs;
+    IndexSet                  owned_dofs;
+    IndexSet                  relevant_dofs;
+    AffineConstraints<double> constraints;
     /** Owned and ghost (locally relevant) entries of the components. */
     std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
     std::array<VectorType, 3>                          components;

@@ -102,10 +102,10 @@ namespace coulomb_adapt
     // The least-squares polynomial of one patch.
     struct PatchFit
     {
-      Point<2>     centre;
-      bool         is_centre = false;
-      bool         has_fit   = false;
-      unsigned int degree    = 0;
+      Point<2>                                  centre;
+      bool                                      is_centre = false;
+      bool                                      has_fit   = false;
+      unsigned int                              degree    = 0;
       std::array<Tensor<1, 3>, max_n_monomials> coefficients;
 
       Tensor<1, 3>
@@ -126,9 +126,9 @@ namespace coulomb_adapt
      * the patch's sampling points determine (spr_patch_fit.cc says how). */
     PatchFit
     fit_patch(const std::vector<double> &entries,
-              const PatchLayout &        layout,
+              const PatchLayout         &layout,
               const unsigned int         degree,
-              const Point<2> &           centre);
+              const Point<2>            &centre);
   } // namespace spr
 } // namespace coulomb_adapt
 

@@ -17,8 +17,8 @@ namespace coulomb_adapt
   /** The indicator's fields of a body, when it was computed. */
   struct BodyErrorFields
   {
-    const Vector<float> *  indicator = nullptr;
-    const Vector<float> *  density   = nullptr;
+    const Vector<float>   *indicator = nullptr;
+    const Vector<float>   *density   = nullptr;
     const RecoveredStress *recovered = nullptr;
   };
 
@@ -37,8 +37,8 @@ namespace coulomb_adapt
                const std::string &format);
 
     void
-    write(const ElasticBody & body,
-          const unsigned int  cycle,
+    write(const ElasticBody     &body,
+          const unsigned int     cycle,
           const BodyErrorFields &error_fields = BodyErrorFields());
 
   private:

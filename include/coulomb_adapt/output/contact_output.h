@@ -32,7 +32,7 @@ namespace coulomb_adapt
      * the density of the indicator's contact term. */
     void
     write(const std::vector<ContactNodeState> &states,
-          const std::vector<double> &          contact_error_density,
+          const std::vector<double>           &contact_error_density,
           const unsigned int                   cycle,
           const bool                           write_fields);
 

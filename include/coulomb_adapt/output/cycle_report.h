@@ -41,10 +41,10 @@ namespace coulomb_adapt
      * cycle's record. */
     CycleReport(const MPI_Comm            mpi_communicator,
                 const ConditionalOStream &pcout,
-                const TimerOutput &       timer,
-                const std::string &       summary_file,
-                const std::string &       scene,
-                const std::string &       parameter_file);
+                const TimerOutput        &timer,
+                const std::string        &summary_file,
+                const std::string        &scene,
+                const std::string        &parameter_file);
 
     /** A top-level entry of summary.json (not per cycle). */
     void
@@ -57,7 +57,7 @@ namespace coulomb_adapt
     /** The adaptation that makes the meshes of this cycle (logged when it
      * is done, recorded with the meshes it made). */
     void
-    record_mesh_adaptation(const MeshAdaptationReport &  report,
+    record_mesh_adaptation(const MeshAdaptationReport   &report,
                            const parameters::Adaptation &parameters,
                            const unsigned int            degree,
                            const double                  calibration);
@@ -66,8 +66,8 @@ namespace coulomb_adapt
      * made them (null on the first cycle). */
     void
     record_meshes(const std::array<const ElasticBody *, 2> &bodies,
-                  const std::string &                       strategy,
-                  const MeshAdaptationReport *              last_adaptation,
+                  const std::string                        &strategy,
+                  const MeshAdaptationReport               *last_adaptation,
                   const double                              calibration);
 
     /** Both bodies' DoFs in this cycle (after record_meshes()). */
@@ -79,14 +79,14 @@ namespace coulomb_adapt
 
     /** One body solved on its own (no contact interface). */
     void
-    record_linear_solve(const ElasticBody &       body,
+    record_linear_solve(const ElasticBody        &body,
                         const LinearSolverReport &report,
                         const double              wall_time);
 
     /** The driving estimate and the compared ones ('Compare
      * estimators'). */
     void
-    record_error_estimate(const ErrorEstimate &                     estimate,
+    record_error_estimate(const ErrorEstimate                      &estimate,
                           const std::vector<const ErrorEstimate *> &compared,
                           const unsigned int cre_degree_increase);
 
@@ -116,7 +116,7 @@ namespace coulomb_adapt
     /** Body @p b's error against its exact displacement. */
     void
     record_body_error(const unsigned int      b,
-                      const ElasticBody &     body,
+                      const ElasticBody      &body,
                       const ElasticityErrors &errors);
 
     void
@@ -142,7 +142,7 @@ namespace coulomb_adapt
 
     const MPI_Comm            mpi_communicator;
     const ConditionalOStream &pcout;
-    const TimerOutput &       timer;
+    const TimerOutput        &timer;
     RunSummary                summary;
 
     unsigned int                  cycle = 0;

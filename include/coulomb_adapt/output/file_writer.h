@@ -25,8 +25,8 @@ namespace coulomb_adapt
    * that no rank waits for another that has given up.
    */
   void
-  write_file(const MPI_Comm                            comm,
-             const std::string &                       path,
+  write_file(const MPI_Comm                             comm,
+             const std::string                         &path,
              const std::function<void(std::ostream &)> &write);
 
   /**
@@ -39,11 +39,11 @@ namespace coulomb_adapt
    * to @p directory, for a .pvd).
    */
   std::string
-  write_vtu_with_pvtu_record(const MPI_Comm                comm,
+  write_vtu_with_pvtu_record(const MPI_Comm                        comm,
                              const dealii::DataOutInterface<2, 2> &data_out,
-                             const std::string &           directory,
-                             const std::string &           base_name,
-                             const unsigned int            cycle);
+                             const std::string                    &directory,
+                             const std::string                    &base_name,
+                             const unsigned int                    cycle);
 
   /**
    * Write the HDF5 file @p path through @p write, which every rank of
@@ -55,7 +55,7 @@ namespace coulomb_adapt
    */
   void
   write_hdf5_file(const MPI_Comm                                  comm,
-                  const std::string &                             path,
+                  const std::string                              &path,
                   const std::function<void(const std::string &)> &write);
 
   /**
@@ -66,8 +66,8 @@ namespace coulomb_adapt
   dealii::XDMFEntry
   write_hdf5(const MPI_Comm                        comm,
              const dealii::DataOutInterface<2, 2> &data_out,
-             const std::string &                   directory,
-             const std::string &                   file_name,
+             const std::string                    &directory,
+             const std::string                    &file_name,
              const double                          time);
 
   /**
@@ -78,9 +78,9 @@ namespace coulomb_adapt
    */
   void
   write_xdmf_file(const MPI_Comm                        comm,
-                  const std::string &                   path,
+                  const std::string                    &path,
                   const std::vector<dealii::XDMFEntry> &entries,
-                  const dealii::ReferenceCell &         cell_type);
+                  const dealii::ReferenceCell          &cell_type);
 } // namespace coulomb_adapt
 
 #endif

@@ -28,17 +28,17 @@ namespace coulomb_adapt
       void
       create_coarse_mesh(const unsigned int body,
                          const CellType     cell_type,
-                         Triangulation<2> & tria) const override;
+                         Triangulation<2>  &tria) const override;
 
       BodyDescription
       describe_body(const unsigned int body) const override;
 
     private:
-      std::vector<unsigned int> upper_subdivisions;
-      std::vector<unsigned int> lower_subdivisions;
-      double                    pressure;
-      bool                      hold_centre_line;
-      std::array<MaterialConstants, 2>         materials;
+      std::vector<unsigned int>        upper_subdivisions;
+      std::vector<unsigned int>        lower_subdivisions;
+      double                           pressure;
+      bool                             hold_centre_line;
+      std::array<MaterialConstants, 2> materials;
     };
   } // namespace scenes
 } // namespace coulomb_adapt

@@ -39,7 +39,7 @@ namespace coulomb_adapt
     std::vector<std::vector<std::size_t>>
     elements_of_entities(const int               dim,
                          const std::vector<int> &entities,
-                         const std::string &     file_name);
+                         const std::string      &file_name);
   } // namespace gmsh_model
 } // namespace coulomb_adapt
 

@@ -45,13 +45,12 @@ namespace coulomb_adapt
    * kept. @p file_name is for messages.
    */
   CoarseMeshData
-  build_body_mesh(
-    const std::vector<std::vector<std::size_t>> &elements,
-    const std::map<std::size_t, Point<2>> &      all_nodes,
-    const std::map<types::boundary_id, std::vector<std::vector<std::size_t>>>
-      &                      lines,
-    const types::material_id material_id,
-    const std::string &      file_name);
+  build_body_mesh(const std::vector<std::vector<std::size_t>> &elements,
+                  const std::map<std::size_t, Point<2>>       &all_nodes,
+                  const std::map<types::boundary_id,
+                                 std::vector<std::vector<std::size_t>>> &lines,
+                  const types::material_id material_id,
+                  const std::string       &file_name);
 
   /**
    * The physical groups of a gmsh file that the gmsh scene uses, and what
@@ -96,7 +95,8 @@ namespace coulomb_adapt
   {
     std::array<CoarseMeshData, 2> meshes;
     /** The condition groups on the lines of each boundary id. */
-    std::map<types::boundary_id, std::vector<std::string>> groups_of_boundary_id;
+    std::map<types::boundary_id, std::vector<std::string>>
+      groups_of_boundary_id;
 
     /** A node of a physical point group, in one body's mesh. */
     struct PointSupport
@@ -141,7 +141,7 @@ namespace coulomb_adapt
    * body 2, a 3D mesh or nodes off the x-y plane.
    */
   TwoBodyGmshMeshes
-  read_two_body_gmsh_geometry(const std::string & file_name,
+  read_two_body_gmsh_geometry(const std::string  &file_name,
                               const CellType      requested_cell_type,
                               const double        mesh_size_factor,
                               const GmshGroupUse &use,

@@ -38,9 +38,9 @@ namespace coulomb_adapt
        * @p parameters: the cell type, degree and global refinements of the
        * first meshes, and the DoF limit they must keep to (a `Contact mesh
        * size` whose meshes would exceed it is refused before meshing). */
-      Hertz(ParameterHandler & prm,
-            const Parameters & parameters,
-            const bool         cattaneo = false);
+      Hertz(ParameterHandler &prm,
+            const Parameters &parameters,
+            const bool        cattaneo = false);
 
       std::string
       name() const override;
@@ -48,11 +48,11 @@ namespace coulomb_adapt
       void
       create_coarse_mesh(const unsigned int body,
                          const CellType     cell_type,
-                         Triangulation<2> & tria) const override;
+                         Triangulation<2>  &tria) const override;
 
       void
       refine_initial_mesh(const unsigned int body,
-                          Triangulation<2> & tria) const override;
+                          Triangulation<2>  &tria) const override;
 
       BodyDescription
       describe_body(const unsigned int body) const override;
@@ -91,21 +91,21 @@ namespace coulomb_adapt
       triangle_meshes() const;
 
       mutable std::shared_ptr<std::array<CoarseMeshData, 2>> gmsh_meshes;
-      double                    radius;
-      double                    line_load;
-      bool                      hold_axis;
-      bool                      cattaneo;
-      double                    normal_displacement;
-      double                    tangential_displacement;
-      unsigned int              n_tangential_steps;
+      double                                                 radius;
+      double                                                 line_load;
+      bool                                                   hold_axis;
+      bool                                                   cattaneo;
+      double       normal_displacement;
+      double       tangential_displacement;
+      unsigned int n_tangential_steps;
       /** Fraction of the tangential displacement applied in this step. */
-      mutable double            tangential_fraction = 0;
-      double                    block_width, block_height;
-      std::vector<unsigned int> block_subdivisions;
-      double                    contact_mesh_factor;
-      double                    refined_zone_factor;
-      PlaneModel                plane_model;
-      std::array<MaterialConstants, 2>         materials;
+      mutable double                   tangential_fraction = 0;
+      double                           block_width, block_height;
+      std::vector<unsigned int>        block_subdivisions;
+      double                           contact_mesh_factor;
+      double                           refined_zone_factor;
+      PlaneModel                       plane_model;
+      std::array<MaterialConstants, 2> materials;
     };
   } // namespace scenes
 } // namespace coulomb_adapt

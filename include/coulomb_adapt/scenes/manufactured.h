@@ -11,7 +11,8 @@ namespace coulomb_adapt
     /**
      * The smooth displacement field used for verification,
      *
-     *   u = A (sin kx cos ky, cos kx sin ky) + B (sin kx cos ky, -cos kx sin ky)
+     *   u = A (sin kx cos ky, cos kx sin ky) + B (sin kx cos ky, -cos kx sin
+     * ky)
      *
      * with k = pi: a gradient part (A) and a divergence-free part (B), so
      * that the body force -div sigma(u) = 2k^2 [(lambda + 2 mu) A u_A +
@@ -64,15 +65,15 @@ namespace coulomb_adapt
       void
       create_coarse_mesh(const unsigned int body,
                          const CellType     cell_type,
-                         Triangulation<2> & tria) const override;
+                         Triangulation<2>  &tria) const override;
 
       BodyDescription
       describe_body(const unsigned int body) const override;
 
     private:
-      std::vector<unsigned int>                  subdivisions[2];
-      std::array<MaterialConstants, 2>                          materials;
-      PlaneModel                                 plane_model;
+      std::vector<unsigned int>                 subdivisions[2];
+      std::array<MaterialConstants, 2>          materials;
+      PlaneModel                                plane_model;
       std::shared_ptr<ManufacturedDisplacement> exact;
     };
   } // namespace scenes

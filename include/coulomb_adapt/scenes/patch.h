@@ -28,19 +28,19 @@ namespace coulomb_adapt
       void
       create_coarse_mesh(const unsigned int body,
                          const CellType     cell_type,
-                         Triangulation<2> & tria) const override;
+                         Triangulation<2>  &tria) const override;
 
       BodyDescription
       describe_body(const unsigned int body) const override;
 
     private:
-      double                    width;
-      double                    heights[2];
-      std::vector<unsigned int> subdivisions[2];
-      double                    pressure;
-      bool                      hold_upper_body;
-      double                    shear_traction;
-      std::array<MaterialConstants, 2>         materials;
+      double                           width;
+      double                           heights[2];
+      std::vector<unsigned int>        subdivisions[2];
+      double                           pressure;
+      bool                             hold_upper_body;
+      double                           shear_traction;
+      std::array<MaterialConstants, 2> materials;
     };
   } // namespace scenes
 } // namespace coulomb_adapt

@@ -27,18 +27,18 @@ namespace coulomb_adapt
       void
       create_coarse_mesh(const unsigned int body,
                          const CellType     cell_type,
-                         Triangulation<2> & tria) const override;
+                         Triangulation<2>  &tria) const override;
 
       BodyDescription
       describe_body(const unsigned int body) const override;
 
     private:
-      double                    punch_width, punch_height;
-      double                    block_width, block_height;
-      std::vector<unsigned int> subdivisions[2];
-      double                    pressure;
-      bool                      hold_centre_line;
-      std::array<MaterialConstants, 2>         materials;
+      double                           punch_width, punch_height;
+      double                           block_width, block_height;
+      std::vector<unsigned int>        subdivisions[2];
+      double                           pressure;
+      bool                             hold_centre_line;
+      std::array<MaterialConstants, 2> materials;
     };
   } // namespace scenes
 } // namespace coulomb_adapt

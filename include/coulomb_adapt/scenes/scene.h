@@ -46,9 +46,9 @@ namespace coulomb_adapt
    * the boundary faces with id @p boundary_id. */
   struct DirichletCondition
   {
-    types::boundary_id                    boundary_id;
-    ComponentMask                         components;
-    std::shared_ptr<const Function<2>>    displacement;
+    types::boundary_id                 boundary_id;
+    ComponentMask                      components;
+    std::shared_ptr<const Function<2>> displacement;
   };
 
   /** Zero displacement of the components in @p components at every DoF
@@ -77,11 +77,11 @@ namespace coulomb_adapt
    */
   struct BodyDescription
   {
-    std::string                    name;
-    MaterialConstants              material;
+    std::string                     name;
+    MaterialConstants               material;
     std::vector<DirichletCondition> dirichlet;
-    std::vector<PointConstraint>  point_constraints;
-    std::vector<TractionCondition> tractions;
+    std::vector<PointConstraint>    point_constraints;
+    std::vector<TractionCondition>  tractions;
     /** Body force per unit volume (N/mm^3); empty means none. */
     std::function<Tensor<1, 2>(const Point<2> &)> body_force;
     /** Boundary id of the candidate contact zone. */
@@ -119,9 +119,9 @@ namespace coulomb_adapt
      * boundary ids and manifolds set. @p cell_type is a request: scenes
      * read from files keep the file's cells. */
     virtual void
-    create_coarse_mesh(const unsigned int  body,
-                       const CellType      cell_type,
-                       Triangulation<2> &  tria) const = 0;
+    create_coarse_mesh(const unsigned int body,
+                       const CellType     cell_type,
+                       Triangulation<2>  &tria) const = 0;
 
     /** Local refinement the scene wants before the first solve, applied to
      * quadrilateral meshes before the global refinements (e.g. towards the

@@ -20,10 +20,10 @@ namespace coulomb_adapt
   namespace boundary_ids
   {
     constexpr types::boundary_id traction_free = 0;
-    constexpr types::boundary_id contact   = 1;
-    constexpr types::boundary_id dirichlet = 2;
-    constexpr types::boundary_id traction  = 3;
-    constexpr types::boundary_id roller    = 4;
+    constexpr types::boundary_id contact       = 1;
+    constexpr types::boundary_id dirichlet     = 2;
+    constexpr types::boundary_id traction      = 3;
+    constexpr types::boundary_id roller        = 4;
   } // namespace boundary_ids
 
   /**
@@ -33,19 +33,19 @@ namespace coulomb_adapt
    * boundary ids of the left, right, bottom and top sides.
    */
   void
-  make_rectangle(Triangulation<2> &                      tria,
-                 const Point<2> &                        p1,
-                 const Point<2> &                        p2,
-                 const std::vector<unsigned int> &       subdivisions,
+  make_rectangle(Triangulation<2>                        &tria,
+                 const Point<2>                          &p1,
+                 const Point<2>                          &p2,
+                 const std::vector<unsigned int>         &subdivisions,
                  const std::array<types::boundary_id, 4> &side_ids,
-                 const CellType                          cell_type);
+                 const CellType                           cell_type);
 
   /**
    * Read "nx, ny" from entry @p entry of the current subsection: two
    * positive integers, or a ParameterError naming @p path.
    */
   std::vector<unsigned int>
-  get_subdivisions(ParameterHandler & prm,
+  get_subdivisions(ParameterHandler  &prm,
                    const std::string &entry,
                    const std::string &path);
 
@@ -56,7 +56,7 @@ namespace coulomb_adapt
    */
   void
   refine_towards_point(Triangulation<2> &tria,
-                       const Point<2> &  point,
+                       const Point<2>   &point,
                        const double      radius,
                        const double      target_size);
 } // namespace coulomb_adapt

@@ -41,11 +41,11 @@ namespace coulomb_adapt
    * Failure to converge throws with the residual reached.
    */
   LinearSolverReport
-  solve_linear_system(const TrilinosWrappers::SparseMatrix &  A,
-                      TrilinosWrappers::MPI::Vector &         x,
-                      const TrilinosWrappers::MPI::Vector &   b,
+  solve_linear_system(const TrilinosWrappers::SparseMatrix   &A,
+                      TrilinosWrappers::MPI::Vector          &x,
+                      const TrilinosWrappers::MPI::Vector    &b,
                       const std::vector<std::vector<double>> &near_null_space,
-                      const parameters::LinearSolver &        settings,
+                      const parameters::LinearSolver         &settings,
                       const bool                              symmetric = true);
 
   /**
@@ -58,7 +58,7 @@ namespace coulomb_adapt
   struct ElasticityAMG
   {
     void
-    initialize(const TrilinosWrappers::SparseMatrix &  A,
+    initialize(const TrilinosWrappers::SparseMatrix   &A,
                const std::vector<std::vector<double>> &near_null_space);
 
     TrilinosWrappers::PreconditionAMG preconditioner;
@@ -71,11 +71,11 @@ namespace coulomb_adapt
    * Failure to converge throws SolverControl::NoConvergence.
    */
   LinearSolverReport
-  solve_krylov(const TrilinosWrappers::SparseMatrix &    A,
-               TrilinosWrappers::MPI::Vector &           x,
-               const TrilinosWrappers::MPI::Vector &     b,
+  solve_krylov(const TrilinosWrappers::SparseMatrix     &A,
+               TrilinosWrappers::MPI::Vector            &x,
+               const TrilinosWrappers::MPI::Vector      &b,
                const TrilinosWrappers::PreconditionBase &preconditioner,
-               const parameters::LinearSolver &          settings,
+               const parameters::LinearSolver           &settings,
                const bool                                symmetric);
 } // namespace coulomb_adapt
 

@@ -19,14 +19,14 @@ namespace coulomb_adapt
   void
   for_each_entry(const TrilinosWrappers::SparseMatrix &matrix,
                  const types::global_dof_index         row,
-                 const Function &                      f)
+                 const Function                       &f)
   {
-    const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
-    const int local_row       = A.RowMap().LID(static_cast<int>(row));
+    const Epetra_CrsMatrix &A         = matrix.trilinos_matrix();
+    const int               local_row = A.RowMap().LID(static_cast<int>(row));
     Assert(local_row >= 0, ExcInternalError());
     int     n_entries;
     double *values;
-    int *   local_columns;
+    int    *local_columns;
     A.ExtractMyRowView(local_row, n_entries, values, local_columns);
     for (int e = 0; e < n_entries; ++e)
       f(static_cast<types::global_dof_index>(A.ColMap().GID(local_columns[e])),
