@@ -243,6 +243,43 @@ main(int argc, char **argv)
            false,
            2,
            out);
+  {
+    // cre overestimates on the coarse seed mesh (theta 2), so its first
+    // plan lands far below epsilon_0; with 'Over-refinement ratio' the
+    // over-refined mesh is optimised again, coarser, and the loop ends
+    // within [0.8, 1] epsilon_0 on fewer cells than the overshoot.
+    out << "remesh, P1, cre, epsilon_0 = 5 %, over-refinement ratio 0.8"
+        << std::endl;
+    auto settings =
+      blocks("triangle", "remesh", "3, 3", "6, 7", "5", "output-cre-band");
+    settings.push_back({"Error indicator/Estimator", "cre"});
+    settings.push_back({"Adaptation/Over-refinement ratio", "0.8"});
+    settings.push_back({"Adaptation/Number of cycles", "6"});
+    const ProgramRun run(settings);
+    const auto      &cycles = run.summary["cycles"];
+    unsigned int     most_cells = 0;
+    for (const auto &c : cycles)
+      {
+        const unsigned int n_cells =
+          c["bodies"][0]["n_cells"].get<unsigned int>() +
+          c["bodies"][1]["n_cells"].get<unsigned int>();
+        most_cells = std::max(most_cells, n_cells);
+        out << "    cycle " << c["cycle"].get<unsigned int>() << ": cells "
+            << n_cells << ", epsilon " << 100 * c["epsilon"].get<double>()
+            << " %" << std::endl;
+      }
+    const double epsilon = cycles.back()["epsilon"].get<double>();
+    const unsigned int last_cells =
+      cycles.back()["bodies"][0]["n_cells"].get<unsigned int>() +
+      cycles.back()["bodies"][1]["n_cells"].get<unsigned int>();
+    out << "    " << run.summary["stop_reason"].get<std::string>()
+        << "; within [0.8, 1] epsilon_0: "
+        << (epsilon >= 0.04 && epsilon <= 0.05 ? "yes" : "no")
+        << ", fewer cells than the largest mesh: "
+        << (last_cells < most_cells ? "yes" : "no") << std::endl;
+    AssertThrow(epsilon >= 0.04 && epsilon <= 0.05 && last_cells < most_cells,
+                ExcMessage("the over-refined mesh was not optimised again"));
+  }
   for (const std::string strategy : {"refine", "remesh"})
     {
       out << strategy << ", epsilon_0 = 0.01 %, at most 3000 DoFs" << std::endl;
