@@ -1,0 +1,165 @@
+#ifndef coulomb_adapt_indicator_equilibration_mesh_h
+#define coulomb_adapt_indicator_equilibration_mesh_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/indicator/equilibrated_stress.h>
+#include <coulomb_adapt/indicator/local_neumann_problem.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * The pieces of the element equilibration technique
+   * (equilibrated_stress_errors()): the local mesh of a body seen by the
+   * node systems, the node systems themselves, and the optimisation of
+   * their free parameters.
+   */
+  namespace equilibration
+  {
+    // A cell of the local mesh (locally owned or ghost) with what the node
+    // systems need from it.
+    struct CellData
+    {
+      DoFHandler<2>::active_cell_iterator cell;
+      bool                                owned;
+      /** Per node k of the scalar base element: the global DoF index of its
+       * x component (the node's name on every rank). */
+      std::vector<types::global_dof_index> nodes;
+      /** Per node k and component c: the global DoF index. */
+      std::vector<std::array<types::global_dof_index, 2>> component_dofs;
+      /** The nodes' positions. */
+      std::vector<Point<2>> points;
+      /** int_E sigma_c : eps(phi_k e_c) - f . phi_k e_c, [k][c]. */
+      std::vector<std::array<double, 2>> residual;
+      /** Local face index of each of the cell's faces. */
+      std::vector<unsigned int> faces;
+    };
+
+    // A face of the local mesh. Its traction F is sigma^ n of the "plus"
+    // cell (the smaller CellId), the other cell sees -F.
+    struct FaceData
+    {
+      int          plus = -1, minus = -1;
+      Point<2>     v0, v1;
+      Tensor<1, 2> normal; // outward normal of the plus cell
+      double       length      = 0;
+      bool         at_boundary = false;
+      /** Per component: the moments are unknown (interior and Dirichlet
+       * edges) rather than prescribed data. */
+      std::array<bool, 2> unknown = {{true, true}};
+      /** The nodes on the face and their parameter s in [0, 1] along
+       * v0 -> v1. */
+      std::vector<types::global_dof_index> nodes;
+      std::vector<double>                  s;
+      /** The nodes' DoF indices per component: the names of the free
+       * parameters of their node systems. */
+      std::vector<std::array<types::global_dof_index, 2>> node_dofs;
+      /** Moments b[node][c], and those of the averaged FE traction. */
+      std::vector<std::array<double, 2>> moments, average;
+      /** The change of b[node][c] per unit of the free parameter of the
+       * node system of (node, c) (0 where that system has none). */
+      std::vector<std::array<double, 2>> kernel;
+      /** Nodal coefficients of F (degree p, Lagrange in s), and the inverse
+       * of the edge mass matrix that maps moments to them. */
+      std::vector<std::array<double, 2>> coefficients;
+      FullMatrix<double>                 mass_inverse;
+      /** Amplitude per component of the edge bubble added to F: the
+       * Legendre polynomial of degree p + 1 along the edge, orthogonal to
+       * every shape function on it, so that it leaves the moments and the
+       * prolongation conditions unchanged (a free parameter of every edge
+       * whose tractions are unknown). */
+      std::array<double, 2> bubble = {{0., 0.}};
+      /** Names of the free parameters in the optimisation's numbering:
+       * per node and component (vertices), and of the bubble. */
+      std::vector<std::array<types::global_dof_index, 2>> parameter_of_node;
+      std::array<types::global_dof_index, 2> parameter_of_bubble = {
+        {numbers::invalid_dof_index, numbers::invalid_dof_index}};
+    };
+
+    // Lagrange polynomials of the face's nodes at parameter s (p <= 2:
+    // at most three nodes; a fixed array, as this is called per
+    // quadrature point of every face).
+    inline std::array<double, 3>
+    face_shape_values(const std::vector<double> &nodes_s, const double s)
+    {
+      AssertIndexRange(nodes_s.size(), 4);
+      std::array<double, 3> values = {{1., 1., 1.}};
+      for (unsigned int k = 0; k < nodes_s.size(); ++k)
+        for (unsigned int l = 0; l < nodes_s.size(); ++l)
+          if (l != k)
+            values[k] *= (s - nodes_s[l]) / (nodes_s[k] - nodes_s[l]);
+      return values;
+    }
+
+    // The Legendre polynomial of degree n on [0, 1] at s.
+    inline double
+    edge_bubble(const unsigned int n, const double s)
+    {
+      const double x        = 2 * s - 1;
+      double       previous = 1, current = x;
+      if (n == 0)
+        return 1;
+      for (unsigned int k = 1; k < n; ++k)
+        {
+          const double next =
+            ((2 * k + 1) * x * current - k * previous) / (k + 1);
+          previous = current;
+          current  = next;
+        }
+      return current;
+    }
+
+    inline double
+    face_parameter(const FaceData &face, const Point<2> &x)
+    {
+      const Tensor<1, 2> d = face.v1 - face.v0;
+      return (x - face.v0) * d / d.norm_square();
+    }
+
+
+    /** Step 3: the node systems of every node of a locally owned cell,
+     * in least squares closest to the averaged moments; the moments of the
+     * faces are set, and the free parameter of each system (its null
+     * vector) is stored in FaceData::kernel. */
+    void
+    solve_node_systems(const std::vector<CellData> &cells,
+                       std::vector<FaceData>       &faces,
+                       const unsigned int           n_nodes,
+                       EquilibratedStressErrors    &result);
+
+    /** The load of a cell's local problem (LocalNeumannProblem::reinit()
+     * done on that cell). */
+    using CellLoad = std::function<void(unsigned int, Vector<double> &)>;
+    /** The work matrix of a face's traction basis on a cell's monomials. */
+    using FaceWork =
+      std::function<void(unsigned int, const FaceData &, FullMatrix<double> &)>;
+
+    /** Step 5: the free parameters that minimise the estimate (see the
+     * .cc); updates the faces' moments and bubbles. */
+    void
+    optimise_free_parameters(const ElasticBody                   &body,
+                             const std::vector<CellData>         &cells,
+                             std::vector<FaceData>               &faces,
+                             LocalNeumannProblem                 &local,
+                             const TrilinosWrappers::MPI::Vector &u_kinematic,
+                             const CellLoad                      &cell_load,
+                             const FaceWork                      &face_work,
+                             const bool                           with_bubbles,
+                             EquilibratedStressErrors            &result);
+  } // namespace equilibration
+} // namespace coulomb_adapt
+
+#endif

@@ -1,0 +1,176 @@
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
+
+#include <coulomb_adapt/indicator/equilibration_mesh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace coulomb_adapt
+{
+  namespace equilibration
+  {
+    // Step 3 of the element equilibration, for every node of a locally
+    // owned cell (its star is then all local: the ghost layer holds every
+    // cell that shares a vertex with an owned cell).
+    void
+    solve_node_systems(const std::vector<CellData> &cells,
+                       std::vector<FaceData>       &faces,
+                       const unsigned int           n_nodes,
+                       EquilibratedStressErrors    &result)
+    {
+      std::map<types::global_dof_index,
+               std::vector<std::pair<unsigned int, unsigned int>>>
+        star; // node -> (cell slot, local node)
+      for (unsigned int slot = 0; slot < cells.size(); ++slot)
+        for (unsigned int k = 0; k < n_nodes; ++k)
+          star[cells[slot].nodes[k]].emplace_back(slot, k);
+      std::set<types::global_dof_index> owned_nodes;
+      for (const auto &cell : cells)
+        if (cell.owned)
+          owned_nodes.insert(cell.nodes.begin(), cell.nodes.end());
+
+      double largest_residual = 0;
+      for (const auto &cell : cells)
+        for (const auto &r : cell.residual)
+          largest_residual =
+            std::max({largest_residual, std::abs(r[0]), std::abs(r[1])});
+
+      for (const auto node : owned_nodes)
+        {
+          auto &cells_of_node = star[node];
+          std::sort(cells_of_node.begin(),
+                    cells_of_node.end(),
+                    [&](const auto &a, const auto &b) {
+                      return cells[a.first].cell->id() <
+                             cells[b.first].cell->id();
+                    });
+          // The faces of the star through the node, and the node's place
+          // on each.
+          std::vector<std::pair<unsigned int, unsigned int>> node_faces;
+          for (const auto &[slot, k] : cells_of_node)
+            for (const unsigned int fi : cells[slot].faces)
+              {
+                const auto &nodes = faces[fi].nodes;
+                const auto  where = std::find(nodes.begin(), nodes.end(), node);
+                if (where != nodes.end() &&
+                    std::find_if(node_faces.begin(),
+                                 node_faces.end(),
+                                 [fi = fi](const auto &e) {
+                                   return e.first == fi;
+                                 }) == node_faces.end())
+                  node_faces.emplace_back(fi, where - nodes.begin());
+              }
+
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              std::vector<unsigned int> columns; // index into node_faces
+              for (unsigned int e = 0; e < node_faces.size(); ++e)
+                if (faces[node_faces[e].first].unknown[c])
+                  columns.push_back(e);
+              const unsigned int n_rows = cells_of_node.size();
+              const unsigned int n_cols = columns.size();
+              FullMatrix<double> A(n_rows, n_cols);
+              Vector<double>     r(n_rows);
+              for (unsigned int row = 0; row < n_rows; ++row)
+                {
+                  const auto [slot, k] = cells_of_node[row];
+                  r(row)               = cells[slot].residual[k][c];
+                  for (unsigned int e = 0; e < node_faces.size(); ++e)
+                    {
+                      const FaceData &face = faces[node_faces[e].first];
+                      const int       sign =
+                        face.plus == static_cast<int>(slot)  ? 1 :
+                              face.minus == static_cast<int>(slot) ? -1 :
+                                                                     0;
+                      if (sign == 0)
+                        continue;
+                      const auto col =
+                        std::find(columns.begin(), columns.end(), e);
+                      if (col != columns.end())
+                        A(row, col - columns.begin()) = sign;
+                      else
+                        r(row) -= sign * face.moments[node_faces[e].second][c];
+                    }
+                }
+              if (n_cols == 0)
+                {
+                  result.node_system_defect =
+                    std::max(result.node_system_defect, r.linfty_norm());
+                  continue;
+                }
+              // x = b_avg + A^+ (r - A b_avg): the least-squares solution
+              // closest to the averaged moments (A^+ from the SVD; the
+              // systems of interior nodes are singular by one).
+              Vector<double> x0(n_cols), rhs(n_rows), y(n_cols);
+              for (unsigned int j = 0; j < n_cols; ++j)
+                {
+                  const auto &e = node_faces[columns[j]];
+                  x0(j)         = faces[e.first].average[e.second][c];
+                }
+              A.vmult(rhs, x0);
+              rhs.sadd(-1., 1., r);
+              // Closest in sum |G| (F - F_avg)^2 ~ sum (b - b_avg)^2 / |G|:
+              // columns scaled by sqrt|G|.
+              std::vector<double> scale(n_cols);
+              for (unsigned int j = 0; j < n_cols; ++j)
+                scale[j] =
+                  std::sqrt(faces[node_faces[columns[j]].first].length);
+              LAPACKFullMatrix<double> svd(n_rows, n_cols);
+              for (unsigned int row = 0; row < n_rows; ++row)
+                for (unsigned int j = 0; j < n_cols; ++j)
+                  svd(row, j) = A(row, j) * scale[j];
+              svd.compute_svd();
+              const auto &U  = svd.get_svd_u();
+              const auto &Vt = svd.get_svd_vt();
+              for (unsigned int i = 0; i < std::min(n_rows, n_cols); ++i)
+                if (svd.singular_value(i) > 1e-10 * svd.singular_value(0))
+                  {
+                    double coefficient = 0;
+                    for (unsigned int row = 0; row < n_rows; ++row)
+                      coefficient += U(row, i) * rhs(row);
+                    coefficient /= svd.singular_value(i);
+                    for (unsigned int j = 0; j < n_cols; ++j)
+                      y(j) += coefficient * Vt(i, j) * scale[j];
+                  }
+              // The free parameter: the first null vector of the scaled
+              // matrix (one per interior or Dirichlet node), mapped back
+              // to moments. Every rank that solves this node system finds
+              // the same one (same star, same order).
+              unsigned int rank = 0;
+              while (rank < std::min(n_rows, n_cols) &&
+                     svd.singular_value(rank) > 1e-10 * svd.singular_value(0))
+                ++rank;
+              if (rank < n_cols)
+                {
+                  double largest = 0;
+                  for (unsigned int j = 0; j < n_cols; ++j)
+                    largest =
+                      std::max(largest, std::abs(Vt(rank, j) * scale[j]));
+                  for (unsigned int j = 0; j < n_cols; ++j)
+                    {
+                      const auto &e = node_faces[columns[j]];
+                      faces[e.first].kernel[e.second][c] =
+                        Vt(rank, j) * scale[j] / largest;
+                    }
+                }
+              Vector<double> defect(n_rows);
+              A.vmult(defect, y);
+              defect -= rhs;
+              result.node_system_defect =
+                std::max(result.node_system_defect, defect.linfty_norm());
+              for (unsigned int j = 0; j < n_cols; ++j)
+                {
+                  const auto &e                       = node_faces[columns[j]];
+                  faces[e.first].moments[e.second][c] = x0(j) + y(j);
+                }
+            }
+        }
+      if (largest_residual > 0)
+        result.node_system_defect /= largest_residual;
+    }
+
+  } // namespace equilibration
+} // namespace coulomb_adapt

@@ -1,0 +1,227 @@
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
+#include <coulomb_adapt/indicator/equilibration_mesh.h>
+
+#include <algorithm>
+#include <memory>
+
+namespace coulomb_adapt
+{
+  namespace equilibration
+  {
+    // Step 5 of equilibrated_stress_errors(): the free parameters that
+    // minimise sum_E ||sigma^ - sigma_c||^2. They are the null vectors of
+    // the node systems (one per interior or Dirichlet vertex and
+    // component) and the edge bubbles (one per edge with unknown tractions
+    // and component). On each owned cell, sigma^ = sigma^_0 + sum_j alpha_j
+    // S_j with S_j the response of the local problem to the change of the
+    // edge tractions per unit of parameter j; the minimum solves
+    // H alpha = -g with
+    //   H_ij = sum_E (S_i, S_j)_E,  g_i = sum_E (S_i, sigma^_0 - sigma_c)_E,
+    // assembled like a stiffness matrix: the parameters are named by the
+    // vertex and edge DoFs of the continuous quadratic element on the same
+    // mesh, which also gives the matrix's pattern and its
+    // parallel layout. The moments and bubbles are updated in place.
+    void
+    optimise_free_parameters(const ElasticBody                   &body,
+                             const std::vector<CellData>         &cells,
+                             std::vector<FaceData>               &faces,
+                             LocalNeumannProblem                 &local,
+                             const TrilinosWrappers::MPI::Vector &u_kinematic,
+                             const CellLoad                      &cell_load,
+                             const FaceWork                      &face_work,
+                             const bool                           with_bubbles,
+                             EquilibratedStressErrors            &result)
+    {
+      const auto    &tria = body.triangulation();
+      const MPI_Comm comm = tria.get_communicator();
+      // Quadratic elements: one DoF per vertex and one per edge, whatever
+      // p (deal.II 9.4 has no cubic FE_SimplexP).
+      std::unique_ptr<FiniteElement<2>> scalar;
+      if (body.is_simplex_mesh())
+        scalar = std::make_unique<FE_SimplexP<2>>(2);
+      else
+        scalar = std::make_unique<FE_Q<2>>(2);
+      const FESystem<2> names_fe(*scalar, 2);
+      DoFHandler<2>     names(tria);
+      names.distribute_dofs(names_fe);
+      const IndexSet owned = names.locally_owned_dofs();
+      IndexSet       relevant;
+      DoFTools::extract_locally_relevant_dofs(names, relevant);
+      DynamicSparsityPattern dsp(relevant);
+      DoFTools::make_sparsity_pattern(names, dsp);
+      SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+      TrilinosWrappers::SparseMatrix H;
+      H.reinit(owned, owned, dsp, comm);
+      TrilinosWrappers::MPI::Vector g(owned, comm), alpha(owned, comm);
+
+      std::vector<types::global_dof_index> name_dofs(
+        names_fe.n_dofs_per_cell());
+      double                               before = 0;
+      Vector<double>                       load(local.n_coefficients()), base;
+      const unsigned int                   M = local.n_coefficients() / 2;
+      std::vector<Vector<double>>          direction_loads;
+      std::vector<types::global_dof_index> direction_dofs;
+      unsigned int                         n_directions = 0;
+      FullMatrix<double>                   W;
+      std::vector<Vector<double>>          responses;
+      std::vector<const Vector<double> *>  loads;
+      std::vector<types::global_dof_index> indices;
+      for (unsigned int slot = 0; slot < cells.size(); ++slot)
+        if (cells[slot].owned)
+          {
+            const auto &cell = cells[slot].cell;
+            local.reinit(cell, u_kinematic);
+            cell_load(slot, load);
+            local.solve(load, base);
+            before += local.errors(base)[0];
+
+            const DoFHandler<2>::active_cell_iterator name_cell(&tria,
+                                                                cell->level(),
+                                                                cell->index(),
+                                                                &names);
+            name_cell->get_dof_indices(name_dofs);
+            const auto name = [&](const unsigned int c, const unsigned int k) {
+              return name_dofs[names_fe.component_to_system_index(c, k)];
+            };
+            // The loads of the cell's free parameters, from the work W of
+            // each face's traction basis (the nodal polynomials, then the
+            // bubble) on the monomials.
+            n_directions = 0;
+            const auto direction =
+              [&](const types::global_dof_index dof) -> Vector<double> & {
+              for (unsigned int i = 0; i < n_directions; ++i)
+                if (direction_dofs[i] == dof)
+                  return direction_loads[i];
+              if (n_directions == direction_loads.size())
+                {
+                  direction_loads.emplace_back(local.n_coefficients());
+                  direction_dofs.push_back(dof);
+                }
+              direction_dofs[n_directions]  = dof;
+              direction_loads[n_directions] = 0;
+              return direction_loads[n_directions++];
+            };
+            for (const unsigned int f : cell->face_indices())
+              {
+                FaceData          &face   = faces[cells[slot].faces[f]];
+                const unsigned int n_face = face.nodes.size();
+                face.parameter_of_node.assign(n_face,
+                                              {{numbers::invalid_dof_index,
+                                                numbers::invalid_dof_index}});
+                face_work(slot, face, W);
+                for (unsigned int c = 0; c < 2; ++c)
+                  {
+                    // A vertex's null vector changes F on the faces
+                    // through it (moments b[k] += kernel[k]).
+                    for (unsigned int k = 0; k < n_face; ++k)
+                      if (face.kernel[k][c] != 0)
+                        {
+                          unsigned int v = 0;
+                          while (v < cell->n_vertices() &&
+                                 cells[slot].component_dofs[v][c] !=
+                                   face.node_dofs[k][c])
+                            ++v;
+                          Assert(v < cell->n_vertices(), ExcInternalError());
+                          face.parameter_of_node[k][c] = name(c, v);
+                          Vector<double> &d            = direction(name(c, v));
+                          for (unsigned int l = 0; l < n_face; ++l)
+                            {
+                              const double coefficient =
+                                face.mass_inverse(l, k) * face.kernel[k][c];
+                              for (unsigned int m = 0; m < M; ++m)
+                                d(c * M + m) += coefficient * W(m, l);
+                            }
+                        }
+                    // The edge bubble, named by the edge's DoF.
+                    if (with_bubbles && face.unknown[c])
+                      {
+                        const types::global_dof_index dof =
+                          name(c, cell->n_vertices() + f);
+                        face.parameter_of_bubble[c] = dof;
+                        Vector<double> &d           = direction(dof);
+                        for (unsigned int m = 0; m < M; ++m)
+                          d(c * M + m) += W(m, n_face);
+                      }
+                  }
+              }
+            const unsigned int n = n_directions;
+            if (n == 0)
+              continue;
+            indices.clear();
+            responses.resize(n);
+            loads.resize(n);
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                local.solve(direction_loads[i], responses[i]);
+                loads[i] = &direction_loads[i];
+                indices.push_back(direction_dofs[i]);
+              }
+            // K S_j = l_j (the loads are self-equilibrated), so the energy
+            // products are the loads' work: (S_i, S_j) = l_j . S_i.
+            FullMatrix<double>  cell_H(n, n);
+            std::vector<double> cell_g(n);
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                for (unsigned int j = 0; j <= i; ++j)
+                  cell_H(i, j) = cell_H(j, i) = *loads[j] * responses[i];
+                cell_g[i] =
+                  load * responses[i] - local.kinematic_work(responses[i]);
+              }
+            H.add(indices, cell_H);
+            g.add(indices, cell_g);
+          }
+      H.compress(VectorOperation::add);
+      g.compress(VectorOperation::add);
+      result.error_squared_before_optimisation =
+        Utilities::MPI::sum(before, comm);
+
+      // Names without a free parameter (vertices on loaded edges, edges
+      // with known tractions, the interior DoF of Q2) get alpha = 0.
+      for (const auto i : owned)
+        if (H.diag_element(i) == 0)
+          H.set(i, i, 1.);
+      H.compress(VectorOperation::insert);
+      g *= -1;
+      const double g_norm = g.l2_norm();
+      if (g_norm == 0)
+        return;
+      SolverControl                           control(1000, 1e-8 * g_norm);
+      SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+      TrilinosWrappers::PreconditionJacobi    jacobi;
+      jacobi.initialize(H);
+      try
+        {
+          cg.solve(H, alpha, g, jacobi);
+        }
+      catch (const SolverControl::NoConvergence &)
+        {
+          // The last iterate is as admissible as the solution.
+        }
+      result.optimisation_iterations = control.last_step();
+
+      TrilinosWrappers::MPI::Vector alpha_local(owned, relevant, comm);
+      alpha_local = alpha;
+      for (auto &face : faces)
+        for (unsigned int c = 0; c < 2; ++c)
+          {
+            for (unsigned int k = 0; k < face.parameter_of_node.size(); ++k)
+              if (face.parameter_of_node[k][c] != numbers::invalid_dof_index)
+                face.moments[k][c] +=
+                  alpha_local(face.parameter_of_node[k][c]) * face.kernel[k][c];
+            if (face.parameter_of_bubble[c] != numbers::invalid_dof_index)
+              face.bubble[c] = alpha_local(face.parameter_of_bubble[c]);
+          }
+    }
+  } // namespace equilibration
+} // namespace coulomb_adapt
