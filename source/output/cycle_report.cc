@@ -280,6 +280,12 @@ namespace coulomb_adapt
             << std::setprecision(1) << e.node_system_defect
             << ", local problems' rigid-motion load " << e.local_problem_defect
             << std::defaultfloat << std::endl;
+    if (e.estimator == ErrorEstimator::cre && e.optimisation_iterations > 0)
+      pcout << "  cre: edge tractions optimised (" << e.optimisation_iterations
+            << " CG steps); with the classical tractions epsilon would be "
+            << std::fixed << std::setprecision(3)
+            << 100 * e.epsilon_before_optimisation << " %" << std::defaultfloat
+            << std::endl;
     auto log_epsilon = [&](const ErrorEstimate &estimate) {
       pcout << "  error indicator (" << to_string(estimate.estimator)
             << "): epsilon = " << std::fixed << std::setprecision(3)
@@ -302,7 +308,10 @@ namespace coulomb_adapt
     else
       record["cre"] = {{"degree_increase", cre_degree_increase},
                        {"node_system_defect", e.node_system_defect},
-                       {"local_problem_defect", e.local_problem_defect}};
+                       {"local_problem_defect", e.local_problem_defect},
+                       {"optimisation_iterations", e.optimisation_iterations},
+                       {"epsilon_classical_tractions",
+                        e.epsilon_before_optimisation}};
     if (compared.empty())
       return;
     auto record_of = [](const ErrorEstimate &estimate) {
