@@ -187,8 +187,8 @@ namespace coulomb_adapt
                           "solved with polynomials of degree p + k. Their "
                           "discretisation error lowers the estimate: on the "
                           "manufactured solution epsilon(cre) changes by "
-                          "up to 4 % from k = 3 to 4 and by less than 1 % "
-                          "from 4 to 5 (doc/estimators.md). With k >= 3 "
+                          "up to 4 % from k = 3 to 4 and by up to 1.4 % "
+                          "from 4 to 5 (doc/indicator.md). With k >= 3 "
                           "the traction optimisation also uses edge "
                           "bubbles of degree p + 1.");
         prm.declare_entry("CRE traction optimisation",
