@@ -108,6 +108,19 @@ namespace coulomb_adapt
   bool
   ContactSolver::check_sets(const unsigned int k) const
   {
+    // Neither body held by its Dirichlet data: the pair moves as one rigid
+    // body whatever the sets, and no Newton step can fix that.
+    if (!support.holds_all_rigid_motions() &&
+        !holds_all_rigid_motions(master_gram))
+      throw ContactDiagnosis(
+        "Newton step " + std::to_string(k) +
+          ": neither body is held by "
+          "Dirichlet data: body 1 (" +
+          slave.name() + ") and body 2 (" + master.name() +
+          ") can move together as one rigid body, whatever the contact "
+          "sets. Hold one of them (a 'Fixed components' group, or the "
+          "scene's supports).",
+        k - 1);
     newton_diagnostics::check_support(support, states, mu, k, slave.name());
     check_master_support(k);
     const bool turning = support.rotation_free(states);

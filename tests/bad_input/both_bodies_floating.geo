@@ -1,0 +1,29 @@
+// The seed's two blocks with no Dirichlet data on either (both groups are
+// free curves): the pair can move as one rigid body.
+h_upper = 25;
+h_lower = 50;
+Point(1) = {0, 0, 0, h_lower};
+Point(2) = {200, 0, 0, h_lower};
+Point(3) = {200, 200, 0, h_lower};
+Point(4) = {0, 200, 0, h_lower};
+Point(11) = {50, 200, 0, h_upper};
+Point(12) = {150, 200, 0, h_upper};
+Point(13) = {150, 300, 0, h_upper};
+Point(14) = {50, 300, 0, h_upper};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Line(11) = {11, 12};
+Line(12) = {12, 13};
+Line(13) = {13, 14};
+Line(14) = {14, 11};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Curve Loop(2) = {11, 12, 13, 14};
+Plane Surface(2) = {2};
+Physical Surface("body 1") = {2};
+Physical Surface("body 2") = {1};
+Physical Curve("top") = {13};
+Physical Curve("bottom") = {1};
+Physical Curve("contact") = {3, 11};
