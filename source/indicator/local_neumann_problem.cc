@@ -32,7 +32,6 @@ namespace coulomb_adapt
     JxW.resize(cell_rule->size());
     sigma_c.resize(cell_rule->size());
     stiffness.reinit(2 * M, 2 * M);
-    factor.reinit(2 * M, 2 * M);
     body_force.reinit(2 * M);
     sigma_c_work.reinit(2 * M);
     // The rigid motions' coefficients: the translations and the rotation
@@ -156,35 +155,17 @@ namespace coulomb_adapt
 
     // K + s R R^T has, for a load orthogonal to R, the solution of K u =
     // load that is orthogonal to R; it is symmetric positive definite, so
-    // a Cholesky factor serves every load of the cell (a hand-written one:
-    // LAPACK's call overhead dominates at this size).
-    factor       = stiffness;
+    // one Cholesky factor serves every load of the cell.
     double scale = 0;
     for (unsigned int a = 0; a < 2 * M; ++a)
       scale = std::max(scale, stiffness(a, a));
     for (const auto &mode : rigid)
       for (unsigned int a = 0; a < 2 * M; ++a)
         for (unsigned int b = 0; b < 2 * M; ++b)
-          factor(a, b) += scale * mode[a] * mode[b];
-    const unsigned int n = 2 * M;
-    for (unsigned int j = 0; j < n; ++j)
-      {
-        double d = factor(j, j);
-        for (unsigned int k = 0; k < j; ++k)
-          d -= factor(j, k) * factor(j, k);
-        AssertThrow(d > 0,
-                    ExcMessage("CRE local problem: the stiffness matrix of a "
-                               "cell is not positive definite (degenerate "
-                               "cell?)"));
-        factor(j, j) = std::sqrt(d);
-        for (unsigned int i = j + 1; i < n; ++i)
-          {
-            double v = factor(i, j);
-            for (unsigned int k = 0; k < j; ++k)
-              v -= factor(i, k) * factor(j, k);
-            factor(i, j) = v / factor(j, j);
-          }
-      }
+          stiffness(a, b) += scale * mode[a] * mode[b];
+    factor.reinit(2 * M, 2 * M); // also resets its state after a factorisation
+    factor = stiffness;
+    factor.compute_cholesky_factorization();
   }
 
 
@@ -229,23 +210,8 @@ namespace coulomb_adapt
           w += mode[a] * load(a);
         rigid_load = std::max(rigid_load, std::abs(w));
       }
-    // L L^T x = load: forward, then backward substitution.
-    const unsigned int n = load.size();
-    coefficients.reinit(n);
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        double v = load(i);
-        for (unsigned int k = 0; k < i; ++k)
-          v -= factor(i, k) * coefficients(k);
-        coefficients(i) = v / factor(i, i);
-      }
-    for (unsigned int i = n; i-- > 0;)
-      {
-        double v = coefficients(i);
-        for (unsigned int k = i + 1; k < n; ++k)
-          v -= factor(k, i) * coefficients(k);
-        coefficients(i) = v / factor(i, i);
-      }
+    coefficients = load;
+    factor.solve(coefficients);
     return size > 0 ? rigid_load / size : 0.;
   }
 

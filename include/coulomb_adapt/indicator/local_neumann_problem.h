@@ -9,6 +9,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
@@ -38,7 +39,7 @@ namespace coulomb_adapt
   public:
     LocalNeumannProblem(const ElasticBody &body, const unsigned int degree);
 
-    /** Assemble and invert the stiffness matrix of @p cell, the load of
+    /** Assemble and factor the stiffness matrix of @p cell, the load of
      * the body force, and the stress of @p u_kinematic (ghosted) at the
      * quadrature points: the FE stress the errors are measured against. */
     void
@@ -104,10 +105,11 @@ namespace coulomb_adapt
     std::vector<std::vector<Tensor<1, 2>>> gradients_at;
     std::vector<double>                    JxW;
     std::vector<SymmetricTensor<2, 2>>     sigma_c;
-    // The stiffness matrix, the Cholesky factor of it with the rigid
-    // motions penalised, the body force load and the work of sigma_c on
-    // each basis function.
-    FullMatrix<double>                 stiffness, factor;
+    // The stiffness matrix with the rigid motions penalised (scratch of
+    // reinit()), its Cholesky factor, the body force load and the work of
+    // sigma_c on each basis function.
+    FullMatrix<double>                 stiffness;
+    LAPACKFullMatrix<double>           factor;
     Vector<double>                     body_force, sigma_c_work;
     std::array<std::vector<double>, 3> rigid;
   };
