@@ -61,14 +61,9 @@ namespace coulomb_adapt
         {
           const OptionalTimerSection section(options.timer,
                                              "error indicator: correction");
-          estimate.correction = options.known_correction != nullptr ?
-                                  *options.known_correction :
-                                  correct_contact_solution(*bodies[0],
-                                                           *bodies[1],
-                                                           *contact_solver,
-                                                           mu,
-                                                           solver_parameters);
-          equilibrium         = correct_contact_solution(*bodies[0],
+          estimate.correction = corrected_contact_fields(
+            bodies, *contact_solver, mu, solver_parameters, options);
+          equilibrium = correct_contact_solution(*bodies[0],
                                                  *bodies[1],
                                                  *contact_solver,
                                                  mu,

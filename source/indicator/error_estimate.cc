@@ -64,6 +64,21 @@ namespace coulomb_adapt
 
 
 
+  CorrectedContactSolution
+  corrected_contact_fields(const std::array<const ElasticBody *, 2> &bodies,
+                           const ContactSolution                    &contact,
+                           const double                              mu,
+                           const parameters::LinearSolver &solver_parameters,
+                           const ErrorEstimateOptions     &options)
+  {
+    if (options.known_correction != nullptr)
+      return *options.known_correction;
+    return correct_contact_solution(
+      *bodies[0], *bodies[1], contact, mu, solver_parameters);
+  }
+
+
+
   void
   finish_error_estimate(const std::array<const ElasticBody *, 2> &bodies,
                         const std::array<double, 2> &volume_squared,
@@ -162,13 +177,8 @@ namespace coulomb_adapt
         {
           const OptionalTimerSection section(options.timer,
                                              "error indicator: correction");
-          estimate.correction = options.known_correction != nullptr ?
-                                  *options.known_correction :
-                                  correct_contact_solution(*bodies[0],
-                                                           *bodies[1],
-                                                           *contact,
-                                                           mu,
-                                                           solver_parameters);
+          estimate.correction = corrected_contact_fields(
+            bodies, *contact, mu, solver_parameters, options);
         }
         const OptionalTimerSection section(options.timer,
                                            "error indicator: contributions");

@@ -131,6 +131,17 @@ namespace coulomb_adapt
                      const parameters::LinearSolver &solver_parameters,
                      const ErrorEstimateOptions     &options = {});
 
+  /** The common start of every estimator on a contact scene: the
+   * corrected contact fields of theory.md section 3, those of
+   * @p options.known_correction when the caller already has them (compare
+   * mode), else solved. */
+  CorrectedContactSolution
+  corrected_contact_fields(const std::array<const ElasticBody *, 2> &bodies,
+                           const ContactSolution                    &contact,
+                           const double                    friction_coefficient,
+                           const parameters::LinearSolver &solver_parameters,
+                           const ErrorEstimateOptions     &options);
+
   /** The common end of every estimator: the contact term added to the
    * contact cells of each side (the factor 2 of (3-10)), the seed's
    * normalisation D^2, epsilon, its parts, and epsilon_E and the density
