@@ -15,12 +15,15 @@ namespace coulomb_adapt
     for (unsigned int total = 0; total <= degree; ++total)
       for (unsigned int b = 0; b <= total; ++b)
         exponents.push_back({{total - b, b}});
-    cell_rule =
-      body.is_simplex_mesh() ?
-        // Witherden-Vincent: QGaussSimplex stops at 4 points per direction.
-        std::unique_ptr<Quadrature<2>>(
-          new QWitherdenVincentSimplex<2>(std::min(degree + 1, 7u))) :
-        std::unique_ptr<Quadrature<2>>(new QGauss<2>(degree + 1));
+    // Triangles are affine: every integrand is a polynomial of degree at
+    // most 2 (degree - 1) (stiffness, moments, errors), which
+    // Witherden-Vincent with n points integrates exactly from n = degree
+    // on (degree 2n - 1; QGaussSimplex stops at 4 points per direction).
+    // On quadrilaterals the integrands are rational: one Gauss point more.
+    cell_rule            = body.is_simplex_mesh() ?
+                             std::unique_ptr<Quadrature<2>>(
+                    new QWitherdenVincentSimplex<2>(std::min(degree, 7u))) :
+                             std::unique_ptr<Quadrature<2>>(new QGauss<2>(degree + 1));
     fe_values            = std::make_unique<FEValues<2>>(body.mapping(),
                                               body.dof_handler().get_fe(),
                                               *cell_rule,
@@ -31,9 +34,15 @@ namespace coulomb_adapt
     gradients_at.assign(cell_rule->size(), std::vector<Tensor<1, 2>>(M));
     JxW.resize(cell_rule->size());
     sigma_c.resize(cell_rule->size());
+    strains.resize(cell_rule->size());
+    moment.reinit(2 * degree - 1, 2 * degree - 1);
     stiffness.reinit(2 * M, 2 * M);
+    factor.reinit(2 * M, 2 * M);
+    factor_transposed.reinit(2 * M, 2 * M);
     body_force.reinit(2 * M);
     sigma_c_work.reinit(2 * M);
+    whitened_sigma_c_work.reinit(2 * M);
+    forward_scratch.reinit(2 * M);
     // The rigid motions' coefficients: the translations and the rotation
     // (-xi_y, xi_x); exponents (0,0), (1,0), (0,1) are the first three.
     for (auto &mode : rigid)
@@ -97,41 +106,41 @@ namespace coulomb_adapt
     centre = cell->center();
     h      = cell->diameter();
     fe_values->reinit(cell);
-    const FEValuesExtractors::Vector   displacement(0);
-    std::vector<SymmetricTensor<2, 2>> strains(cell_rule->size());
+    const FEValuesExtractors::Vector displacement(0);
     (*fe_values)[displacement].get_function_symmetric_gradients(u_kinematic,
                                                                 strains);
     const ElasticMaterial &material    = body.material();
     const BodyDescription &description = body.description();
     const unsigned int     M           = exponents.size();
+    const unsigned int     n_moments   = moment.size(0);
 
-    // K from the Gram matrices G_de(m, n) = int d_d phi_m d_e phi_n of the
-    // scalar monomials: with sigma = lambda tr(eps) I + 2 mu eps,
-    //   K_(c,m)(c',n) = lambda G_cc' + mu (delta_cc' (G_00 + G_11) + G_c'c).
-    FullMatrix<double> G[2][2];
-    for (auto &row : G)
-      for (auto &g : row)
-        g.reinit(M, M);
+    // One pass over the quadrature points: the moments of the monomials,
+    // the values the error needs (gradients, JxW, sigma_c), the work of
+    // sigma_c and of the body force on each basis function.
+    moment.fill(0.);
     body_force   = 0;
     sigma_c_work = 0;
     for (const unsigned int q : fe_values->quadrature_point_indices())
       {
         const Point<2> &x = fe_values->quadrature_point(q);
         evaluate(x);
-        gradients_at[q] = gradients;
-        JxW[q]          = fe_values->JxW(q);
-        sigma_c[q]      = material.stress(strains[q]);
+        gradients_at[q]    = gradients;
+        JxW[q]             = fe_values->JxW(q);
+        sigma_c[q]         = material.stress(strains[q]);
+        const double xi[2] = {(x[0] - centre[0]) / h, (x[1] - centre[1]) / h};
+        double       xi_power = JxW[q];
+        for (unsigned int i = 0; i < n_moments; ++i, xi_power *= xi[0])
+          {
+            double power = xi_power;
+            for (unsigned int j = 0; i + j < n_moments; ++j, power *= xi[1])
+              moment(i, j) += power;
+          }
         for (unsigned int m = 0; m < M; ++m)
           {
-            const Tensor<1, 2> gm = gradients[m] * JxW[q];
-            for (unsigned int n = 0; n < M; ++n)
-              for (unsigned int d = 0; d < 2; ++d)
-                for (unsigned int e = 0; e < 2; ++e)
-                  G[d][e](m, n) += gm[d] * gradients[n][e];
             // sigma_c : eps(phi_m e_c) = (sigma_c grad phi_m)_c.
-            const Tensor<1, 2> work = sigma_c[q] * gm;
-            sigma_c_work(m) += work[0];
-            sigma_c_work(M + m) += work[1];
+            const Tensor<1, 2> work = sigma_c[q] * gradients[m];
+            sigma_c_work(m) += work[0] * JxW[q];
+            sigma_c_work(M + m) += work[1] * JxW[q];
           }
         if (description.body_force)
           {
@@ -143,29 +152,69 @@ namespace coulomb_adapt
               }
           }
       }
-    const double lambda = material.lambda(), mu = material.mu();
-    for (unsigned int c = 0; c < 2; ++c)
-      for (unsigned int d = 0; d < 2; ++d)
-        for (unsigned int m = 0; m < M; ++m)
-          for (unsigned int n = 0; n < M; ++n)
-            stiffness(c * M + m, d * M + n) =
-              lambda * G[c][d](m, n) +
-              mu *
-                ((c == d ? G[0][0](m, n) + G[1][1](m, n) : 0.) + G[d][c](m, n));
+    assemble_stiffness();
 
     // K + s R R^T has, for a load orthogonal to R, the solution of K u =
     // load that is orthogonal to R; it is symmetric positive definite, so
-    // one Cholesky factor serves every load of the cell.
+    // one Cholesky factor serves every load of the cell. At 2 M <= 42
+    // unknowns deal.II's FullMatrix loops beat a LAPACK call per load.
     double scale = 0;
     for (unsigned int a = 0; a < 2 * M; ++a)
       scale = std::max(scale, stiffness(a, a));
     for (const auto &mode : rigid)
       for (unsigned int a = 0; a < 2 * M; ++a)
-        for (unsigned int b = 0; b < 2 * M; ++b)
-          stiffness(a, b) += scale * mode[a] * mode[b];
-    factor.reinit(2 * M, 2 * M); // also resets its state after a factorisation
-    factor = stiffness;
-    factor.compute_cholesky_factorization();
+        if (mode[a] != 0)
+          for (unsigned int b = 0; b < 2 * M; ++b)
+            stiffness(a, b) += scale * mode[a] * mode[b];
+    factor.cholesky(stiffness);
+    factor_transposed.copy_transposed(factor);
+    whiten(sigma_c_work, whitened_sigma_c_work);
+  }
+
+
+
+  // K from the Gram matrices G_de(m, n) = int d_d phi_m d_e phi_n of the
+  // scalar monomials: with sigma = lambda tr(eps) I + 2 mu eps,
+  //   K_(c,m)(c',n) = lambda G_cc' + mu (delta_cc' (G_00 + G_11) + G_c'c).
+  // The derivative of a monomial is a monomial, so each entry of G is one
+  // of the cell's moments times the exponents: no quadrature loop over the
+  // M^2 pairs.
+  void
+  LocalNeumannProblem::assemble_stiffness()
+  {
+    const unsigned int M      = exponents.size();
+    const double       lambda = body.material().lambda();
+    const double       mu     = body.material().mu();
+    const double       scale  = 1. / (h * h);
+    // G_de(m, n) = a_d(m) a_e(n) moment(alpha_m + alpha_n - e_d - e_e).
+    const auto gram = [&](const unsigned int m,
+                          const unsigned int n,
+                          const unsigned int d,
+                          const unsigned int e) {
+      const auto &am = exponents[m];
+      const auto &an = exponents[n];
+      if (am[d] == 0 || an[e] == 0)
+        return 0.;
+      const unsigned int i = am[0] + an[0] - (d == 0) - (e == 0);
+      const unsigned int j = am[1] + an[1] - (d == 1) - (e == 1);
+      return scale * am[d] * an[e] * moment(i, j);
+    };
+    for (unsigned int m = 0; m < M; ++m)
+      for (unsigned int n = 0; n <= m; ++n)
+        {
+          const double G[2][2] = {{gram(m, n, 0, 0), gram(m, n, 0, 1)},
+                                  {gram(m, n, 1, 0), gram(m, n, 1, 1)}};
+          for (unsigned int c = 0; c < 2; ++c)
+            for (unsigned int d = 0; d < 2; ++d)
+              {
+                const double value =
+                  lambda * G[c][d] +
+                  mu * ((c == d ? G[0][0] + G[1][1] : 0.) + G[d][c]);
+                stiffness(c * M + m, d * M + n) = value;
+                // K is symmetric: K_(d,n)(c,m) = K_(c,m)(d,n).
+                stiffness(d * M + n, c * M + m) = value;
+              }
+        }
   }
 
 
@@ -210,17 +259,28 @@ namespace coulomb_adapt
           w += mode[a] * load(a);
         rigid_load = std::max(rigid_load, std::abs(w));
       }
-    coefficients = load;
-    factor.solve(coefficients);
+    coefficients.reinit(load.size(), true);
+    factor.forward(forward_scratch, load);
+    factor_transposed.backward(coefficients, forward_scratch);
     return size > 0 ? rigid_load / size : 0.;
   }
 
 
 
-  double
-  LocalNeumannProblem::kinematic_work(const Vector<double> &v) const
+  void
+  LocalNeumannProblem::whiten(const Vector<double> &load,
+                              Vector<double>       &w) const
   {
-    return sigma_c_work * v;
+    w.reinit(load.size(), true);
+    factor.forward(w, load);
+  }
+
+
+
+  const Vector<double> &
+  LocalNeumannProblem::whitened_kinematic_work() const
+  {
+    return whitened_sigma_c_work;
   }
 
 

@@ -73,9 +73,10 @@ namespace coulomb_adapt
       std::vector<Vector<double>>          direction_loads;
       std::vector<types::global_dof_index> direction_dofs;
       unsigned int                         n_directions = 0;
-      FullMatrix<double>                   W;
-      std::vector<Vector<double>>          responses;
-      std::vector<const Vector<double> *>  loads;
+      FullMatrix<double>                   W, cell_H;
+      std::vector<double>                  cell_g;
+      std::vector<Vector<double>>          whitened;
+      Vector<double>                       base_whitened;
       std::vector<types::global_dof_index> indices;
       for (unsigned int slot = 0; slot < cells.size(); ++slot)
         if (cells[slot].owned)
@@ -159,24 +160,24 @@ namespace coulomb_adapt
             if (n == 0)
               continue;
             indices.clear();
-            responses.resize(n);
-            loads.resize(n);
+            whitened.resize(n);
             for (unsigned int i = 0; i < n; ++i)
               {
-                local.solve(direction_loads[i], responses[i]);
-                loads[i] = &direction_loads[i];
+                local.whiten(direction_loads[i], whitened[i]);
                 indices.push_back(direction_dofs[i]);
               }
-            // K S_j = l_j (the loads are self-equilibrated), so the energy
-            // products are the loads' work: (S_i, S_j) = l_j . S_i.
-            FullMatrix<double>  cell_H(n, n);
-            std::vector<double> cell_g(n);
+            // With K = L L^T and w = L^-1 l, the energy product of two
+            // responses is (S_i, S_j) = w_i . w_j, and the one of S_i with
+            // sigma^_0 - sigma_c is w_i . (w_0 - L^-1 (sigma_c's work)).
+            local.whiten(load, base_whitened);
+            base_whitened -= local.whitened_kinematic_work();
+            cell_H.reinit(n, n);
+            cell_g.resize(n);
             for (unsigned int i = 0; i < n; ++i)
               {
                 for (unsigned int j = 0; j <= i; ++j)
-                  cell_H(i, j) = cell_H(j, i) = *loads[j] * responses[i];
-                cell_g[i] =
-                  load * responses[i] - local.kinematic_work(responses[i]);
+                  cell_H(i, j) = cell_H(j, i) = whitened[i] * whitened[j];
+                cell_g[i] = whitened[i] * base_whitened;
               }
             H.add(indices, cell_H);
             g.add(indices, cell_g);
@@ -196,7 +197,12 @@ namespace coulomb_adapt
       const double g_norm = g.l2_norm();
       if (g_norm == 0)
         return;
-      SolverControl                           control(1000, 1e-8 * g_norm);
+      // The estimate is the quadratic's value, whose excess over the
+      // minimum is r^T H^-1 r for the residual r: quadratic in the
+      // residual. 1e-6 leaves the estimates of the test suite unchanged
+      // in their printed digits with about 70 % of the steps 1e-8 took;
+      // 1e-4 changed the seed example's adapted mesh (928 -> 924 cells).
+      SolverControl                           control(1000, 1e-6 * g_norm);
       SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
       TrilinosWrappers::PreconditionJacobi    jacobi;
       jacobi.initialize(H);

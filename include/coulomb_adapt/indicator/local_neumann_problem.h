@@ -4,12 +4,12 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/table.h>
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
 
@@ -29,10 +29,12 @@ namespace coulomb_adapt
    * triangles and quadrilaterals; it contains the rigid motions, which are
    * removed from the solution (the data must be self-equilibrated).
    *
-   * reinit() assembles the cell's stiffness matrix and factors it once, so
-   * that a cell can be solved for several loads (the response to each free
-   * parameter of the edge tractions) at the cost of a matrix-vector
-   * product each.
+   * reinit() assembles the cell's stiffness matrix K and factors it once,
+   * K = L L^T, so that a cell can be solved for several loads (the
+   * response to each free parameter of the edge tractions) at the cost of
+   * two triangular solves each. Energy products of responses need only
+   * one: with w = L^-1 l, the response u = K^-1 l has the energy
+   * (u_i, u_j)_K = w_i . w_j (whiten()).
    */
   class LocalNeumannProblem
   {
@@ -75,9 +77,16 @@ namespace coulomb_adapt
     double
     solve(const Vector<double> &load, Vector<double> &coefficients) const;
 
-    /** int sigma_c : eps(v): the work of the FE stress on v. */
-    double
-    kinematic_work(const Vector<double> &v) const;
+    /** w = L^-1 @p load for a load orthogonal to the rigid motions: the
+     * energy product of the responses to two loads is the dot product of
+     * their w. */
+    void
+    whiten(const Vector<double> &load, Vector<double> &w) const;
+
+    /** L^-1 of the work of the FE stress on each basis function: for a
+     * response u with whitened load w, int sigma_c : eps(u) = w . this. */
+    const Vector<double> &
+    whitened_kinematic_work() const;
 
     /** ||sigma^ - sigma_c||^2 and ||sigma^ + sigma_c||^2 on the cell
      * (energy norm, N per unit thickness), sigma^ = K eps(u^), from the
@@ -91,6 +100,10 @@ namespace coulomb_adapt
     void
     evaluate(const Point<2> &x) const;
 
+    // K from the cell's monomial moments (see reinit()).
+    void
+    assemble_stiffness();
+
     const ElasticBody                       &body;
     const unsigned int                       degree;
     std::vector<std::array<unsigned int, 2>> exponents;
@@ -101,16 +114,21 @@ namespace coulomb_adapt
     // Scratch of evaluate().
     mutable std::vector<double>       values;
     mutable std::vector<Tensor<1, 2>> gradients;
-    // Per quadrature point: the monomials' gradients, JxW, sigma_c.
+    // Per quadrature point: the monomials' gradients, JxW, sigma_c, and
+    // (scratch) the FE strain.
     std::vector<std::vector<Tensor<1, 2>>> gradients_at;
     std::vector<double>                    JxW;
-    std::vector<SymmetricTensor<2, 2>>     sigma_c;
+    std::vector<SymmetricTensor<2, 2>>     sigma_c, strains;
+    // moment(i, j) = int_cell xi^i eta^j dx in the scaled coordinates, up
+    // to the total degree 2 (degree - 1) of the stiffness integrand.
+    Table<2, double> moment;
     // The stiffness matrix with the rigid motions penalised (scratch of
-    // reinit()), its Cholesky factor, the body force load and the work of
-    // sigma_c on each basis function.
-    FullMatrix<double>                 stiffness;
-    LAPACKFullMatrix<double>           factor;
+    // reinit()), its Cholesky factor L and L^T, the body force load, the
+    // work of sigma_c on each basis function and L^-1 of that work.
+    FullMatrix<double>                 stiffness, factor, factor_transposed;
     Vector<double>                     body_force, sigma_c_work;
+    Vector<double>                     whitened_sigma_c_work;
+    mutable Vector<double>             forward_scratch;
     std::array<std::vector<double>, 3> rigid;
   };
 } // namespace coulomb_adapt
