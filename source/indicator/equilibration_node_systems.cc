@@ -64,6 +64,10 @@ namespace coulomb_adapt
                   node_faces.emplace_back(fi, where - nodes.begin());
               }
 
+          // Both components have the same matrix where the same moments
+          // are unknown (every interior node): one SVD serves both.
+          LAPACKFullMatrix<double>  svd;
+          std::vector<unsigned int> svd_columns;
           for (unsigned int c = 0; c < 2; ++c)
             {
               std::vector<unsigned int> columns; // index into node_faces
@@ -118,11 +122,15 @@ namespace coulomb_adapt
               for (unsigned int j = 0; j < n_cols; ++j)
                 scale[j] =
                   std::sqrt(faces[node_faces[columns[j]].first].length);
-              LAPACKFullMatrix<double> svd(n_rows, n_cols);
-              for (unsigned int row = 0; row < n_rows; ++row)
-                for (unsigned int j = 0; j < n_cols; ++j)
-                  svd(row, j) = A(row, j) * scale[j];
-              svd.compute_svd();
+              if (c == 0 || columns != svd_columns)
+                {
+                  svd.reinit(n_rows, n_cols);
+                  for (unsigned int row = 0; row < n_rows; ++row)
+                    for (unsigned int j = 0; j < n_cols; ++j)
+                      svd(row, j) = A(row, j) * scale[j];
+                  svd.compute_svd();
+                  svd_columns = columns;
+                }
               const auto &U  = svd.get_svd_u();
               const auto &Vt = svd.get_svd_vt();
               for (unsigned int i = 0; i < std::min(n_rows, n_cols); ++i)
