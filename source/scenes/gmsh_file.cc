@@ -408,6 +408,7 @@ namespace coulomb_adapt
                                  Triangulation<2> &tria) const
     {
       geometry.meshes[body].create_triangulation(tria);
+      attach_circle_manifolds(geometry.circle_centres, tria);
     }
 
 
