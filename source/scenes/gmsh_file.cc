@@ -484,6 +484,7 @@ namespace coulomb_adapt
                ComponentMask(
                  std::vector<bool>{fixed[0].has_value(), fixed[1].has_value()}),
                std::nullopt});
+            d.support_points.push_back(position);
           }
 
       const BodyForce &f = body_forces[body];
