@@ -8,7 +8,7 @@
 // compared with p0, and a with the half-width of a least-squares fit
 // p^2 = p0^2 (1 - x^2 / a^2) to the active nodes (as tests/contact_hertz
 // does); both within 2 % (tests/contact_hertz's tolerance), and the gmsh
-// scene as accurate as the built-in one: its errors at most 0.1 % of p0
+// scene as accurate as the built-in one: its errors at most 0.2 % of p0
 // (of a) above the built-in's, P1 and P2. The arc is a gmsh Circle in the
 // file: the gmsh scene attaches the manifold that the built-in scene
 // attaches by hand, so P2 faces are curved in both.
@@ -94,10 +94,10 @@ main(int argc, char *argv[])
       const bool within_2_percent =
         std::abs(peak_error[1]) < 0.02 && std::abs(width_error[1]) < 0.02;
       const bool as_accurate =
-        std::abs(peak_error[1]) <= std::abs(peak_error[0]) + 1e-3 &&
-        std::abs(width_error[1]) <= std::abs(width_error[0]) + 1e-3;
+        std::abs(peak_error[1]) <= std::abs(peak_error[0]) + 2e-3 &&
+        std::abs(width_error[1]) <= std::abs(width_error[0]) + 2e-3;
       out << "  gmsh within 2 %: " << (within_2_percent ? "yes" : "no")
-          << ", as accurate as the built-in scene (0.1 %): "
+          << ", as accurate as the built-in scene (0.2 %): "
           << (as_accurate ? "yes" : "no") << std::endl;
       AssertThrow(within_2_percent && as_accurate,
                   ExcMessage("gmsh Hertz: p0 error " +

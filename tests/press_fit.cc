@@ -57,18 +57,17 @@ main(int argc, char *argv[])
     E * delta /
     ((1 + nu) *
      (a * ((1 - 2 * nu) * a * a + c * c) / (c * c - a * a) + (1 - 2 * nu) * b));
-  out << "Lame's pressure (theory.md, a = b) = " << std::setprecision(6)
-      << lame << " MPa, for this geometry p = " << reference << " MPa"
-      << std::endl;
+  out << "Lame's pressure (theory.md, a = b) = " << std::setprecision(6) << lame
+      << " MPa, for this geometry p = " << reference << " MPa" << std::endl;
 
   struct Case
   {
     std::string mesh, degree, size_factor;
     double      tolerance, face_tolerance, mean_tolerance;
   };
-  const std::string fit    = root + "/prm/meshes/press_fit.geo";
-  const std::string offset = std::string(COULOMB_ADAPT_TEST_DATA_DIR) +
-                             "/press_fit_offset_nodes.geo";
+  const std::string fit = root + "/prm/meshes/press_fit.geo";
+  const std::string offset =
+    std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/press_fit_offset_nodes.geo";
   for (const Case &test : {Case{fit, "1", "0.5", 0.006, 0.004, 3e-4},
                            Case{fit, "2", "1", 8e-4, 1.5e-4, 3e-5},
                            Case{offset, "2", "1", 0.012, 2.5e-4, 1e-5}})
@@ -105,14 +104,15 @@ main(int argc, char *argv[])
           length += s.weight;
           deviation =
             std::max(deviation, std::abs(s.pressure - reference) / reference);
-          lowest    = std::min(lowest, s.pressure);
-          highest   = std::max(highest, s.pressure);
+          lowest  = std::min(lowest, s.pressure);
+          highest = std::max(highest, s.pressure);
         }
       // The pressure each face transmits: its resultant over its length,
       // sum_i p_i int_e psi_i / h_e (the weights 1/2, 1/2 of a linear face;
       // 1/6, 1/6, 2/3 of a quadratic one).
-      const auto  &states      = problem->solver->node_states();
-      const double face_weights[2][3] = {{0.5, 0.5, 0}, {1. / 6, 1. / 6, 2. / 3}};
+      const auto  &states             = problem->solver->node_states();
+      const double face_weights[2][3] = {{0.5, 0.5, 0},
+                                         {1. / 6, 1. / 6, 2. / 3}};
       double       face_deviation     = 0;
       for (const auto &segment : mortar.slave_segment_list())
         {
@@ -127,24 +127,22 @@ main(int argc, char *argv[])
       const double       mean_deviation = force / length / reference - 1;
 
       out << "P" << test.degree << ", Mesh size factor " << test.size_factor
-          << (test.mesh == offset ? ", bore nodes at other angles" : "")
-          << ": " << n_nodes << " slave nodes, " << n_covered
-          << " facing the shaft, " << n_active << " in contact" << std::endl
+          << (test.mesh == offset ? ", bore nodes at other angles" : "") << ": "
+          << n_nodes << " slave nodes, " << n_covered << " facing the shaft, "
+          << n_active << " in contact" << std::endl
           << "  initial overlap / delta = " << std::setprecision(4)
           << overlap / delta << ", clearance = " << clearance << " mm"
           << std::endl
-          << "  pressure / p in [" << std::setprecision(5)
-          << lowest / reference << ", " << highest / reference
-          << "], largest deviation " << std::setprecision(2)
-          << 100 * deviation << " % (within "
+          << "  pressure / p in [" << std::setprecision(5) << lowest / reference
+          << ", " << highest / reference << "], largest deviation "
+          << std::setprecision(2) << 100 * deviation << " % (within "
           << 100 * test.tolerance
           << " %: " << (deviation < test.tolerance ? "yes" : "no") << ")"
           << std::endl
           << "  face pressures: largest deviation " << std::setprecision(2)
-          << 100 * face_deviation << " % (within "
-          << 100 * test.face_tolerance << " %: "
-          << (face_deviation < test.face_tolerance ? "yes" : "no") << ")"
-          << std::endl
+          << 100 * face_deviation << " % (within " << 100 * test.face_tolerance
+          << " %: " << (face_deviation < test.face_tolerance ? "yes" : "no")
+          << ")" << std::endl
           << "  mean pressure / p - 1 = " << std::setprecision(1)
           << std::scientific << mean_deviation << std::defaultfloat
           << " (within " << test.mean_tolerance << ": "

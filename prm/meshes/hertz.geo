@@ -18,14 +18,18 @@ zone = 1.5 * a;
 
 Point(1) = {0, R, 0};   Point(2) = {-R, R, 0};
 Point(3) = {0, 0, 0};   Point(4) = {R, R, 0};
-// Two points on the axis hold the disc sideways (frictionless, nothing
-// else does): x fixed at its centre and halfway down.
-Point(10) = {0, R / 2, 0};
 Circle(1) = {2, 1, 3};  Circle(2) = {3, 1, 4};
 Line(3) = {4, 1};       Line(9) = {1, 2};
 Curve Loop(1) = {1, 2, 3, 9};
 Plane Surface(1) = {1};
-Point{10} In Surface{1};
+// The axis, embedded as in the built-in scene (which holds its nodes), so
+// that both scenes mesh alike. Two points on it hold the disc sideways
+// here (frictionless, nothing else does): x fixed at the disc's centre
+// and at the axis node nearest to R/2 (gmsh puts nodes on the embedded
+// line; the point splits it there).
+Point(10) = {0, R / 2, 0};
+Line(10) = {1, 10};  Line(11) = {10, 3};
+Line{10, 11} In Surface{1};
 
 Point(5) = {-L, -H, 0}; Point(6) = {L, -H, 0};
 Point(7) = {L, 0, 0};   Point(8) = {-L, 0, 0};

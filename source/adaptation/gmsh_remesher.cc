@@ -179,8 +179,8 @@ namespace coulomb_adapt
                     const std::vector<BoundaryFace> &loop,
                     const std::set<unsigned int>    &corners)
     {
-      const auto &vertices = tria.get_vertices();
-      auto                            direction = [&](const BoundaryFace &f) {
+      const auto &vertices  = tria.get_vertices();
+      auto        direction = [&](const BoundaryFace &f) {
         const Tensor<1, 2> d = vertices[f.b] - vertices[f.a];
         return d / d.norm();
       };
@@ -271,10 +271,10 @@ namespace coulomb_adapt
         }
       // The curves of each boundary loop; the outer boundary is the loop
       // of the largest area, the others are holes.
-      const auto loops = boundary_loops(geometry, body_name);
+      const auto                loops = boundary_loops(geometry, body_name);
       std::vector<Curve>        curves;
       std::vector<unsigned int> first_curve_of_loop;
-      unsigned int              outer = 0;
+      unsigned int              outer        = 0;
       double                    largest_area = -1;
       for (unsigned int l = 0; l < loops.size(); ++l)
         {
@@ -363,7 +363,7 @@ namespace coulomb_adapt
       for (unsigned int l = 0; l < loops.size(); ++l)
         if (l != outer)
           loop_list.push_back(gmsh::model::geo::addCurveLoop(loop_tags[l]));
-      const int surface = gmsh::model::geo::addPlaneSurface(loop_list);
+      const int        surface = gmsh::model::geo::addPlaneSurface(loop_list);
       std::vector<int> point_tags;
       for (const auto &p : embedded_points)
         point_tags.push_back(gmsh::model::geo::addPoint(p[0], p[1], 0));

@@ -88,13 +88,13 @@ namespace coulomb_adapt
       orthogonal_projection(const Point<2> &p) const
       {
         const Tensor<1, 2> chord = points[1] - points[0];
-        double             xi    = (p - points[0]) * chord / chord.norm_square();
+        double             xi = (p - points[0]) * chord / chord.norm_square();
         for (unsigned int it = 0; it < 20; ++it)
           {
             const Tensor<1, 2> r = p - value(xi), t = derivative(xi);
-            const double       f = r * t;
-            const double df = -t.norm_square() + r * second_derivative();
-            const double step = f / df;
+            const double       f  = r * t;
+            const double       df = -t.norm_square() + r * second_derivative();
+            const double       step = f / df;
             xi -= step;
             if (std::abs(step) < 1e-15)
               break;
@@ -115,14 +115,15 @@ namespace coulomb_adapt
       for (unsigned int it = 0; it < 20; ++it)
         {
           // F = y(eta) - x - t n; dF = [y'(eta), -n].
-          const Tensor<1, 2> F   = master.value(eta) - x - t * n;
-          const Tensor<1, 2> dy  = master.derivative(eta);
-          const double       det = -dy[0] * n[1] + dy[1] * n[0];
-          const double d_eta     = (-F[0] * n[1] + F[1] * n[0]) / det;
-          const double d_t       = (dy[0] * F[1] - dy[1] * F[0]) / det;
+          const Tensor<1, 2> F     = master.value(eta) - x - t * n;
+          const Tensor<1, 2> dy    = master.derivative(eta);
+          const double       det   = -dy[0] * n[1] + dy[1] * n[0];
+          const double       d_eta = (-F[0] * n[1] + F[1] * n[0]) / det;
+          const double       d_t   = (dy[0] * F[1] - dy[1] * F[0]) / det;
           eta -= d_eta;
           t -= d_t;
-          if (std::abs(d_eta) < 1e-15 && std::abs(d_t) < 1e-15 * (1 + std::abs(t)))
+          if (std::abs(d_eta) < 1e-15 &&
+              std::abs(d_t) < 1e-15 * (1 + std::abs(t)))
             break;
         }
       return {eta, t};
@@ -318,7 +319,8 @@ namespace coulomb_adapt
             const Point<2> &a = nodes[segment.nodes[0]].position,
                            &b = nodes[segment.nodes[1]].position,
                            &m = nodes[segment.nodes[2]].position;
-            segment.curved = m.distance(a + 0.5 * (b - a)) > 1e-10 * a.distance(b);
+            segment.curved =
+              m.distance(a + 0.5 * (b - a)) > 1e-10 * a.distance(b);
           }
         segments.push_back(segment);
       }
@@ -386,15 +388,16 @@ namespace coulomb_adapt
             const SegmentCurve curve =
               segment_curve(slave, segment, slave_degree);
             const unsigned int n = segment.nodes.size();
-            FullMatrix<double> mass(n, n), inverse(n, n), &A =
-                                                            curved_dual_coefficients[s];
+            FullMatrix<double> mass(n, n), inverse(n, n),
+              &A = curved_dual_coefficients[s];
             std::vector<double> integral(n, 0.);
             const auto         &gauss = curved_segment_quadrature();
             for (unsigned int q = 0; q < gauss.size(); ++q)
               {
-                const double xi  = gauss.point(q)[0];
-                const double JxW = curve.derivative(xi).norm() * gauss.weight(q);
-                const auto   phi = segment_shape_values(slave_degree, xi);
+                const double xi = gauss.point(q)[0];
+                const double JxW =
+                  curve.derivative(xi).norm() * gauss.weight(q);
+                const auto phi = segment_shape_values(slave_degree, xi);
                 for (unsigned int i = 0; i < n; ++i)
                   {
                     integral[i] += phi[i] * JxW;
@@ -438,8 +441,8 @@ namespace coulomb_adapt
         integrate_curved_segment_pair(slave_index, master_index);
         return;
       }
-    const Point<2>    &a              = slave[slave_segment.nodes[0]].position;
-    const Point<2>    &b              = slave[slave_segment.nodes[1]].position;
+    const Point<2>    &a  = slave[slave_segment.nodes[0]].position;
+    const Point<2>    &b  = slave[slave_segment.nodes[1]].position;
     const Point<2>    &c  = master[master_segment.nodes[0]].position;
     const Point<2>    &d  = master[master_segment.nodes[1]].position;
     const Tensor<1, 2> ab = b - a;
@@ -522,12 +525,12 @@ namespace coulomb_adapt
     const FullMatrix<double> &A = slave_segment.curved ?
                                     curved_dual_coefficients[slave_index] :
                                     dual_coefficients;
-    const QGauss<1>     gauss(std::max(slave_degree, master_degree) + 4);
-    const unsigned int  n_slave_nodes = slave_segment.nodes.size();
-    std::vector<double> psi(n_slave_nodes);
+    const QGauss<1>           gauss(std::max(slave_degree, master_degree) + 4);
+    const unsigned int        n_slave_nodes = slave_segment.nodes.size();
+    std::vector<double>       psi(n_slave_nodes);
     for (unsigned int q = 0; q < gauss.size(); ++q)
       {
-        const double xi = begin + (end - begin) * gauss.point(q)[0];
+        const double xi     = begin + (end - begin) * gauss.point(q)[0];
         const auto [eta, t] = project_onto_master(x, y, slave_segment, xi);
         const double w =
           gauss.weight(q) * (end - begin) * x.derivative(xi).norm();
@@ -576,28 +579,29 @@ namespace coulomb_adapt
             const SegmentCurve y = segment_curve(master, m_seg, master_degree);
             for (unsigned int q = 0; q < gauss.size(); ++q)
               {
-                const double xi = overlap.begin + (overlap.end - overlap.begin) *
-                                                    gauss.point(q)[0];
+                const double xi =
+                  overlap.begin +
+                  (overlap.end - overlap.begin) * gauss.point(q)[0];
                 const double eta = project_onto_master(x, y, s_seg, xi).first;
-                points.push_back({o,
-                                  xi,
-                                  eta,
-                                  x.value(xi),
-                                  y.value(eta),
-                                  gauss.weight(q) *
-                                    (overlap.end - overlap.begin) *
-                                    x.derivative(xi).norm()});
+                points.push_back(
+                  {o,
+                   xi,
+                   eta,
+                   x.value(xi),
+                   y.value(eta),
+                   gauss.weight(q) * (overlap.end - overlap.begin) *
+                     x.derivative(xi).norm()});
               }
             continue;
           }
-        const Point<2>    &a       = slave[s_seg.nodes[0]].position;
-        const Point<2>    &b       = slave[s_seg.nodes[1]].position;
-        const Point<2>    &c       = master[m_seg.nodes[0]].position;
-        const Point<2>    &d       = master[m_seg.nodes[1]].position;
-        const Tensor<1, 2> n       = s_seg.normal;
-        const Tensor<1, 2> cd      = d - c;
-        const double       det     = -cd[0] * n[1] + cd[1] * n[0];
-        const double       h       = (b - a).norm();
+        const Point<2>    &a   = slave[s_seg.nodes[0]].position;
+        const Point<2>    &b   = slave[s_seg.nodes[1]].position;
+        const Point<2>    &c   = master[m_seg.nodes[0]].position;
+        const Point<2>    &d   = master[m_seg.nodes[1]].position;
+        const Tensor<1, 2> n   = s_seg.normal;
+        const Tensor<1, 2> cd  = d - c;
+        const double       det = -cd[0] * n[1] + cd[1] * n[0];
+        const double       h   = (b - a).norm();
         for (unsigned int q = 0; q < gauss.size(); ++q)
           {
             const double xi =

@@ -56,12 +56,9 @@ namespace coulomb_adapt
     {
       const Tensor<1, 2> u = b - a, v = c - a;
       const double       d = 2 * (u[0] * v[1] - u[1] * v[0]);
-      return a + Tensor<1, 2>({(v[1] * u.norm_square() -
-                                u[1] * v.norm_square()) /
-                                 d,
-                               (u[0] * v.norm_square() -
-                                v[0] * u.norm_square()) /
-                                 d});
+      return a + Tensor<1, 2>(
+                   {(v[1] * u.norm_square() - u[1] * v.norm_square()) / d,
+                    (u[0] * v.norm_square() - v[0] * u.norm_square()) / d});
     }
 
 
@@ -142,15 +139,16 @@ namespace coulomb_adapt
             gmsh::model::getParametrizationBounds(dim, tag, low, high);
             const double span = high[0] - low[0];
             // Three distinct points also on a closed circle.
-            gmsh::model::getValue(
-              dim,
-              tag,
-              {low[0], low[0] + span / 3, low[0] + 2 * span / 3},
-              xyz);
-            const Point<2> centre = circumcentre(Point<2>(xyz[0], xyz[1]),
+            gmsh::model::getValue(dim,
+                                  tag,
+                                  {low[0],
+                                   low[0] + span / 3,
+                                   low[0] + 2 * span / 3},
+                                  xyz);
+            const Point<2>     centre = circumcentre(Point<2>(xyz[0], xyz[1]),
                                                  Point<2>(xyz[3], xyz[4]),
                                                  Point<2>(xyz[6], xyz[7]));
-            types::manifold_id id = circle_centres.size();
+            types::manifold_id id     = circle_centres.size();
             for (const auto &[other_id, other] : circle_centres)
               if (other.distance(centre) <= 1e-10 * extent)
                 id = other_id;

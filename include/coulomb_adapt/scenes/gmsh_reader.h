@@ -52,8 +52,8 @@ namespace coulomb_adapt
                   const std::map<std::size_t, Point<2>>       &all_nodes,
                   const std::map<types::boundary_id,
                                  std::vector<std::vector<std::size_t>>> &lines,
-                  const types::material_id material_id,
-                  const std::string       &file_name,
+                  const types::material_id            material_id,
+                  const std::string                  &file_name,
                   const std::map<std::pair<std::size_t, std::size_t>,
                                  types::manifold_id> &curved_edges = {});
 

@@ -83,8 +83,8 @@ namespace coulomb_adapt
     std::vector<PointConstraint>    point_constraints;
     /** The points that point constraints select one by one (point
      * supports): remeshing keeps a node at each. */
-    std::vector<Point<2>> support_points;
-    std::vector<TractionCondition>  tractions;
+    std::vector<Point<2>>          support_points;
+    std::vector<TractionCondition> tractions;
     /** Body force per unit volume (N/mm^3); empty means none. */
     std::function<Tensor<1, 2>(const Point<2> &)> body_force;
     /** Boundary id of the candidate contact zone. */
