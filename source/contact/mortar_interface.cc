@@ -520,6 +520,11 @@ namespace coulomb_adapt
     const double       end   = std::min(1., std::max(xi_c, xi_d));
     if (end - begin <= 1e-12)
       return;
+    // A master chord along the slave normal faces nothing (as on chords).
+    const Tensor<1, 2> cd = y.points[1] - y.points[0];
+    const Tensor<1, 2> n  = slave_segment.normal;
+    if (std::abs(-cd[0] * n[1] + cd[1] * n[0]) < 1e-12 * cd.norm())
+      return;
     overlap_list.push_back({slave_index, master_index, begin, end});
 
     const FullMatrix<double> &A = slave_segment.curved ?
