@@ -35,8 +35,9 @@ namespace coulomb_adapt
       std::unique_ptr<TwoBodyProblem> problem;
       nlohmann::json                  summary;
 
-      explicit ProgramRun(const Settings &settings)
-        : parameters(make_parameters(prm, settings))
+      explicit ProgramRun(const Settings    &settings,
+                          const std::string &parameter_file = "")
+        : parameters(make_parameters(prm, settings, parameter_file))
       {
         prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
         problem = std::make_unique<TwoBodyProblem>(

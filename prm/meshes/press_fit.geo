@@ -14,13 +14,19 @@
 //
 // The shaft's surface and the hub's bore get the same element size, hence
 // (their lengths differ by 2 pi delta) the same number of nodes at the
-// same angles, so that their polygons stay parallel: the chord sag of a
-// polygonal circle, h^2 / (8 r), is larger than a realistic delta, and
-// nodes at different angles would turn it into a spurious gap.
+// same angles. P1 needs it: its circles are polygons, whose chord sag
+// h^2 / (8 r) is larger than a realistic delta, and nodes at different
+// angles would turn the sag into a spurious gap. P2 does not: its faces
+// are parabolas through a point on the circle (the circles are manifolds
+// of the mesh), and the mortar integrates on them (set h_bore before
+// including this file to try; tests/press_fit does).
 b = 10;
 c = 20;
 delta = 0.001;
 h_arc = 0.5;         // element size on the contact surfaces
+If (!Exists(h_bore))
+  h_bore = h_arc;    // element size on the hub's bore
+EndIf
 h_centre = 1;        // element size in the shaft's centre
 h_outer = 1;         // element size at the hub's outer surface
 
@@ -41,10 +47,10 @@ Point{1, 6} In Surface{1};
 
 // Hub: an annulus.
 r = b - delta;
-Point(11) = {r, 0, 0, h_arc};
-Point(12) = {0, r, 0, h_arc};
-Point(13) = {-r, 0, 0, h_arc};
-Point(14) = {0, -r, 0, h_arc};
+Point(11) = {r, 0, 0, h_bore};
+Point(12) = {0, r, 0, h_bore};
+Point(13) = {-r, 0, 0, h_bore};
+Point(14) = {0, -r, 0, h_bore};
 Point(21) = {c, 0, 0, h_outer};
 Point(22) = {0, c, 0, h_outer};
 Point(23) = {-c, 0, 0, h_outer};

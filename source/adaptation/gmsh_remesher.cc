@@ -110,10 +110,10 @@ namespace coulomb_adapt
       types::manifold_id manifold_id;
     };
 
-    // The boundary faces of @p tria as one closed chain, each face oriented
-    // along the walk.
-    std::vector<BoundaryFace>
-    boundary_loop(const Triangulation<2> &tria, const std::string &body_name)
+    // The boundary faces of @p tria as closed chains (the outer boundary
+    // and one per hole), each face oriented along its chain's walk.
+    std::vector<std::vector<BoundaryFace>>
+    boundary_loops(const Triangulation<2> &tria, const std::string &body_name)
     {
       std::vector<BoundaryFace> faces;
       for (const auto &cell : tria.active_cell_iterators())
@@ -129,33 +129,37 @@ namespace coulomb_adapt
           at_vertex.emplace(faces[f].a, f);
           at_vertex.emplace(faces[f].b, f);
         }
-      std::vector<BoundaryFace> loop = {faces[0]};
-      std::vector<bool>         used(faces.size(), false);
-      used[0] = true;
-      while (loop.back().b != loop.front().a)
+      std::vector<bool>                      used(faces.size(), false);
+      std::vector<std::vector<BoundaryFace>> loops;
+      for (unsigned int first = 0; first < faces.size(); ++first)
         {
-          const unsigned int v     = loop.back().b;
-          bool               found = false;
-          for (auto [it, end] = at_vertex.equal_range(v); it != end; ++it)
-            if (!used[it->second])
-              {
-                BoundaryFace next = faces[it->second];
-                if (next.a != v)
-                  std::swap(next.a, next.b);
-                used[it->second] = true;
-                loop.push_back(next);
-                found = true;
-                break;
-              }
-          AssertThrow(found,
-                      ExcMessage("remeshing " + body_name +
-                                 ": its boundary is not a closed curve"));
+          if (used[first])
+            continue;
+          std::vector<BoundaryFace> loop = {faces[first]};
+          used[first]                    = true;
+          while (loop.back().b != loop.front().a)
+            {
+              const unsigned int v     = loop.back().b;
+              bool               found = false;
+              for (auto [it, end] = at_vertex.equal_range(v); it != end; ++it)
+                if (!used[it->second])
+                  {
+                    BoundaryFace next = faces[it->second];
+                    if (next.a != v)
+                      std::swap(next.a, next.b);
+                    used[it->second] = true;
+                    loop.push_back(next);
+                    found = true;
+                    break;
+                  }
+              AssertThrow(found,
+                          ExcMessage("remeshing " + body_name +
+                                     ": its boundary is not made of closed "
+                                     "curves"));
+            }
+          loops.push_back(loop);
         }
-      AssertThrow(loop.size() == faces.size(),
-                  ExcMessage("remeshing " + body_name +
-                             ": the body has holes (several boundary "
-                             "curves), which the remesher does not handle"));
-      return loop;
+      return loops;
     }
 
 
@@ -171,13 +175,12 @@ namespace coulomb_adapt
     // @p corners: vertices where a curve must end even inside a straight
     // run or an arc (end points of interior lines).
     std::vector<Curve>
-    boundary_curves(const Triangulation<2>       &tria,
-                    const std::string            &body_name,
-                    const std::set<unsigned int> &corners)
+    boundary_curves(const Triangulation<2>          &tria,
+                    const std::vector<BoundaryFace> &loop,
+                    const std::set<unsigned int>    &corners)
     {
-      const std::vector<BoundaryFace> loop     = boundary_loop(tria, body_name);
-      const auto                     &vertices = tria.get_vertices();
-      auto                            direction = [&](const BoundaryFace &f) {
+      const auto &vertices  = tria.get_vertices();
+      auto        direction = [&](const BoundaryFace &f) {
         const Tensor<1, 2> d = vertices[f.b] - vertices[f.a];
         return d / d.norm();
       };
@@ -228,7 +231,8 @@ namespace coulomb_adapt
                  const std::vector<SizeFieldTriangle>       &size_field,
                  const std::string                          &body_name,
                  const int                                   algorithm,
-                 const std::vector<std::array<Point<2>, 2>> &interior_lines)
+                 const std::vector<std::array<Point<2>, 2>> &interior_lines,
+                 const std::vector<Point<2>>                &support_points)
     {
       const auto &vertices = geometry.get_vertices();
       // The boundary vertices at the interior lines' ends.
@@ -253,8 +257,41 @@ namespace coulomb_adapt
             }
           line_ends.push_back(ends);
         }
-      const std::vector<Curve> curves =
-        boundary_curves(geometry, body_name, corners);
+      // Point supports: on the boundary a curve ends there, inside the
+      // body the point is embedded; either way it stays a node.
+      std::vector<Point<2>> embedded_points;
+      for (const auto &p : support_points)
+        {
+          const unsigned int v =
+            GridTools::find_closest_vertex(boundary_vertices, p);
+          if (vertices[v].distance(p) < tolerance)
+            corners.insert(v);
+          else
+            embedded_points.push_back(p);
+        }
+      // The curves of each boundary loop; the outer boundary is the loop
+      // of the largest area, the others are holes.
+      const auto                loops = boundary_loops(geometry, body_name);
+      std::vector<Curve>        curves;
+      std::vector<unsigned int> first_curve_of_loop;
+      unsigned int              outer        = 0;
+      double                    largest_area = -1;
+      for (unsigned int l = 0; l < loops.size(); ++l)
+        {
+          double area = 0;
+          for (const auto &f : loops[l])
+            area += vertices[f.a][0] * vertices[f.b][1] -
+                    vertices[f.b][0] * vertices[f.a][1];
+          if (std::abs(area) > largest_area)
+            {
+              largest_area = std::abs(area);
+              outer        = l;
+            }
+          first_curve_of_loop.push_back(curves.size());
+          const auto loop_curves = boundary_curves(geometry, loops[l], corners);
+          curves.insert(curves.end(), loop_curves.begin(), loop_curves.end());
+        }
+      first_curve_of_loop.push_back(curves.size());
 
       gmsh::model::add(body_name);
       std::map<unsigned int, int> point_tag;
@@ -269,11 +306,15 @@ namespace coulomb_adapt
                  .first;
         return it->second;
       };
-      std::vector<int>            loop_tags;
-      std::vector<unsigned int>   curve_of_tag; // gmsh curve -> curves[]
-      std::map<int, unsigned int> curve_index;
+      std::vector<std::vector<int>> loop_tags(loops.size());
+      std::map<int, unsigned int>   curve_index; // gmsh curve -> curves[]
       for (unsigned int c = 0; c < curves.size(); ++c)
         {
+          const unsigned int loop_of_curve =
+            std::upper_bound(first_curve_of_loop.begin(),
+                             first_curve_of_loop.end(),
+                             c) -
+            first_curve_of_loop.begin() - 1;
           const Curve     &curve = curves[c];
           std::vector<int> tags;
           if (curve.manifold_id == numbers::flat_manifold_id)
@@ -313,12 +354,19 @@ namespace coulomb_adapt
             }
           for (const int t : tags)
             {
-              loop_tags.push_back(t);
+              loop_tags[loop_of_curve].push_back(t);
               curve_index[t] = c;
             }
         }
-      const int        loop    = gmsh::model::geo::addCurveLoop(loop_tags);
-      const int        surface = gmsh::model::geo::addPlaneSurface({loop});
+      std::vector<int> loop_list = {
+        gmsh::model::geo::addCurveLoop(loop_tags[outer])};
+      for (unsigned int l = 0; l < loops.size(); ++l)
+        if (l != outer)
+          loop_list.push_back(gmsh::model::geo::addCurveLoop(loop_tags[l]));
+      const int        surface = gmsh::model::geo::addPlaneSurface(loop_list);
+      std::vector<int> point_tags;
+      for (const auto &p : embedded_points)
+        point_tags.push_back(gmsh::model::geo::addPoint(p[0], p[1], 0));
       std::vector<int> interior_tags;
       for (const auto &ends : line_ends)
         interior_tags.push_back(
@@ -326,6 +374,8 @@ namespace coulomb_adapt
       gmsh::model::geo::synchronize();
       if (!interior_tags.empty())
         gmsh::model::mesh::embed(1, interior_tags, 2, surface);
+      if (!point_tags.empty())
+        gmsh::model::mesh::embed(0, point_tags, 2, surface);
 
       // The size field: a list-based view of triangles with nodal sizes.
       const int           view = gmsh::view::add("size field");
@@ -522,7 +572,8 @@ namespace coulomb_adapt
                    const std::string                          &body_name,
                    const MPI_Comm                              comm,
                    const std::string                          &algorithm,
-                   const std::vector<std::array<Point<2>, 2>> &interior_lines)
+                   const std::vector<std::array<Point<2>, 2>> &interior_lines,
+                   const std::vector<Point<2>>                &support_points)
   {
     // gmsh's Mesh.Algorithm numbers.
     const int algorithm_number = algorithm == "delaunay" ? 5 : 6;
@@ -540,7 +591,8 @@ namespace coulomb_adapt
                                      size_field,
                                      body_name,
                                      algorithm_number,
-                                     interior_lines));
+                                     interior_lines,
+                                     support_points));
           }
         catch (const std::exception &e)
           {

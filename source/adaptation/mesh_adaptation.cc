@@ -77,7 +77,8 @@ namespace coulomb_adapt
                                bodies[b]->name(),
                                bodies[b]->dof_handler().get_communicator(),
                                parameters.remeshing_algorithm,
-                               bodies[b]->description().interior_lines()));
+                               bodies[b]->description().interior_lines(),
+                               bodies[b]->description().support_points));
           }
         return report;
       }

@@ -21,6 +21,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/bodies/manifold_mapping_fe.h>
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 
 #include <cmath>
@@ -50,8 +51,18 @@ namespace coulomb_adapt
     const unsigned int p = fe_parameters.degree;
     if (simplex)
       {
-        fe         = std::make_unique<FESystem<2>>(FE_SimplexP<2>(p), 2);
-        mapping_   = std::make_unique<MappingFE<2>>(FE_SimplexP<2>(1));
+        // On curved boundaries (a manifold other than the flat one) the
+        // mapping has the element's degree and puts the edge nodes on the
+        // curve; on straight-sided meshes it would give the same affine
+        // cells at more cost.
+        bool curved = false;
+        for (const auto id : tria->get_manifold_ids())
+          curved = curved || id != numbers::flat_manifold_id;
+        fe = std::make_unique<FESystem<2>>(FE_SimplexP<2>(p), 2);
+        if (curved && p > 1)
+          mapping_ = std::make_unique<ManifoldMappingFE>(FE_SimplexP<2>(p));
+        else
+          mapping_ = std::make_unique<MappingFE<2>>(FE_SimplexP<2>(1));
         quadrature = std::make_unique<QGaussSimplex<2>>(p + 1);
       }
     else

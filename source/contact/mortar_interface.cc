@@ -23,6 +23,151 @@ namespace coulomb_adapt
       return {(1 - xi) * (1 - 2 * xi), xi * (2 * xi - 1), 4 * xi * (1 - xi)};
     }
 
+    // Derivatives of segment_shape_values in xi.
+    std::vector<double>
+    segment_shape_derivatives(const unsigned int degree, const double xi)
+    {
+      if (degree == 1)
+        return {-1, 1};
+      return {4 * xi - 3, 4 * xi - 1, 4 - 8 * xi};
+    }
+
+    // The image of a segment: the curve through its nodes (ends, then the
+    // middle node) that the element's mapping makes of the face, x(xi) =
+    // sum_k phi_k(xi) X_k. Straight for degree 1 and for a middle node at
+    // the chord's midpoint; a parabola through a point on the boundary's
+    // manifold otherwise.
+    struct SegmentCurve
+    {
+      std::vector<Point<2>> points;
+      unsigned int          degree;
+
+      Point<2>
+      value(const double xi) const
+      {
+        const auto phi = segment_shape_values(degree, xi);
+        Point<2>   x;
+        for (unsigned int k = 0; k < points.size(); ++k)
+          x += phi[k] * (points[k] - Point<2>());
+        return x;
+      }
+
+      Tensor<1, 2>
+      derivative(const double xi) const
+      {
+        const auto   dphi = segment_shape_derivatives(degree, xi);
+        Tensor<1, 2> t;
+        for (unsigned int k = 0; k < points.size(); ++k)
+          t += dphi[k] * (points[k] - Point<2>());
+        return t;
+      }
+
+      Tensor<1, 2>
+      second_derivative() const
+      {
+        if (degree == 1)
+          return Tensor<1, 2>();
+        return 4 * (points[0] - Point<2>()) + 4 * (points[1] - Point<2>()) -
+               8 * (points[2] - Point<2>());
+      }
+
+      // The unit normal at xi, on the side of @p outward.
+      Tensor<1, 2>
+      normal(const double xi, const Tensor<1, 2> &outward) const
+      {
+        const Tensor<1, 2> t = derivative(xi);
+        Tensor<1, 2>       n({t[1], -t[0]});
+        n /= n.norm();
+        return n * outward < 0 ? -n : n;
+      }
+
+      // The parameter of the point of the curve nearest to @p p (where
+      // p - x(xi) is normal to the curve), by Newton's method from the
+      // chord's parameter; not limited to [0, 1].
+      double
+      orthogonal_projection(const Point<2> &p) const
+      {
+        const Tensor<1, 2> chord = points[1] - points[0];
+        double             xi = (p - points[0]) * chord / chord.norm_square();
+        for (unsigned int it = 0; it < 20; ++it)
+          {
+            const Tensor<1, 2> r = p - value(xi), t = derivative(xi);
+            const double       f  = r * t;
+            const double       df = -t.norm_square() + r * second_derivative();
+            const double       step = f / df;
+            xi -= step;
+            if (std::abs(step) < 1e-15)
+              break;
+          }
+        return xi;
+      }
+    };
+
+    // Where the line x + t n meets the curve @p master: its parameter eta
+    // and t, by Newton's method from @p eta (the chord's solution).
+    std::pair<double, double>
+    intersect_along(const SegmentCurve &master,
+                    const Point<2>     &x,
+                    const Tensor<1, 2> &n,
+                    double              eta)
+    {
+      double t = (master.value(eta) - x) * n;
+      for (unsigned int it = 0; it < 20; ++it)
+        {
+          // F = y(eta) - x - t n; dF = [y'(eta), -n].
+          const Tensor<1, 2> F     = master.value(eta) - x - t * n;
+          const Tensor<1, 2> dy    = master.derivative(eta);
+          const double       det   = -dy[0] * n[1] + dy[1] * n[0];
+          const double       d_eta = (-F[0] * n[1] + F[1] * n[0]) / det;
+          const double       d_t   = (dy[0] * F[1] - dy[1] * F[0]) / det;
+          eta -= d_eta;
+          t -= d_t;
+          if (std::abs(d_eta) < 1e-15 &&
+              std::abs(d_t) < 1e-15 * (1 + std::abs(t)))
+            break;
+        }
+      return {eta, t};
+    }
+
+    // The slave point x(xi) projected onto the master curve along the
+    // slave curve's normal: the master parameter eta and the distance t,
+    // starting from the chord's solution.
+    std::pair<double, double>
+    project_onto_master(const SegmentCurve             &x,
+                        const SegmentCurve             &y,
+                        const MortarInterface::Segment &slave_segment,
+                        const double                    xi)
+    {
+      const Point<2>     p   = x.value(xi);
+      const Tensor<1, 2> n   = x.normal(xi, slave_segment.normal);
+      const Tensor<1, 2> cd  = y.points[1] - y.points[0];
+      const Tensor<1, 2> r   = p - y.points[0];
+      const double       det = -cd[0] * n[1] + cd[1] * n[0];
+      const double       eta = (-r[0] * n[1] + r[1] * n[0]) / det;
+      return intersect_along(y, p, n, eta);
+    }
+
+    SegmentCurve
+    segment_curve(const std::vector<MortarInterface::Node> &nodes,
+                  const MortarInterface::Segment           &segment,
+                  const unsigned int                        degree)
+    {
+      SegmentCurve curve{{}, degree};
+      for (const unsigned int n : segment.nodes)
+        curve.points.push_back(nodes[n].position);
+      return curve;
+    }
+
+    // A Gauss rule fine enough for the length element |x'(xi)| of a curved
+    // segment (not a polynomial): the row sums of M then equal D to round
+    // off, as on straight segments.
+    const QGauss<1> &
+    curved_segment_quadrature()
+    {
+      static const QGauss<1> gauss(8);
+      return gauss;
+    }
+
     // int_segment phi_i / h: the diagonal of D on one segment.
     std::vector<double>
     segment_weights(const unsigned int degree)
@@ -167,6 +312,16 @@ namespace coulomb_adapt
           segment.nodes.push_back(index_of[dof]);
         segment.normal = segment_normals[s];
         segment.cell   = segment_cells[s];
+        if (degree == 2)
+          {
+            // A middle node off the chord's midpoint (on a curved
+            // manifold) makes the face a parabola.
+            const Point<2> &a = nodes[segment.nodes[0]].position,
+                           &b = nodes[segment.nodes[1]].position,
+                           &m = nodes[segment.nodes[2]].position;
+            segment.curved =
+              m.distance(a + 0.5 * (b - a)) > 1e-10 * a.distance(b);
+          }
         segments.push_back(segment);
       }
     // Segments in the order of their first node, for reproducible sums.
@@ -177,12 +332,20 @@ namespace coulomb_adapt
                        std::min(b.nodes[0], b.nodes[1]);
               });
 
-    // Nodal normals: the average of the adjacent segments' normals.
+    // Nodal normals: the average of the adjacent segments' normals (on a
+    // curved segment its curve's normal at the node).
     for (auto &node : nodes)
       node.normal = Tensor<1, 2>();
     for (const auto &segment : segments)
-      for (const unsigned int n : segment.nodes)
-        nodes[n].normal += segment.normal;
+      for (unsigned int i = 0; i < segment.nodes.size(); ++i)
+        if (segment.curved)
+          {
+            const SegmentCurve curve = segment_curve(nodes, segment, degree);
+            nodes[segment.nodes[i]].normal +=
+              curve.normal(i == 2 ? 0.5 : double(i), segment.normal);
+          }
+        else
+          nodes[segment.nodes[i]].normal += segment.normal;
     for (auto &node : nodes)
       {
         node.normal /= node.normal.norm();
@@ -210,9 +373,48 @@ namespace coulomb_adapt
     // D is diagonal with the dual basis: D_jj = int phi_j (h / 2 at a
     // vertex of a linear segment; h / 6 at a vertex and 2 h / 3 at the
     // middle node of a quadratic one).
+    // On a curved segment with its length element J = |x'(xi)|:
+    // D_jj = int phi_j J, and the dual basis is A_e = D_e M_e^-1 with the
+    // segment's own mass matrix M_e = int phi_i phi_k J, so that psi and
+    // phi stay biorthogonal on the curve.
     const auto weights = segment_weights(slave_degree);
-    for (const auto &segment : slave_segments)
+    curved_dual_coefficients.assign(slave_segments.size(),
+                                    FullMatrix<double>());
+    for (unsigned int s = 0; s < slave_segments.size(); ++s)
       {
+        const Segment &segment = slave_segments[s];
+        if (segment.curved)
+          {
+            const SegmentCurve curve =
+              segment_curve(slave, segment, slave_degree);
+            const unsigned int n = segment.nodes.size();
+            FullMatrix<double> mass(n, n), inverse(n, n),
+              &A = curved_dual_coefficients[s];
+            std::vector<double> integral(n, 0.);
+            const auto         &gauss = curved_segment_quadrature();
+            for (unsigned int q = 0; q < gauss.size(); ++q)
+              {
+                const double xi = gauss.point(q)[0];
+                const double JxW =
+                  curve.derivative(xi).norm() * gauss.weight(q);
+                const auto phi = segment_shape_values(slave_degree, xi);
+                for (unsigned int i = 0; i < n; ++i)
+                  {
+                    integral[i] += phi[i] * JxW;
+                    for (unsigned int k = 0; k < n; ++k)
+                      mass(i, k) += phi[i] * phi[k] * JxW;
+                  }
+              }
+            inverse.invert(mass);
+            A.reinit(n, n);
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                D[segment.nodes[i]] += integral[i];
+                for (unsigned int k = 0; k < n; ++k)
+                  A(i, k) = integral[i] * inverse(i, k);
+              }
+            continue;
+          }
         const double h = slave[segment.nodes[0]].position.distance(
           slave[segment.nodes[1]].position);
         for (unsigned int i = 0; i < segment.nodes.size(); ++i)
@@ -232,10 +434,15 @@ namespace coulomb_adapt
   MortarInterface::integrate_segment_pair(const unsigned int slave_index,
                                           const unsigned int master_index)
   {
-    const Segment     &slave_segment  = slave_segments[slave_index];
-    const Segment     &master_segment = master_segments[master_index];
-    const Point<2>    &a              = slave[slave_segment.nodes[0]].position;
-    const Point<2>    &b              = slave[slave_segment.nodes[1]].position;
+    const Segment &slave_segment  = slave_segments[slave_index];
+    const Segment &master_segment = master_segments[master_index];
+    if (slave_segment.curved || master_segment.curved)
+      {
+        integrate_curved_segment_pair(slave_index, master_index);
+        return;
+      }
+    const Point<2>    &a  = slave[slave_segment.nodes[0]].position;
+    const Point<2>    &b  = slave[slave_segment.nodes[1]].position;
     const Point<2>    &c  = master[master_segment.nodes[0]].position;
     const Point<2>    &d  = master[master_segment.nodes[1]].position;
     const Tensor<1, 2> ab = b - a;
@@ -293,6 +500,65 @@ namespace coulomb_adapt
 
 
 
+  // The same on the curves of the segments: the master segment's ends
+  // projected orthogonally onto the slave curve give the overlap; a slave
+  // point x(xi) is projected onto the master curve along the slave
+  // curve's normal n(xi), the gap t the distance along it; the weights
+  // carry the length element |x'(xi)|.
+  void
+  MortarInterface::integrate_curved_segment_pair(
+    const unsigned int slave_index,
+    const unsigned int master_index)
+  {
+    const Segment     &slave_segment  = slave_segments[slave_index];
+    const Segment     &master_segment = master_segments[master_index];
+    const SegmentCurve x = segment_curve(slave, slave_segment, slave_degree);
+    const SegmentCurve y = segment_curve(master, master_segment, master_degree);
+    const double       xi_c  = x.orthogonal_projection(y.points[0]);
+    const double       xi_d  = x.orthogonal_projection(y.points[1]);
+    const double       begin = std::max(0., std::min(xi_c, xi_d));
+    const double       end   = std::min(1., std::max(xi_c, xi_d));
+    if (end - begin <= 1e-12)
+      return;
+    // A master chord along the slave normal faces nothing (as on chords).
+    const Tensor<1, 2> cd = y.points[1] - y.points[0];
+    const Tensor<1, 2> n  = slave_segment.normal;
+    if (std::abs(-cd[0] * n[1] + cd[1] * n[0]) < 1e-12 * cd.norm())
+      return;
+    overlap_list.push_back({slave_index, master_index, begin, end});
+
+    const FullMatrix<double> &A = slave_segment.curved ?
+                                    curved_dual_coefficients[slave_index] :
+                                    dual_coefficients;
+    const QGauss<1>           gauss(std::max(slave_degree, master_degree) + 4);
+    const unsigned int        n_slave_nodes = slave_segment.nodes.size();
+    std::vector<double>       psi(n_slave_nodes);
+    for (unsigned int q = 0; q < gauss.size(); ++q)
+      {
+        const double xi     = begin + (end - begin) * gauss.point(q)[0];
+        const auto [eta, t] = project_onto_master(x, y, slave_segment, xi);
+        const double w =
+          gauss.weight(q) * (end - begin) * x.derivative(xi).norm();
+        const auto phi_s = segment_shape_values(slave_degree, xi);
+        const auto phi_m = segment_shape_values(master_degree, eta);
+        for (unsigned int i = 0; i < n_slave_nodes; ++i)
+          {
+            psi[i] = 0;
+            for (unsigned int k = 0; k < n_slave_nodes; ++k)
+              psi[i] += A(i, k) * phi_s[k];
+          }
+        for (unsigned int i = 0; i < n_slave_nodes; ++i)
+          {
+            const unsigned int j = slave_segment.nodes[i];
+            for (unsigned int k = 0; k < phi_m.size(); ++k)
+              M[j][master_segment.nodes[k]] += psi[i] * phi_m[k] * w;
+            gaps[j] += psi[i] * t * w;
+          }
+      }
+  }
+
+
+
   std::vector<double>
   MortarInterface::master_shape_values(const double eta) const
   {
@@ -309,17 +575,38 @@ namespace coulomb_adapt
     points.reserve(overlap_list.size() * n_points);
     for (unsigned int o = 0; o < overlap_list.size(); ++o)
       {
-        const Overlap     &overlap = overlap_list[o];
-        const Segment     &s_seg   = slave_segments[overlap.slave_segment];
-        const Segment     &m_seg   = master_segments[overlap.master_segment];
-        const Point<2>    &a       = slave[s_seg.nodes[0]].position;
-        const Point<2>    &b       = slave[s_seg.nodes[1]].position;
-        const Point<2>    &c       = master[m_seg.nodes[0]].position;
-        const Point<2>    &d       = master[m_seg.nodes[1]].position;
-        const Tensor<1, 2> n       = s_seg.normal;
-        const Tensor<1, 2> cd      = d - c;
-        const double       det     = -cd[0] * n[1] + cd[1] * n[0];
-        const double       h       = (b - a).norm();
+        const Overlap &overlap = overlap_list[o];
+        const Segment &s_seg   = slave_segments[overlap.slave_segment];
+        const Segment &m_seg   = master_segments[overlap.master_segment];
+        if (s_seg.curved || m_seg.curved)
+          {
+            const SegmentCurve x = segment_curve(slave, s_seg, slave_degree);
+            const SegmentCurve y = segment_curve(master, m_seg, master_degree);
+            for (unsigned int q = 0; q < gauss.size(); ++q)
+              {
+                const double xi =
+                  overlap.begin +
+                  (overlap.end - overlap.begin) * gauss.point(q)[0];
+                const double eta = project_onto_master(x, y, s_seg, xi).first;
+                points.push_back(
+                  {o,
+                   xi,
+                   eta,
+                   x.value(xi),
+                   y.value(eta),
+                   gauss.weight(q) * (overlap.end - overlap.begin) *
+                     x.derivative(xi).norm()});
+              }
+            continue;
+          }
+        const Point<2>    &a   = slave[s_seg.nodes[0]].position;
+        const Point<2>    &b   = slave[s_seg.nodes[1]].position;
+        const Point<2>    &c   = master[m_seg.nodes[0]].position;
+        const Point<2>    &d   = master[m_seg.nodes[1]].position;
+        const Tensor<1, 2> n   = s_seg.normal;
+        const Tensor<1, 2> cd  = d - c;
+        const double       det = -cd[0] * n[1] + cd[1] * n[0];
+        const double       h   = (b - a).norm();
         for (unsigned int q = 0; q < gauss.size(); ++q)
           {
             const double xi =

@@ -1,9 +1,11 @@
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
 
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 
 #include <map>
+#include <set>
 #include <vector>
 
 // One body's coarse mesh (CoarseMeshData) from the corner nodes of the
@@ -17,6 +19,15 @@ namespace coulomb_adapt
   {
     tria.clear();
     tria.create_triangulation(vertices, cells, boundary_lines);
+  }
+
+
+
+  void
+  attach_circle_manifolds(const CircleCentres &centres, Triangulation<2> &tria)
+  {
+    for (const auto &[id, centre] : centres)
+      tria.set_manifold(id, SphericalManifold<2>(centre));
   }
 
 
@@ -46,8 +57,10 @@ namespace coulomb_adapt
                   const std::map<std::size_t, Point<2>>       &all_nodes,
                   const std::map<types::boundary_id,
                                  std::vector<std::vector<std::size_t>>> &lines,
-                  const types::material_id material_id,
-                  const std::string       &file_name)
+                  const types::material_id            material_id,
+                  const std::string                  &file_name,
+                  const std::map<std::pair<std::size_t, std::size_t>,
+                                 types::manifold_id> &curved_edges)
   {
     CoarseMeshData                  mesh;
     std::map<std::size_t, unsigned> local_index;
@@ -91,6 +104,7 @@ namespace coulomb_adapt
           unsigned b = local_index[element[(v + 1) % corners]];
           ++edge_count[std::minmax(a, b)];
         }
+    std::set<std::pair<unsigned, unsigned>> named_edges;
     for (const auto &[id, group_lines] : lines)
       for (const auto &line : group_lines)
         {
@@ -105,8 +119,30 @@ namespace coulomb_adapt
           CellData<1> boundary_line;
           boundary_line.vertices    = {edge.first, edge.second};
           boundary_line.boundary_id = id;
+          const auto curved = curved_edges.find(std::minmax(line[0], line[1]));
+          if (curved != curved_edges.end())
+            boundary_line.manifold_id = curved->second;
           mesh.boundary_lines.boundary_lines.push_back(boundary_line);
+          named_edges.insert(edge);
         }
+    // The boundary edges on circles that no group names: free, but curved.
+    for (const auto &[tags, manifold_id] : curved_edges)
+      {
+        const auto a = local_index.find(tags.first);
+        const auto b = local_index.find(tags.second);
+        if (a == local_index.end() || b == local_index.end())
+          continue;
+        const auto edge  = std::minmax(a->second, b->second);
+        const auto count = edge_count.find(edge);
+        if (count == edge_count.end() || count->second != 1 ||
+            named_edges.count(edge) > 0)
+          continue;
+        CellData<1> boundary_line;
+        boundary_line.vertices    = {edge.first, edge.second};
+        boundary_line.boundary_id = 0;
+        boundary_line.manifold_id = manifold_id;
+        mesh.boundary_lines.boundary_lines.push_back(boundary_line);
+      }
 
     if (corners == 4)
       GridTools::consistently_order_cells(mesh.cells);

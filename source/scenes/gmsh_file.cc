@@ -408,6 +408,7 @@ namespace coulomb_adapt
                                  Triangulation<2> &tria) const
     {
       geometry.meshes[body].create_triangulation(tria);
+      attach_circle_manifolds(geometry.circle_centres, tria);
     }
 
 
@@ -483,6 +484,7 @@ namespace coulomb_adapt
                ComponentMask(
                  std::vector<bool>{fixed[0].has_value(), fixed[1].has_value()}),
                std::nullopt});
+            d.support_points.push_back(position);
           }
 
       const BodyForce &f = body_forces[body];

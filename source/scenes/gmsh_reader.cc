@@ -50,6 +50,19 @@ namespace coulomb_adapt
 
 
 
+    // The centre of the circle through @p a, @p b, @p c.
+    Point<2>
+    circumcentre(const Point<2> &a, const Point<2> &b, const Point<2> &c)
+    {
+      const Tensor<1, 2> u = b - a, v = c - a;
+      const double       d = 2 * (u[0] * v[1] - u[1] * v[0]);
+      return a + Tensor<1, 2>(
+                   {(v[1] * u.norm_square() - u[1] * v.norm_square()) / d,
+                    (u[0] * v.norm_square() - v[0] * u.norm_square()) / d});
+    }
+
+
+
     // Read and check the file with gmsh (on one rank).
     TwoBodyGmshMeshes
     read_with_gmsh(const std::string  &file_name,
@@ -105,6 +118,45 @@ namespace coulomb_adapt
                                  coordinates[3 * i + 2]) +
                                "; the program reads 2D meshes in the x-y "
                                "plane (z = 0)");
+
+      // The circle arcs of the geometry (gmsh's curves of type "Circle"; a
+      // .msh file's curves are discrete and have none): each circle's
+      // centre, from three points of the curve, and its mesh lines. Circles
+      // of one centre share a manifold id (deal.II's SphericalManifold does
+      // not depend on the radius).
+      std::map<Edge, types::manifold_id> curved_edges;
+      CircleCentres                      circle_centres;
+      {
+        gmsh::vectorpair curves;
+        gmsh::model::getEntities(curves, 1);
+        for (const auto &[dim, tag] : curves)
+          {
+            std::string type;
+            gmsh::model::getType(dim, tag, type);
+            if (type != "Circle")
+              continue;
+            std::vector<double> low, high, xyz;
+            gmsh::model::getParametrizationBounds(dim, tag, low, high);
+            const double span = high[0] - low[0];
+            // Three distinct points also on a closed circle.
+            gmsh::model::getValue(dim,
+                                  tag,
+                                  {low[0],
+                                   low[0] + span / 3,
+                                   low[0] + 2 * span / 3},
+                                  xyz);
+            const Point<2>     centre = circumcentre(Point<2>(xyz[0], xyz[1]),
+                                                 Point<2>(xyz[3], xyz[4]),
+                                                 Point<2>(xyz[6], xyz[7]));
+            types::manifold_id id     = circle_centres.size();
+            for (const auto &[other_id, other] : circle_centres)
+              if (other.distance(centre) <= 1e-10 * extent)
+                id = other_id;
+            circle_centres.emplace(id, centre);
+            for (const auto &line : elements_of_entities(1, {tag}, file_name))
+              curved_edges[edge_of(line[0], line[1])] = id;
+          }
+      }
 
       const auto groups = physical_groups_by_name(file_name);
       // The entities of group @p name, which @p entry names and which must
@@ -394,8 +446,9 @@ namespace coulomb_adapt
         }
 
       for (unsigned int b = 0; b < 2; ++b)
-        result.meshes[b] =
-          build_body_mesh(body_elements[b], nodes, lines, b, file_name);
+        result.meshes[b] = build_body_mesh(
+          body_elements[b], nodes, lines, b, file_name, curved_edges);
+      result.circle_centres = circle_centres;
       return result;
     }
   } // namespace

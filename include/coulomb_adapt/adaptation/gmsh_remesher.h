@@ -40,7 +40,8 @@ namespace coulomb_adapt
 
   /**
    * Mesh the domain of @p geometry (a body's coarse mesh: its boundary,
-   * one closed curve, gives the geometry) with gmsh's triangles of size
+   * closed curves, the outer one and one per hole, give the geometry)
+   * with gmsh's triangles of size
    * @p size_field (a PostView background field, linear in each triangle).
    * The boundary is rebuilt as gmsh curves: maximal runs of boundary faces
    * with the same boundary id and manifold id that are straight (flat
@@ -51,6 +52,8 @@ namespace coulomb_adapt
    * @p interior_lines are straight segments through the body whose end
    * points are vertices of @p geometry's boundary (symmetry lines that
    * point constraints hold): the new mesh has a line of nodes on each.
+   * @p support_points (point supports) are nodes of the new mesh: a curve
+   * ends at those on the boundary, the others are embedded.
    */
   CoarseMeshData
   remesh_with_gmsh(const Triangulation<2>                     &geometry,
@@ -58,7 +61,8 @@ namespace coulomb_adapt
                    const std::string                          &body_name,
                    const MPI_Comm                              comm,
                    const std::string                          &algorithm,
-                   const std::vector<std::array<Point<2>, 2>> &interior_lines);
+                   const std::vector<std::array<Point<2>, 2>> &interior_lines,
+                   const std::vector<Point<2>> &support_points = {});
 } // namespace coulomb_adapt
 
 #endif

@@ -21,7 +21,15 @@ namespace coulomb_adapt
    * body (body 1, the upper one) and the master body (body 2), theory.md
    * section 2, for elements of degree 1 (Q1 / P1: two-node segments) and
    * 2 (Q2 / P2: three-node segments, the middle node on the boundary's
-   * manifold; the integrals use the straight chord).
+   * manifold). A segment is its face as the element's mapping makes it:
+   * straight for degree 1 and on flat boundaries (the integrals use the
+   * chord), the parabola through its three nodes where the middle node
+   * lies off the chord (a curved manifold; Segment::curved). On curved
+   * segments the integrals carry the length element, the dual basis is
+   * built from the segment's own mass matrix, master ends are projected
+   * onto the slave curve orthogonally and slave points onto the master
+   * curve along the slave curve's normal; nodal normals are the curves'
+   * normals at the nodes.
    *
    * The Lagrange multiplier lives on the slave nodes with Wohlmuth's dual
    * basis (psi_a = 2 phi_a - phi_b on a linear slave segment [a, b]; for
@@ -67,11 +75,15 @@ namespace coulomb_adapt
       Tensor<1, 2> normal;
       /** The cell the face belongs to. */
       CellId cell;
+      /** Degree 2 with the middle node off the chord's midpoint (on a
+       * curved manifold): the segment is the parabola through its three
+       * nodes, and the integrals are taken on it. */
+      bool curved = false;
     };
 
     /** Where a projected master segment overlaps a slave segment: the
-     * parameter interval [begin, end] of the slave segment's chord (0 at
-     * its first node, 1 at its second). */
+     * parameter interval [begin, end] of the slave segment (its chord, or
+     * its curve if curved; 0 at its first node, 1 at its second). */
     struct Overlap
     {
       unsigned int slave_segment;
@@ -126,8 +138,9 @@ namespace coulomb_adapt
     master_shape_values(const double eta) const;
 
     /** A Gauss point of an overlap: where a slave segment faces a master
-     * segment. The slave point is projected onto the master chord along the
-     * slave segment's normal, as in the integrals of M and g~. */
+     * segment. The slave point is projected onto the master segment along
+     * the slave segment's normal, as in the integrals of M and g~ (chords,
+     * or the curves of curved segments). */
     struct OverlapPoint
     {
       /** Index into overlaps(). */
@@ -137,7 +150,8 @@ namespace coulomb_adapt
       double   eta;
       Point<2> slave_point;
       Point<2> master_point;
-      /** Gauss weight times the slave chord length (mm). */
+      /** Gauss weight times the slave chord length, or the length
+       * element of a curved slave segment (mm). */
       double weight;
     };
 
@@ -191,6 +205,9 @@ namespace coulomb_adapt
     void
     integrate_segment_pair(const unsigned int slave_segment_index,
                            const unsigned int master_segment_index);
+    void
+    integrate_curved_segment_pair(const unsigned int slave_segment_index,
+                                  const unsigned int master_segment_index);
 
     std::vector<Node>                           slave;
     std::vector<Node>                           master;
@@ -204,6 +221,9 @@ namespace coulomb_adapt
     unsigned int                                master_degree = 1;
     /** Dual basis of the slave segments: psi_i = sum_k A_ik phi_k. */
     FullMatrix<double> dual_coefficients;
+    /** The same per curved slave segment (empty for straight ones), from
+     * the segment's own mass matrix with its length element. */
+    std::vector<FullMatrix<double>> curved_dual_coefficients;
   };
 } // namespace coulomb_adapt
 

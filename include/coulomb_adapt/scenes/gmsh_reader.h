@@ -42,15 +42,29 @@ namespace coulomb_adapt
    * One body's mesh from gmsh elements (corner node tags, triangles or
    * quadrangles, either orientation) and the boundary lines of each
    * boundary id; only lines that are boundary edges of these elements are
-   * kept. @p file_name is for messages.
+   * kept. @p file_name is for messages. A boundary edge in
+   * @p curved_edges (an edge of two node tags, the smaller first) lies on a
+   * circle of the geometry and gets its manifold id, with boundary id 0
+   * (free) if no group names it.
    */
   CoarseMeshData
   build_body_mesh(const std::vector<std::vector<std::size_t>> &elements,
                   const std::map<std::size_t, Point<2>>       &all_nodes,
                   const std::map<types::boundary_id,
                                  std::vector<std::vector<std::size_t>>> &lines,
-                  const types::material_id material_id,
-                  const std::string       &file_name);
+                  const types::material_id            material_id,
+                  const std::string                  &file_name,
+                  const std::map<std::pair<std::size_t, std::size_t>,
+                                 types::manifold_id> &curved_edges = {});
+
+  /** The centres of the circles of a gmsh geometry, by the manifold id
+   * that the boundary lines on them carry. */
+  using CircleCentres = std::map<types::manifold_id, Point<2>>;
+
+  /** Attach a SphericalManifold with each centre of @p centres to its
+   * manifold id in @p tria. */
+  void
+  attach_circle_manifolds(const CircleCentres &centres, Triangulation<2> &tria);
 
   /**
    * The physical groups of a gmsh file that the gmsh scene uses, and what
@@ -113,12 +127,15 @@ namespace coulomb_adapt
       }
     };
     std::vector<PointSupport> point_supports;
+    /** The circles of the geometry: the boundary lines on one have its
+     * manifold id (attach_circle_manifolds() gives the manifolds). */
+    CircleCentres circle_centres;
 
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &meshes &groups_of_boundary_id &point_supports;
+      archive &meshes &groups_of_boundary_id &point_supports &circle_centres;
     }
   };
 

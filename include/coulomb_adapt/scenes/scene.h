@@ -81,7 +81,10 @@ namespace coulomb_adapt
     MaterialConstants               material;
     std::vector<DirichletCondition> dirichlet;
     std::vector<PointConstraint>    point_constraints;
-    std::vector<TractionCondition>  tractions;
+    /** The points that point constraints select one by one (point
+     * supports): remeshing keeps a node at each. */
+    std::vector<Point<2>>          support_points;
+    std::vector<TractionCondition> tractions;
     /** Body force per unit volume (N/mm^3); empty means none. */
     std::function<Tensor<1, 2>(const Point<2> &)> body_force;
     /** Boundary id of the candidate contact zone. */
