@@ -38,6 +38,11 @@ namespace coulomb_adapt
   class TwoBodyProblem
   {
   public:
+    /** Declare every entry of the program: the subsections of Parameters
+     * and the scenes' subsection `Scene`. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
     /** The log goes to @p log on rank 0 (tests pass a string stream). */
     TwoBodyProblem(const MPI_Comm     mpi_communicator,
                    const Parameters  &parameters,

@@ -132,6 +132,11 @@ namespace coulomb_adapt
     virtual BodyDescription
     describe_body(const unsigned int body) const = 0;
 
+    /** Where the meshes come from, to prefix messages about them ("gmsh
+     * file 'x.msh': "). Default: empty, the built-in meshes. */
+    virtual std::string
+    mesh_source() const;
+
     /** Analytic reference values the scene knows (e.g. Hertz's a and p0),
      * by name; written to summary.json for plots and comparisons.
      * Default: none. */
