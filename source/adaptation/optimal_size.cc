@@ -2,7 +2,6 @@
 #include <deal.II/base/mpi.h>
 
 #include <coulomb_adapt/adaptation/optimal_size.h>
-#include <coulomb_adapt/scenes/scene_meshes.h>
 
 #include <algorithm>
 #include <cmath>
@@ -50,11 +49,12 @@ namespace coulomb_adapt
 
 
 
-    // Boundary vertices where a clamped or contact part meets a part with
-    // another boundary id: the classical corner singularities of elasticity
-    // with mixed boundary conditions. Only owned cells are looked at (a
-    // ghost cell's face towards an absent cell also reports at_boundary),
-    // so the ids of a vertex are combined over the ranks.
+    // Boundary vertices where one of the body's singular parts (its scene
+    // says which: by default the contact part and the clamped parts) meets
+    // a part with another boundary id: the classical corner singularities
+    // of elasticity with mixed boundary conditions. Only owned cells are
+    // looked at (a ghost cell's face towards an absent cell also reports
+    // at_boundary), so the ids of a vertex are combined over the ranks.
     void
     add_boundary_condition_changes(const ElasticBody                   &body,
                                    std::set<std::pair<double, double>> &points)
@@ -74,9 +74,15 @@ namespace coulomb_adapt
                                       local))
         for (const auto &[x, y, id] : part)
           ids[{x, y}].insert(static_cast<types::boundary_id>(id));
+      const std::vector<types::boundary_id> singular_parts =
+        body.description().singular_parts();
       for (const auto &[point, point_ids] : ids)
-        if (point_ids.size() > 1 && (point_ids.count(boundary_ids::dirichlet) ||
-                                     point_ids.count(boundary_ids::contact)))
+        if (point_ids.size() > 1 &&
+            std::any_of(singular_parts.begin(),
+                        singular_parts.end(),
+                        [&](const types::boundary_id id) {
+                          return point_ids.count(id) > 0;
+                        }))
           points.insert(point);
     }
   } // namespace
