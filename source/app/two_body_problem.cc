@@ -417,15 +417,12 @@ namespace coulomb_adapt
   TwoBodyProblem::make_bodies()
   {
     TimerOutput::Scope t(computing_timer, "setup");
+    bodies = coulomb_adapt::make_bodies(mpi_communicator,
+                                        *scene,
+                                        parameters,
+                                        parameters.mesh.global_refinements);
     for (unsigned int b = 0; b < 2; ++b)
       {
-        bodies[b] =
-          std::make_unique<ElasticBody>(mpi_communicator,
-                                        *scene,
-                                        b,
-                                        parameters.mesh.cell_type,
-                                        parameters.mesh.global_refinements,
-                                        parameters.finite_elements);
         body_outputs[b] =
           std::make_unique<BodyOutput>(parameters.output.directory,
                                        "body-" + std::to_string(b + 1),
@@ -448,7 +445,7 @@ namespace coulomb_adapt
   std::array<const ElasticBody *, 2>
   TwoBodyProblem::body_pointers() const
   {
-    return {{bodies[0].get(), bodies[1].get()}};
+    return coulomb_adapt::body_pointers(bodies);
   }
 
 
