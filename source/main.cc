@@ -27,7 +27,7 @@ main(int argc, char *argv[])
     {
       const CommandLine command_line = parse_command_line(argc, argv);
       ParameterHandler  prm;
-      Parameters::declare_parameters(prm);
+      TwoBodyProblem::declare_parameters(prm);
 
       if (command_line.help)
         {

@@ -160,8 +160,10 @@ namespace
     // per cycle, 2:1 balance).
     if (check_finest)
       check_finest_cells(*run.problem,
-                         run.parameters.adaptation.strategy == "remesh" ? 10 :
-                                                                          20,
+                         run.parameters.adaptation.strategy ==
+                             AdaptationStrategy::remesh ?
+                           10 :
+                           20,
                          out);
   }
 } // namespace
@@ -256,7 +258,7 @@ main(int argc, char **argv)
     settings.push_back({"Adaptation/Over-refinement ratio", "0.8"});
     settings.push_back({"Adaptation/Number of cycles", "6"});
     const ProgramRun run(settings);
-    const auto      &cycles = run.summary["cycles"];
+    const auto      &cycles     = run.summary["cycles"];
     unsigned int     most_cells = 0;
     for (const auto &c : cycles)
       {
@@ -268,7 +270,7 @@ main(int argc, char **argv)
             << n_cells << ", epsilon " << 100 * c["epsilon"].get<double>()
             << " %" << std::endl;
       }
-    const double epsilon = cycles.back()["epsilon"].get<double>();
+    const double       epsilon = cycles.back()["epsilon"].get<double>();
     const unsigned int last_cells =
       cycles.back()["bodies"][0]["n_cells"].get<unsigned int>() +
       cycles.back()["bodies"][1]["n_cells"].get<unsigned int>();

@@ -4,7 +4,7 @@
 
 #include <deal.II/base/conditional_ostream.h>
 
-#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/bodies/elastic_bodies.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
@@ -24,12 +24,12 @@ namespace coulomb_adapt
   {
     struct SolvedContactProblem
     {
-      ParameterHandler                            prm;
-      Parameters                                  parameters;
-      std::unique_ptr<Scene>                      scene;
-      std::array<std::unique_ptr<ElasticBody>, 2> bodies;
-      std::unique_ptr<ContactSolver>              solver;
-      ContactSolverReport                         report;
+      ParameterHandler               prm;
+      Parameters                     parameters;
+      std::unique_ptr<Scene>         scene;
+      ElasticBodies                  bodies;
+      std::unique_ptr<ContactSolver> solver;
+      ContactSolverReport            report;
       /** The Newton log (not printed: iteration details may vary). */
       std::ostringstream log;
     };
@@ -44,17 +44,14 @@ namespace coulomb_adapt
       auto p        = std::make_unique<SolvedContactProblem>();
       p->parameters = make_parameters(p->prm, settings, parameter_file);
       p->scene      = scenes::create_scene(p->parameters, p->prm);
-      for (unsigned int b = 0; b < 2; ++b)
+      p->bodies     = make_bodies(MPI_COMM_WORLD,
+                              *p->scene,
+                              p->parameters,
+                              p->parameters.mesh.global_refinements);
+      for (auto &body : p->bodies)
         {
-          p->bodies[b] =
-            std::make_unique<ElasticBody>(MPI_COMM_WORLD,
-                                          *p->scene,
-                                          b,
-                                          p->parameters.mesh.cell_type,
-                                          p->parameters.mesh.global_refinements,
-                                          p->parameters.finite_elements);
-          p->bodies[b]->setup_system();
-          p->bodies[b]->assemble_system();
+          body->setup_system();
+          body->assemble_system();
         }
       static ConditionalOStream quiet(std::cout, false);
       p->solver = std::make_unique<ContactSolver>(*p->bodies[0],

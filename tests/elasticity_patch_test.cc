@@ -94,7 +94,7 @@ check(const std::string &label, const Scene &scene, const unsigned int n_bodies)
       {
         parameters::FiniteElements fe{degree, PlaneModel::plane_strain};
         parameters::LinearSolver   solver{
-          "direct", 0, "Amesos_Mumps", 1e-12, 100, 0};
+          LinearSolverType::direct, 0, "Amesos_Mumps", 1e-12, 100, 0};
         ElasticBody body(
           MPI_COMM_WORLD, scene, b, CellType::quadrilateral, 0, fe);
         body.setup_system();

@@ -49,8 +49,9 @@ main(int argc, char *argv[])
               for (const std::string solver :
                    {"Amesos_Mumps", "Amesos_Klu", "amg"})
                 {
-                  parameters.linear_solver.type =
-                    solver == "amg" ? "amg" : "direct";
+                  parameters.linear_solver.type          = solver == "amg" ?
+                                                             LinearSolverType::amg :
+                                                             LinearSolverType::direct;
                   parameters.linear_solver.direct_solver = solver;
                   const auto report = body.solve(parameters.linear_solver);
                   if (solver == "amg")

@@ -8,6 +8,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <coulomb_adapt/app/command_line.h>
+#include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/core/parameters.h>
 
 #include <iostream>
@@ -27,7 +28,7 @@ namespace coulomb_adapt
       const std::vector<std::pair<std::string, std::string>> &settings,
       const std::string &parameter_file = "")
     {
-      Parameters::declare_parameters(prm);
+      TwoBodyProblem::declare_parameters(prm);
       CommandLine command_line;
       command_line.parameter_file = parameter_file;
       command_line.overrides      = settings;

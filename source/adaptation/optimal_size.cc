@@ -2,7 +2,6 @@
 #include <deal.II/base/mpi.h>
 
 #include <coulomb_adapt/adaptation/optimal_size.h>
-#include <coulomb_adapt/scenes/scene_meshes.h>
 
 #include <algorithm>
 #include <cmath>
@@ -50,11 +49,12 @@ namespace coulomb_adapt
 
 
 
-    // Boundary vertices where a clamped or contact part meets a part with
-    // another boundary id: the classical corner singularities of elasticity
-    // with mixed boundary conditions. Only owned cells are looked at (a
-    // ghost cell's face towards an absent cell also reports at_boundary),
-    // so the ids of a vertex are combined over the ranks.
+    // Boundary vertices where one of the body's singular parts (its scene
+    // says which: by default the contact part and the clamped parts) meets
+    // a part with another boundary id: the classical corner singularities
+    // of elasticity with mixed boundary conditions. Only owned cells are
+    // looked at (a ghost cell's face towards an absent cell also reports
+    // at_boundary), so the ids of a vertex are combined over the ranks.
     void
     add_boundary_condition_changes(const ElasticBody                   &body,
                                    std::set<std::pair<double, double>> &points)
@@ -74,10 +74,72 @@ namespace coulomb_adapt
                                       local))
         for (const auto &[x, y, id] : part)
           ids[{x, y}].insert(static_cast<types::boundary_id>(id));
+      const std::vector<types::boundary_id> singular_parts =
+        body.description().singular_parts();
       for (const auto &[point, point_ids] : ids)
-        if (point_ids.size() > 1 && (point_ids.count(boundary_ids::dirichlet) ||
-                                     point_ids.count(boundary_ids::contact)))
+        if (point_ids.size() > 1 &&
+            std::any_of(singular_parts.begin(),
+                        singular_parts.end(),
+                        [&](const types::boundary_id id) {
+                          return point_ids.count(id) > 0;
+                        }))
           points.insert(point);
+    }
+
+
+
+    // Per owned cell: epsilon_E^2 and q_E; the cells of both bodies in one
+    // list, since the optimum is over the whole problem.
+    struct CellData
+    {
+      unsigned int body, index;
+      double       epsilon_squared, rate;
+    };
+
+
+
+    // The cells' data, and in @p result the size of the ratio vectors, q_E
+    // per cell and the number of cells at singular points (all ranks).
+    std::vector<CellData>
+    owned_cell_data(const std::array<const ElasticBody *, 2> &bodies,
+                    const ErrorEstimate                      &estimate,
+                    const std::vector<Point<2>>              &singular_points,
+                    const unsigned int                        degree,
+                    const double                              singular_rate,
+                    OptimalSizeRatios                        &result)
+    {
+      std::vector<CellData> cells;
+      const double          D2 = estimate.normalisation_squared;
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          const auto &tria = bodies[b]->triangulation();
+          result.ratio[b].reinit(tria.n_active_cells());
+          result.rate[b].reinit(tria.n_active_cells());
+          for (const auto &cell : tria.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                const unsigned int   i   = cell->active_cell_index();
+                double               q   = degree;
+                const BoundingBox<2> box = cell->bounding_box();
+                for (const auto &p : singular_points)
+                  if (box.point_inside(p, 1e-10))
+                    {
+                      q = std::min<double>(degree, singular_rate);
+                      ++result.n_singular_cells;
+                      break;
+                    }
+                result.rate[b](i) = q;
+                cells.push_back(
+                  {b,
+                   i,
+                   std::max(0., estimate.contribution_squared[b](i) / D2),
+                   q});
+              }
+        }
+      result.n_singular_cells =
+        Utilities::MPI::sum(result.n_singular_cells,
+                            bodies[0]->dof_handler().get_communicator());
+      return cells;
     }
   } // namespace
 
@@ -116,43 +178,8 @@ namespace coulomb_adapt
     const MPI_Comm    comm = bodies[0]->dof_handler().get_communicator();
     OptimalSizeRatios result;
 
-    // Per owned cell: epsilon_E^2 and q_E; the cells of both bodies in one
-    // list, since the optimum is over the whole problem.
-    struct CellData
-    {
-      unsigned int body, index;
-      double       epsilon_squared, rate;
-    };
-    std::vector<CellData> cells;
-    const double          D2 = estimate.normalisation_squared;
-    for (unsigned int b = 0; b < 2; ++b)
-      {
-        const auto &tria = bodies[b]->triangulation();
-        result.ratio[b].reinit(tria.n_active_cells());
-        result.rate[b].reinit(tria.n_active_cells());
-        for (const auto &cell : tria.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              const unsigned int   i   = cell->active_cell_index();
-              double               q   = degree;
-              const BoundingBox<2> box = cell->bounding_box();
-              for (const auto &p : singular_points)
-                if (box.point_inside(p, 1e-10))
-                  {
-                    q = std::min<double>(degree, singular_rate);
-                    ++result.n_singular_cells;
-                    break;
-                  }
-              result.rate[b](i) = q;
-              cells.push_back(
-                {b,
-                 i,
-                 std::max(0., estimate.contribution_squared[b](i) / D2),
-                 q});
-            }
-      }
-    result.n_singular_cells =
-      Utilities::MPI::sum(result.n_singular_cells, comm);
+    const std::vector<CellData> cells = owned_cell_data(
+      bodies, estimate, singular_points, degree, singular_rate, result);
 
     // r_E for the multiplier exp(L), bounded above, and below if
     // lower_bound. The multiplier is found without the lower bound: cells

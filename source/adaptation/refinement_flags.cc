@@ -84,7 +84,7 @@ namespace coulomb_adapt
   RefinementDecisions
   decisions_from_indicator(const std::array<const ElasticBody *, 2> &bodies,
                            const ErrorEstimate                      &estimate,
-                           const std::string                        &criterion,
+                           const RefinementCriterion                 criterion,
                            const double       refine_fraction,
                            const double       coarsen_fraction,
                            const unsigned int degree)
@@ -108,7 +108,7 @@ namespace coulomb_adapt
 
     // Refine the first n_refine cells, coarsen the last n_coarsen.
     std::size_t n_refine = 0, n_coarsen = 0;
-    if (criterion == "fixed fraction")
+    if (criterion == RefinementCriterion::fixed_fraction)
       {
         double sum = 0;
         while (n_refine < N && sum < refine_fraction * total)
@@ -118,13 +118,13 @@ namespace coulomb_adapt
                sum + all[N - 1 - n_coarsen] <= coarsen_fraction * total)
           sum += all[N - 1 - n_coarsen++];
       }
-    else if (criterion == "fixed number")
+    else if (criterion == RefinementCriterion::fixed_number)
       {
         n_refine  = static_cast<std::size_t>(std::ceil(refine_fraction * N));
         n_coarsen = std::min(N - n_refine,
                              static_cast<std::size_t>(coarsen_fraction * N));
       }
-    else if (criterion == "optimize")
+    else if (criterion == RefinementCriterion::optimize)
       {
         const double q         = degree;
         const double reduction = 1 - std::pow(4., -q);
@@ -144,8 +144,8 @@ namespace coulomb_adapt
       }
     else
       AssertThrow(false,
-                  ExcMessage("unknown refinement criterion '" + criterion +
-                             "'"));
+                  ExcMessage("refinement criterion '" + option_name(criterion) +
+                             "' takes no decisions from the indicator"));
 
     // Cells equal up to round-off (symmetric ones) get the same decision.
     const double refine_threshold = n_refine > 0 ?

@@ -13,6 +13,15 @@
 
 namespace coulomb_adapt
 {
+  void
+  TwoBodyProblem::declare_parameters(ParameterHandler &prm)
+  {
+    Parameters::declare_parameters(prm);
+    scenes::declare_parameters(prm);
+  }
+
+
+
   TwoBodyProblem::TwoBodyProblem(const MPI_Comm     mpi_communicator,
                                  const Parameters  &parameters,
                                  ParameterHandler  &prm,
@@ -26,15 +35,8 @@ namespace coulomb_adapt
     , computing_timer(pcout, TimerOutput::never, TimerOutput::wall_times)
     , target_calibration(parameters.adaptation.target_safety_factor)
   {
-    scene = scenes::create_scene(parameters, prm);
-    if (parameters.scene.name == "gmsh")
-      {
-        prm.enter_subsection("Scene");
-        prm.enter_subsection("Gmsh");
-        mesh_source = "gmsh file '" + prm.get("Mesh file") + "': ";
-        prm.leave_subsection();
-        prm.leave_subsection();
-      }
+    scene        = scenes::create_scene(parameters, prm);
+    mesh_source  = scene->mesh_source();
     cycle_report = std::make_unique<CycleReport>(mpi_communicator,
                                                  pcout,
                                                  computing_timer,
@@ -283,9 +285,9 @@ namespace coulomb_adapt
   {
     TimerOutput::Scope t(computing_timer, "output");
     // The contact CSV is small and always written; the fields on request.
-    const std::string &write_cycles = parameters.output.write_cycles;
-    const bool         write_fields =
-      write_cycles == "all" || (write_cycles == "last" && last_cycle);
+    const WriteCycles write_cycles = parameters.output.write_cycles;
+    const bool        write_fields = write_cycles == WriteCycles::all ||
+                              (write_cycles == WriteCycles::last && last_cycle);
     if (contact_solver)
       contact_output->write(contact_solver->node_states(),
                             error_estimate ?
@@ -347,7 +349,7 @@ namespace coulomb_adapt
     // An over-refined mesh is optimised again only while a further cycle
     // could still refine it should the coarser one miss the target.
     const bool over_refined =
-      a.strategy == "remesh" && error_estimate &&
+      a.strategy == AdaptationStrategy::remesh && error_estimate &&
       error_estimate->epsilon < a.over_refinement_ratio * a.target_error &&
       cycle + 2 < a.n_cycles && n_dofs < a.max_dofs;
     if (over_refined && error_estimate->epsilon <= a.target_error)
@@ -415,15 +417,12 @@ namespace coulomb_adapt
   TwoBodyProblem::make_bodies()
   {
     TimerOutput::Scope t(computing_timer, "setup");
+    bodies = coulomb_adapt::make_bodies(mpi_communicator,
+                                        *scene,
+                                        parameters,
+                                        parameters.mesh.global_refinements);
     for (unsigned int b = 0; b < 2; ++b)
       {
-        bodies[b] =
-          std::make_unique<ElasticBody>(mpi_communicator,
-                                        *scene,
-                                        b,
-                                        parameters.mesh.cell_type,
-                                        parameters.mesh.global_refinements,
-                                        parameters.finite_elements);
         body_outputs[b] =
           std::make_unique<BodyOutput>(parameters.output.directory,
                                        "body-" + std::to_string(b + 1),
@@ -446,7 +445,7 @@ namespace coulomb_adapt
   std::array<const ElasticBody *, 2>
   TwoBodyProblem::body_pointers() const
   {
-    return {{bodies[0].get(), bodies[1].get()}};
+    return coulomb_adapt::body_pointers(bodies);
   }
 
 

@@ -238,7 +238,8 @@ namespace coulomb_adapt
                                           states,
                                           update.changed,
                                           control.n_damping_steps(),
-                                          solver_parameters.type == "amg");
+                                          solver_parameters.type ==
+                                            LinearSolverType::amg);
       }
     control.record(update, residual);
     return NextStep::iterate;
@@ -297,8 +298,8 @@ namespace coulomb_adapt
         contact_parameters.complementarity_scale * rule.combined_modulus / D[j];
 
     const bool use_iterative =
-      solver_parameters.type == "amg" ||
-      (solver_parameters.type == "auto" &&
+      solver_parameters.type == LinearSolverType::amg ||
+      (solver_parameters.type == LinearSolverType::automatic &&
        condensation.owned.size() >
          solver_parameters.max_dofs_for_direct_contact);
     if (!newton_system || use_iterative != iterative)
@@ -373,7 +374,8 @@ namespace coulomb_adapt
     const MPI_Comm                communicator = condensation.communicator;
     TrilinosWrappers::MPI::Vector solution(condensation.owned, communicator);
     parameters::LinearSolver      settings = solver_parameters;
-    settings.type                          = iterative ? "amg" : "direct";
+    settings.type =
+      iterative ? LinearSolverType::amg : LinearSolverType::direct;
     settings.relative_tolerance =
       std::min(settings.relative_tolerance, 1e-12) * linear_tolerance_factor;
     last_linear_solve =

@@ -1,7 +1,7 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
-#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/bodies/elastic_bodies.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/contact/nested_iteration.h>
 
@@ -28,11 +28,9 @@ namespace coulomb_adapt
     // level is reported by the caller in one line instead.
     const ConditionalOStream silent(std::cout, false);
 
-    std::array<std::unique_ptr<ElasticBody>, 2> bodies;
-    const unsigned int coarsest = fine_refinements - n_levels;
-    for (unsigned int b = 0; b < 2; ++b)
-      bodies[b] = std::make_unique<ElasticBody>(
-        mpi_communicator, scene, b, cell_type, coarsest, fe_parameters);
+    const unsigned int  coarsest = fine_refinements - n_levels;
+    const ElasticBodies bodies =
+      make_bodies(mpi_communicator, scene, cell_type, coarsest, fe_parameters);
 
     std::vector<ContactNodeState> states;
     for (unsigned int r = coarsest; r < fine_refinements; ++r)

@@ -1,36 +1,24 @@
-#include <deal.II/base/exceptions.h>
-
 #include <coulomb_adapt/core/error_estimator.h>
 
 namespace coulomb_adapt
 {
-  std::string
-  to_string(const ErrorEstimator estimator)
+  template <>
+  const OptionNames<ErrorEstimator> &
+  option_names<ErrorEstimator>()
   {
-    switch (estimator)
-      {
-        case ErrorEstimator::zz:
-          return "zz";
-        case ErrorEstimator::spr:
-          return "spr";
-        case ErrorEstimator::cre:
-          return "cre";
-      }
-    return "";
+    static const OptionNames<ErrorEstimator> names = {
+      {ErrorEstimator::zz, "zz"},
+      {ErrorEstimator::spr, "spr"},
+      {ErrorEstimator::cre, "cre"}};
+    return names;
   }
 
 
 
-  ErrorEstimator
-  error_estimator_from_string(const std::string &name)
+  std::string
+  to_string(const ErrorEstimator estimator)
   {
-    for (const auto e : all_error_estimators())
-      if (to_string(e) == name)
-        return e;
-    AssertThrow(false,
-                dealii::ExcMessage("Unknown error estimator '" + name +
-                                   "': zz, spr or cre."));
-    return ErrorEstimator::zz;
+    return option_name(estimator);
   }
 
 
@@ -38,6 +26,9 @@ namespace coulomb_adapt
   std::vector<ErrorEstimator>
   all_error_estimators()
   {
-    return {ErrorEstimator::zz, ErrorEstimator::spr, ErrorEstimator::cre};
+    std::vector<ErrorEstimator> estimators;
+    for (const auto &[estimator, name] : option_names<ErrorEstimator>())
+      estimators.push_back(estimator);
+    return estimators;
   }
 } // namespace coulomb_adapt

@@ -1,6 +1,5 @@
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/core/parameters.h>
-#include <coulomb_adapt/scenes/scene_factory.h>
 
 namespace coulomb_adapt
 {
@@ -20,7 +19,7 @@ namespace coulomb_adapt
                           "the resolved parameters.prm.");
         prm.declare_entry("Format",
                           "vtu",
-                          Patterns::Selection("vtu|hdf5"),
+                          Patterns::Selection(option_pattern<OutputFormat>()),
                           "File format of the per-cycle fields. vtu: one "
                           ".vtu per rank and cycle, a .pvtu per cycle and a "
                           ".pvd per body indexing the cycles. hdf5: one .h5 "
@@ -34,7 +33,7 @@ namespace coulomb_adapt
                           "compressed VTU and slower to write.");
         prm.declare_entry("Write cycles",
                           "all",
-                          Patterns::Selection("all|last|none"),
+                          Patterns::Selection(option_pattern<WriteCycles>()),
                           "Which cycles' fields are written: all, only the "
                           "last one (the mesh adaptation's result), or none. "
                           "summary.json and the contact CSV are written "
@@ -56,10 +55,10 @@ namespace coulomb_adapt
       prm.enter_subsection("Output");
       {
         directory    = prm.get("Output directory");
-        format       = prm.get("Format");
-        write_cycles = prm.get("Write cycles");
+        format       = parse_option<OutputFormat>(prm.get("Format"));
+        write_cycles = parse_option<WriteCycles>(prm.get("Write cycles"));
         if (!prm.get_bool("Write VTU"))
-          write_cycles = "none";
+          write_cycles = WriteCycles::none;
       }
       prm.leave_subsection();
     }
@@ -73,7 +72,7 @@ namespace coulomb_adapt
       {
         prm.declare_entry("Cell type",
                           "quadrilateral",
-                          Patterns::Selection("quadrilateral|triangle"),
+                          Patterns::Selection(option_pattern<CellType>()),
                           "Reference cell of the built-in scenes' meshes: "
                           "structured quadrilaterals, or the same mesh with "
                           "every quadrilateral split into triangles (hertz: "
@@ -96,9 +95,7 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Mesh");
       {
-        cell_type          = prm.get("Cell type") == "triangle" ?
-                               CellType::triangle :
-                               CellType::quadrilateral;
+        cell_type          = parse_option<CellType>(prm.get("Cell type"));
         global_refinements = prm.get_integer("Global refinements");
       }
       prm.leave_subsection();
@@ -118,7 +115,7 @@ namespace coulomb_adapt
                           "quadrilaterals, P_p on triangles.");
         prm.declare_entry("Plane model",
                           "plane strain",
-                          Patterns::Selection("plane strain|plane stress"),
+                          Patterns::Selection(option_pattern<PlaneModel>()),
                           "2D reduction of the elastic bodies. In plane "
                           "strain sigma_zz = nu (sigma_xx + sigma_yy) enters "
                           "the von Mises stress.");
@@ -134,9 +131,7 @@ namespace coulomb_adapt
       prm.enter_subsection("Finite elements");
       {
         degree      = prm.get_integer("Polynomial degree");
-        plane_model = prm.get("Plane model") == "plane stress" ?
-                        PlaneModel::plane_stress :
-                        PlaneModel::plane_strain;
+        plane_model = parse_option<PlaneModel>(prm.get("Plane model"));
       }
       prm.leave_subsection();
     }
@@ -150,7 +145,7 @@ namespace coulomb_adapt
       {
         prm.declare_entry("Estimator",
                           "zz",
-                          Patterns::Selection("zz|spr|cre"),
+                          Patterns::Selection(option_pattern<ErrorEstimator>()),
                           "The a posteriori error estimator; the one that "
                           "drives the adaptation. zz: the seed's, the "
                           "corrected FE stress smoothed by global L2 "
@@ -237,9 +232,9 @@ namespace coulomb_adapt
               (removed == "zz" || removed == "spr" ? removed :
                                                      std::string("zz")) +
               "' instead");
-        estimator           = error_estimator_from_string(prm.get("Estimator"));
-        compare_estimators  = prm.get_bool("Compare estimators");
-        cre_degree_increase = prm.get_integer("CRE degree increase");
+        estimator          = parse_option<ErrorEstimator>(prm.get("Estimator"));
+        compare_estimators = prm.get_bool("Compare estimators");
+        cre_degree_increase       = prm.get_integer("CRE degree increase");
         cre_traction_optimisation = prm.get_bool("CRE traction optimisation");
         compute_exact_error       = prm.get_bool("Compute exact error");
         reference_refinements     = prm.get_integer("Reference refinements");
@@ -256,7 +251,8 @@ namespace coulomb_adapt
       {
         prm.declare_entry("Strategy",
                           "uniform",
-                          Patterns::Selection("uniform|refine|remesh"),
+                          Patterns::Selection(
+                            option_pattern<AdaptationStrategy>()),
                           "How the mesh changes from one cycle to the next. "
                           "uniform: every cell is refined once. refine: "
                           "quadrilaterals are refined and coarsened with "
@@ -324,7 +320,7 @@ namespace coulomb_adapt
         prm.declare_entry("Refinement criterion",
                           "size ratio",
                           Patterns::Selection(
-                            "size ratio|fixed fraction|fixed number|optimize"),
+                            option_pattern<RefinementCriterion>()),
                           "For 'Strategy = refine': which cells are refined "
                           "and coarsened. size ratio: from r_E of theory.md "
                           "section 4 (r_E < 1/2 refine, r_E > 2 coarsen). "
@@ -389,10 +385,10 @@ namespace coulomb_adapt
       prm.enter_subsection("Adaptation");
       {
         const std::string path = "Adaptation/";
-        strategy               = prm.get("Strategy");
-        n_cycles               = prm.get_integer("Number of cycles");
-        min_cycles             = prm.get_integer("Minimum number of cycles");
-        over_refinement_ratio  = prm.get_double("Over-refinement ratio");
+        strategy   = parse_option<AdaptationStrategy>(prm.get("Strategy"));
+        n_cycles   = prm.get_integer("Number of cycles");
+        min_cycles = prm.get_integer("Minimum number of cycles");
+        over_refinement_ratio = prm.get_double("Over-refinement ratio");
         require_parameter(min_cycles <= n_cycles,
                           path + "Minimum number of cycles",
                           min_cycles,
@@ -401,21 +397,23 @@ namespace coulomb_adapt
         target_error         = prm.get_double("Target error") / 100;
         target_safety_factor = prm.get_double("Target safety factor");
         max_dofs             = prm.get_double("Maximum number of DoFs");
-        refinement_criterion = prm.get("Refinement criterion");
-        refine_fraction      = prm.get_double("Refine fraction");
-        coarsen_fraction     = prm.get_double("Coarsen fraction");
-        min_size_ratio       = prm.get_double("Minimum size ratio");
-        max_size_ratio       = prm.get_double("Maximum size ratio");
-        singular_rate        = prm.get_double("Singular convergence rate");
-        warm_start           = prm.get_bool("Warm start");
-        remeshing_algorithm  = prm.get("Remeshing algorithm");
+        refinement_criterion =
+          parse_option<RefinementCriterion>(prm.get("Refinement criterion"));
+        refine_fraction     = prm.get_double("Refine fraction");
+        coarsen_fraction    = prm.get_double("Coarsen fraction");
+        min_size_ratio      = prm.get_double("Minimum size ratio");
+        max_size_ratio      = prm.get_double("Maximum size ratio");
+        singular_rate       = prm.get_double("Singular convergence rate");
+        warm_start          = prm.get_bool("Warm start");
+        remeshing_algorithm = prm.get("Remeshing algorithm");
         require_parameter(refine_fraction + coarsen_fraction <= 1,
                           path + "Refine fraction",
                           refine_fraction,
                           "Refine fraction + Coarsen fraction <= 1");
         const bool aims_at_target =
-          strategy == "remesh" ||
-          (strategy == "refine" && refinement_criterion == "size ratio");
+          strategy == AdaptationStrategy::remesh ||
+          (strategy == AdaptationStrategy::refine &&
+           refinement_criterion == RefinementCriterion::size_ratio);
         require_parameter(!aims_at_target || target_error > 0,
                           path + "Target error",
                           100 * target_error,
@@ -428,34 +426,6 @@ namespace coulomb_adapt
 
 
 
-    void
-    Scene::declare_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Scene");
-      {
-        prm.declare_entry("Name",
-                          "blocks",
-                          Patterns::Selection(scenes::scene_names()),
-                          "The problem to solve: geometry, boundary "
-                          "conditions, loads and materials of both bodies. "
-                          "Each scene reads the subsection of the same name "
-                          "below this one.");
-        scenes::declare_parameters(prm);
-      }
-      prm.leave_subsection();
-    }
-
-
-
-    void
-    Scene::parse_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Scene");
-      {
-        name = prm.get("Name");
-      }
-      prm.leave_subsection();
-    }
   } // namespace parameters
 
 
@@ -463,7 +433,6 @@ namespace coulomb_adapt
   void
   Parameters::declare_parameters(ParameterHandler &prm)
   {
-    parameters::Scene::declare_parameters(prm);
     parameters::Mesh::declare_parameters(prm);
     parameters::FiniteElements::declare_parameters(prm);
     parameters::Contact::declare_parameters(prm);
@@ -478,7 +447,6 @@ namespace coulomb_adapt
   void
   Parameters::parse_parameters(ParameterHandler &prm)
   {
-    scene.parse_parameters(prm);
     mesh.parse_parameters(prm);
     finite_elements.parse_parameters(prm);
     contact.parse_parameters(prm);
@@ -488,14 +456,14 @@ namespace coulomb_adapt
     output.parse_parameters(prm);
     // deal.II 9.4 refines simplices only globally, and gmsh remeshes with
     // triangles: each strategy needs its cell type.
-    if (adaptation.strategy == "refine" &&
+    if (adaptation.strategy == AdaptationStrategy::refine &&
         mesh.cell_type != CellType::quadrilateral)
       throw ParameterError("Adaptation/Strategy",
                            "refine",
                            "'refine' needs 'Mesh/Cell type = "
                            "quadrilateral' (hanging nodes); for triangles "
                            "use 'remesh' or 'uniform'");
-    if (adaptation.strategy == "refine" &&
+    if (adaptation.strategy == AdaptationStrategy::refine &&
         (error_indicator.estimator == ErrorEstimator::cre ||
          error_indicator.compare_estimators))
       throw ParameterError(
@@ -506,7 +474,8 @@ namespace coulomb_adapt
         "the cre estimator's element equilibration is written for "
         "conforming meshes, and 'Adaptation/Strategy = refine' makes "
         "hanging nodes: use 'Strategy = remesh' (triangles) or 'uniform'");
-    if (adaptation.strategy == "remesh" && mesh.cell_type != CellType::triangle)
+    if (adaptation.strategy == AdaptationStrategy::remesh &&
+        mesh.cell_type != CellType::triangle)
       throw ParameterError("Adaptation/Strategy",
                            "remesh",
                            "'remesh' needs 'Mesh/Cell type = triangle' "

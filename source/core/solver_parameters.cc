@@ -16,7 +16,8 @@ namespace coulomb_adapt
       {
         prm.declare_entry("Type",
                           "auto",
-                          Patterns::Selection("auto|direct|amg"),
+                          Patterns::Selection(
+                            option_pattern<LinearSolverType>()),
                           "direct: sparse direct factorisation (Trilinos "
                           "Amesos). amg: Krylov solver preconditioned by ML "
                           "smoothed-aggregation algebraic multigrid with "
@@ -74,7 +75,7 @@ namespace coulomb_adapt
     {
       prm.enter_subsection("Linear solver");
       {
-        type                = prm.get("Type");
+        type                = parse_option<LinearSolverType>(prm.get("Type"));
         max_dofs_for_direct = prm.get_integer("Maximum DoFs for direct");
         max_dofs_for_direct_contact =
           prm.get_integer("Maximum DoFs for direct contact");

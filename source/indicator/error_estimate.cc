@@ -2,6 +2,8 @@
 #include <coulomb_adapt/indicator/error_estimate.h>
 
 #include <cmath>
+#include <functional>
+#include <map>
 #include <optional>
 
 namespace coulomb_adapt
@@ -126,6 +128,64 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    using EstimatorFunction =
+      std::function<ErrorEstimate(const std::array<const ElasticBody *, 2> &,
+                                  const ContactSolution *,
+                                  const double,
+                                  const parameters::ErrorIndicator &,
+                                  const parameters::LinearSolver &,
+                                  const ErrorEstimateOptions &)>;
+
+    // zz and spr: the recovery-based estimator of the seed with either
+    // smoothing.
+    template <StressRecoveryMethod recovery>
+    ErrorEstimate
+    recovery_estimate(const std::array<const ElasticBody *, 2> &bodies,
+                      const ContactSolution                    *contact,
+                      const double                              mu,
+                      const parameters::ErrorIndicator &,
+                      const parameters::LinearSolver &solver_parameters,
+                      const ErrorEstimateOptions     &options)
+    {
+      return estimate_error(
+        bodies, contact, mu, recovery, solver_parameters, options);
+    }
+
+    ErrorEstimate
+    cre_estimate(const std::array<const ElasticBody *, 2> &bodies,
+                 const ContactSolution                    *contact,
+                 const double                              mu,
+                 const parameters::ErrorIndicator         &indicator_parameters,
+                 const parameters::LinearSolver           &solver_parameters,
+                 const ErrorEstimateOptions               &options)
+    {
+      return estimate_error_cre(bodies,
+                                contact,
+                                mu,
+                                indicator_parameters.cre_degree_increase,
+                                indicator_parameters.cre_traction_optimisation,
+                                solver_parameters,
+                                options);
+    }
+
+    // The registry of the estimators of 'Error indicator/Estimator': one
+    // line each (the names are in core/error_estimator.cc).
+    const std::map<ErrorEstimator, EstimatorFunction> &
+    registered_estimators()
+    {
+      static const std::map<ErrorEstimator, EstimatorFunction> estimators = {
+        {ErrorEstimator::zz,
+         recovery_estimate<StressRecoveryMethod::l2_projection>},
+        {ErrorEstimator::spr, recovery_estimate<StressRecoveryMethod::spr>},
+        {ErrorEstimator::cre, cre_estimate}};
+      return estimators;
+    }
+  } // namespace
+
+
+
   ErrorEstimate
   estimate_error(const std::array<const ElasticBody *, 2> &bodies,
                  const ContactSolution                    *contact_solver,
@@ -135,24 +195,17 @@ namespace coulomb_adapt
                  const parameters::LinearSolver           &solver_parameters,
                  const ErrorEstimateOptions               &options)
   {
-    if (estimator == ErrorEstimator::cre)
-      return estimate_error_cre(bodies,
-                                contact_solver,
-                                mu,
-                                indicator_parameters.cre_degree_increase,
-                                indicator_parameters.cre_traction_optimisation,
-                                solver_parameters,
-                                options);
-    ErrorEstimate estimate =
-      estimate_error(bodies,
-                     contact_solver,
-                     mu,
-                     estimator == ErrorEstimator::spr ?
-                       StressRecoveryMethod::spr :
-                       StressRecoveryMethod::l2_projection,
-                     solver_parameters,
-                     options);
-    estimate.estimator = estimator;
+    const auto entry = registered_estimators().find(estimator);
+    AssertThrow(entry != registered_estimators().end(),
+                ExcMessage("no error estimator is registered for '" +
+                           to_string(estimator) + "'"));
+    ErrorEstimate estimate = entry->second(bodies,
+                                           contact_solver,
+                                           mu,
+                                           indicator_parameters,
+                                           solver_parameters,
+                                           options);
+    estimate.estimator     = estimator;
     return estimate;
   }
 

@@ -7,6 +7,7 @@
 
 #include <deal.II/numerics/vector_tools_evaluate.h>
 
+#include <coulomb_adapt/bodies/elastic_bodies.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/indicator/exact_error.h>
 
@@ -208,14 +209,6 @@ namespace coulomb_adapt
                            quiet);
       return solver.solve().newton_iterations;
     }
-
-
-
-    std::array<const ElasticBody *, 2>
-    pointers(const std::array<std::unique_ptr<ElasticBody>, 2> &bodies)
-    {
-      return {{bodies[0].get(), bodies[1].get()}};
-    }
   } // namespace
 
 
@@ -337,7 +330,7 @@ namespace coulomb_adapt
           coarser[b] = make_refined_body(
             *judged[b], scene, b, parameters, refinements - 1);
         solve_quietly(coarser, parameters, quiet);
-        coarser_bodies = pointers(coarser);
+        coarser_bodies = body_pointers(coarser);
       }
     const StressDifference d =
       compare_stresses(coarser_bodies,

@@ -13,7 +13,7 @@ namespace coulomb_adapt
 {
   BodyOutput::BodyOutput(const std::string &directory,
                          const std::string &base_name,
-                         const std::string &format)
+                         const OutputFormat format)
     : directory(directory)
     , base_name(base_name)
     , format(format)
@@ -68,7 +68,7 @@ namespace coulomb_adapt
                            body.dof_handler().get_fe().degree,
                            DataOut<2>::curved_inner_cells);
 
-    if (format == "hdf5")
+    if (format == OutputFormat::hdf5)
       {
         const std::string h5 =
           base_name + "_" + Utilities::int_to_string(cycle, 3) + ".h5";

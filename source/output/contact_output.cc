@@ -12,7 +12,7 @@ namespace coulomb_adapt
 {
   ContactOutput::ContactOutput(const std::string &directory,
                                const MPI_Comm     comm,
-                               const std::string &format)
+                               const OutputFormat format)
     : directory(directory)
     , mpi_communicator(comm)
     , format(format)
@@ -90,7 +90,7 @@ namespace coulomb_adapt
                  DataComponentInterpretation::DataComponentInterpretation>>
       no_vector_fields;
 
-    if (format == "hdf5")
+    if (format == OutputFormat::hdf5)
       {
         // An interface without slave nodes has no polyline to write.
         if (states.size() < 2)

@@ -67,9 +67,9 @@ namespace coulomb_adapt
                                       const unsigned int            degree,
                                       const double                  calibration)
   {
-    pcout << "  adapt (" << r.strategy;
-    if (r.strategy == "refine")
-      pcout << ", " << a.refinement_criterion;
+    pcout << "  adapt (" << option_name(r.strategy);
+    if (r.strategy == AdaptationStrategy::refine)
+      pcout << ", " << option_name(a.refinement_criterion);
     pcout << "): ";
     if (r.predicted_n_cells >= 0)
       pcout << "optimal mesh for epsilon_0 = " << 100 * a.target_error
@@ -90,11 +90,11 @@ namespace coulomb_adapt
       pcout << "; more cells than 'Maximum number of DoFs' = " << a.max_dofs
             << " allows: the optimal mesh of that size instead (predicted "
                "epsilon above epsilon_0)";
-    if (r.strategy == "refine")
+    if (r.strategy == AdaptationStrategy::refine)
       pcout << (r.predicted_n_cells >= 0 ? "; " : "") << r.n_refine_flags
             << " cells flagged for refinement, " << r.n_coarsen_flags
             << " for coarsening";
-    if (r.strategy == "uniform")
+    if (r.strategy == AdaptationStrategy::uniform)
       pcout << "every cell refined once";
     pcout << std::endl;
   }
@@ -103,12 +103,12 @@ namespace coulomb_adapt
 
   void
   CycleReport::record_meshes(const std::array<const ElasticBody *, 2> &bodies,
-                             const std::string                        &strategy,
+                             const AdaptationStrategy                  strategy,
                              const MeshAdaptationReport *last_adaptation,
                              const double                calibration)
   {
     pcout << "Cycle " << cycle << std::endl;
-    record["strategy"] = strategy;
+    record["strategy"] = option_name(strategy);
     for (const ElasticBody *body : bodies)
       {
         const auto n_cells     = body->triangulation().n_global_active_cells();
@@ -144,7 +144,7 @@ namespace coulomb_adapt
                                 {"singular_cells", a.n_singular_cells},
                                 {"limited_by_max_dofs", a.limited_by_max_dofs}};
       }
-    if (a.strategy == "refine")
+    if (a.strategy == AdaptationStrategy::refine)
       {
         record["adaptation"]["refine_flags"]  = a.n_refine_flags;
         record["adaptation"]["coarsen_flags"] = a.n_coarsen_flags;

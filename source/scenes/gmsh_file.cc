@@ -338,6 +338,7 @@ namespace coulomb_adapt
           }
 
         const std::string file = prm.get("Mesh file");
+        mesh_file              = file;
         if (file.empty())
           throw ParameterError(scene_path + "/Mesh file",
                                file,
@@ -398,6 +399,14 @@ namespace coulomb_adapt
     GmshFile::name() const
     {
       return "gmsh";
+    }
+
+
+
+    std::string
+    GmshFile::mesh_source() const
+    {
+      return "gmsh file '" + mesh_file + "': ";
     }
 
 

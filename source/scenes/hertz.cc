@@ -422,6 +422,10 @@ namespace coulomb_adapt
       if (body == 0)
         {
           d.name = "half disc";
+          // The ends of the contact zone only: the holder's edges of
+          // 'cattaneo' have always been left out (the default would count
+          // them as clamped); whether they matter has not been measured.
+          d.singular_junction_parts = {boundary_ids::contact};
           if (cattaneo)
             // The disc's top is moved by a rigid holder: down by the normal
             // displacement, then sideways in steps. The holder keeps the

@@ -46,6 +46,14 @@ namespace coulomb_adapt
 
 
 
+  std::string
+  Scene::mesh_source() const
+  {
+    return "";
+  }
+
+
+
   std::map<std::string, double>
   Scene::reference_values() const
   {

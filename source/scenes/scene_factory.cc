@@ -10,10 +10,61 @@ namespace coulomb_adapt
 {
   namespace scenes
   {
+    namespace
+    {
+      // The scenes whose constructor needs only the plane model.
+      template <typename SceneType>
+      std::unique_ptr<Scene>
+      with_plane_model(ParameterHandler &prm, const Parameters &parameters)
+      {
+        return std::make_unique<SceneType>(
+          prm, parameters.finite_elements.plane_model);
+      }
+    } // namespace
+
+
+
+    const std::vector<SceneEntry> &
+    registered_scenes()
+    {
+      static const std::vector<SceneEntry> scenes = {
+        {"blocks", Blocks::declare_parameters, with_plane_model<Blocks>},
+        {"patch", Patch::declare_parameters, with_plane_model<Patch>},
+        {"hertz",
+         Hertz::declare_parameters,
+         [](ParameterHandler &prm, const Parameters &parameters) {
+           return std::make_unique<Hertz>(prm, parameters);
+         }},
+        // Hertz's geometry with a tangential load: Hertz declares both.
+        {"cattaneo",
+         nullptr,
+         [](ParameterHandler &prm, const Parameters &parameters) {
+           return std::make_unique<Hertz>(prm, parameters, true);
+         }},
+        {"punch", Punch::declare_parameters, with_plane_model<Punch>},
+        {"gmsh",
+         GmshFile::declare_parameters,
+         [](ParameterHandler &prm, const Parameters &parameters) {
+           return std::make_unique<GmshFile>(
+             prm,
+             parameters.finite_elements.plane_model,
+             parameters.mesh.cell_type);
+         }},
+        {"manufactured",
+         Manufactured::declare_parameters,
+         with_plane_model<Manufactured>}};
+      return scenes;
+    }
+
+
+
     std::string
     scene_names()
     {
-      return "blocks|patch|hertz|cattaneo|punch|gmsh|manufactured";
+      std::string names;
+      for (const SceneEntry &entry : registered_scenes())
+        names += (names.empty() ? "" : "|") + entry.name;
+      return names;
     }
 
 
@@ -21,12 +72,20 @@ namespace coulomb_adapt
     void
     declare_parameters(ParameterHandler &prm)
     {
-      Blocks::declare_parameters(prm);
-      Patch::declare_parameters(prm);
-      Hertz::declare_parameters(prm);
-      Punch::declare_parameters(prm);
-      GmshFile::declare_parameters(prm);
-      Manufactured::declare_parameters(prm);
+      prm.enter_subsection("Scene");
+      {
+        prm.declare_entry("Name",
+                          "blocks",
+                          Patterns::Selection(scene_names()),
+                          "The problem to solve: geometry, boundary "
+                          "conditions, loads and materials of both bodies. "
+                          "Each scene reads the subsection of the same name "
+                          "below this one.");
+        for (const SceneEntry &entry : registered_scenes())
+          if (entry.declare_parameters)
+            entry.declare_parameters(prm);
+      }
+      prm.leave_subsection();
     }
 
 
@@ -34,27 +93,16 @@ namespace coulomb_adapt
     std::unique_ptr<Scene>
     create_scene(const Parameters &parameters, ParameterHandler &prm)
     {
-      const std::string     &name  = parameters.scene.name;
-      const PlaneModel       model = parameters.finite_elements.plane_model;
       std::unique_ptr<Scene> scene;
       prm.enter_subsection("Scene");
       try
         {
-          if (name == "blocks")
-            scene = std::make_unique<Blocks>(prm, model);
-          else if (name == "patch")
-            scene = std::make_unique<Patch>(prm, model);
-          else if (name == "hertz")
-            scene = std::make_unique<Hertz>(prm, parameters);
-          else if (name == "cattaneo")
-            scene = std::make_unique<Hertz>(prm, parameters, true);
-          else if (name == "punch")
-            scene = std::make_unique<Punch>(prm, model);
-          else if (name == "gmsh")
-            scene =
-              std::make_unique<GmshFile>(prm, model, parameters.mesh.cell_type);
-          else if (name == "manufactured")
-            scene = std::make_unique<Manufactured>(prm, model);
+          const std::string name = prm.get("Name");
+          for (const SceneEntry &entry : registered_scenes())
+            if (entry.name == name)
+              scene = entry.create(prm, parameters);
+          // The Selection pattern has refused any other name.
+          AssertThrow(scene != nullptr, ExcMessage("Unknown scene " + name));
         }
       catch (...)
         {
@@ -62,7 +110,6 @@ namespace coulomb_adapt
           throw;
         }
       prm.leave_subsection();
-      AssertThrow(scene != nullptr, ExcMessage("Unknown scene " + name));
       return scene;
     }
   } // namespace scenes

@@ -150,9 +150,9 @@ namespace coulomb_adapt
                       const parameters::LinearSolver         &settings,
                       const bool                              symmetric)
   {
-    const bool direct =
-      settings.type == "direct" ||
-      (settings.type == "auto" && A.m() <= settings.max_dofs_for_direct);
+    const bool direct = settings.type == LinearSolverType::direct ||
+                        (settings.type == LinearSolverType::automatic &&
+                         A.m() <= settings.max_dofs_for_direct);
     if (direct)
       return solve_direct(A, x, b, settings.direct_solver);
     return solve_amg(A, x, b, near_null_space, settings, symmetric);

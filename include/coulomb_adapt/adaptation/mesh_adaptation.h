@@ -15,7 +15,7 @@ namespace coulomb_adapt
   /** What one adaptation step did, for the log and summary.json. */
   struct MeshAdaptationReport
   {
-    std::string strategy;
+    AdaptationStrategy strategy = AdaptationStrategy::uniform;
     /** Predicted cell count N* (both bodies) and epsilon of the optimal
      * mesh, when the size ratios were used; -1 otherwise. */
     double predicted_n_cells = -1;

@@ -48,7 +48,7 @@ namespace coulomb_adapt
   RefinementDecisions
   decisions_from_indicator(const std::array<const ElasticBody *, 2> &bodies,
                            const ErrorEstimate                      &estimate,
-                           const std::string                        &criterion,
+                           const RefinementCriterion                 criterion,
                            const double       refine_fraction,
                            const double       coarsen_fraction,
                            const unsigned int degree);

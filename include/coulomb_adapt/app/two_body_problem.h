@@ -6,7 +6,7 @@
 
 #include <coulomb_adapt/adaptation/mesh_adaptation.h>
 #include <coulomb_adapt/adaptation/target_calibration.h>
-#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/bodies/elastic_bodies.h>
 #include <coulomb_adapt/contact/contact_solve_driver.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/core/parameters.h>
@@ -38,6 +38,11 @@ namespace coulomb_adapt
   class TwoBodyProblem
   {
   public:
+    /** Declare every entry of the program: the subsections of Parameters
+     * and the scenes' subsection `Scene`. */
+    static void
+    declare_parameters(ParameterHandler &prm);
+
     /** The log goes to @p log on rank 0 (tests pass a string stream). */
     TwoBodyProblem(const MPI_Comm     mpi_communicator,
                    const Parameters  &parameters,
@@ -98,14 +103,14 @@ namespace coulomb_adapt
 
     /** Where the meshes come from, for messages ("gmsh file 'x.msh': "),
      * empty for the built-in scenes. */
-    std::string                                 mesh_source;
-    MPI_Comm                                    mpi_communicator;
-    const Parameters                           &parameters;
-    ConditionalOStream                          pcout;
-    TimerOutput                                 computing_timer;
-    std::unique_ptr<Scene>                      scene;
-    std::array<std::unique_ptr<ElasticBody>, 2> bodies;
-    std::array<std::unique_ptr<BodyOutput>, 2>  body_outputs;
+    std::string                                mesh_source;
+    MPI_Comm                                   mpi_communicator;
+    const Parameters                          &parameters;
+    ConditionalOStream                         pcout;
+    TimerOutput                                computing_timer;
+    std::unique_ptr<Scene>                     scene;
+    ElasticBodies                              bodies;
+    std::array<std::unique_ptr<BodyOutput>, 2> body_outputs;
     /** The log lines and summary.json record of each cycle. */
     std::unique_ptr<CycleReport>        cycle_report;
     std::unique_ptr<ContactSolveDriver> contact_solve_driver;

@@ -1,6 +1,8 @@
 #ifndef coulomb_adapt_core_error_estimator_h
 #define coulomb_adapt_core_error_estimator_h
 
+#include <coulomb_adapt/core/options.h>
+
 #include <string>
 #include <vector>
 
@@ -18,13 +20,13 @@ namespace coulomb_adapt
     cre
   };
 
+  template <>
+  const OptionNames<ErrorEstimator> &
+  option_names<ErrorEstimator>();
+
   /** "zz", "spr", "cre". */
   std::string
   to_string(const ErrorEstimator estimator);
-
-  /** The inverse of to_string; throws for any other name. */
-  ErrorEstimator
-  error_estimator_from_string(const std::string &name);
 
   /** Every estimator, in the order of to_string's names. */
   std::vector<ErrorEstimator>

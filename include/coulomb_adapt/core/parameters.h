@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <coulomb_adapt/core/error_estimator.h>
+#include <coulomb_adapt/core/options.h>
 
 #include <string>
 
@@ -12,38 +13,19 @@ namespace coulomb_adapt
   using namespace dealii;
 
   /**
-   * The 2D reduction of the elastic bodies.
-   */
-  enum class PlaneModel
-  {
-    plane_strain,
-    plane_stress
-  };
-
-  /**
-   * The reference cell of the meshes of the built-in scenes.
-   */
-  enum class CellType
-  {
-    quadrilateral,
-    triangle
-  };
-
-  /**
    * The parameters of the program, one struct per subsection of the
-   * parameter file (in the style of Lethe's `parameters.h`). Scene-specific
-   * entries live with the scenes (see scenes/scene_factory.h).
+   * parameter file (in the style of Lethe's `parameters.h`). Subsection
+   * `Scene` lives with the scenes, which the parameters here know nothing
+   * of (scenes/scene_factory.h declares it and reads it).
    */
   namespace parameters
   {
     /** Subsection `Output`. */
     struct Output
     {
-      std::string directory;
-      /** "vtu" or "hdf5". */
-      std::string format;
-      /** "all", "last" or "none". */
-      std::string write_cycles;
+      std::string  directory;
+      OutputFormat format;
+      WriteCycles  write_cycles;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -78,12 +60,11 @@ namespace coulomb_adapt
     /** Subsection `Linear solver`. */
     struct LinearSolver
     {
-      /** "auto", "direct" or "amg". */
-      std::string  type;
-      unsigned int max_dofs_for_direct;
-      std::string  direct_solver;
-      double       relative_tolerance;
-      unsigned int max_iterations;
+      LinearSolverType type;
+      unsigned int     max_dofs_for_direct;
+      std::string      direct_solver;
+      double           relative_tolerance;
+      unsigned int     max_iterations;
       /** 'Maximum DoFs for direct' for the contact system (DoFs of both
        * bodies). */
       unsigned int max_dofs_for_direct_contact;
@@ -141,10 +122,10 @@ namespace coulomb_adapt
     /** Subsection `Adaptation`. */
     struct Adaptation
     {
-      /** "uniform": every cycle refines all cells once; "refine":
-       * quadrilaterals refined and coarsened with hanging nodes; "remesh":
+      /** uniform: every cycle refines all cells once; refine:
+       * quadrilaterals refined and coarsened with hanging nodes; remesh:
        * each body remeshed by gmsh from the optimal size field. */
-      std::string strategy;
+      AdaptationStrategy strategy;
       /** Maximum number of solve cycles. */
       unsigned int n_cycles;
       /** Cycles run even if the target is met earlier. */
@@ -159,11 +140,10 @@ namespace coulomb_adapt
       double target_safety_factor;
       /** No further cycle once a cycle has at least this many DoFs. */
       double max_dofs;
-      /** For "refine": "size ratio", "fixed fraction", "fixed number" or
-       * "optimize". */
-      std::string refinement_criterion;
-      double      refine_fraction;
-      double      coarsen_fraction;
+      /** Which cells the strategy 'refine' flags. */
+      RefinementCriterion refinement_criterion;
+      double              refine_fraction;
+      double              coarsen_fraction;
       /** Bounds of r_E = h*_E / h_E. */
       double min_size_ratio;
       double max_size_ratio;
@@ -179,28 +159,15 @@ namespace coulomb_adapt
       void
       parse_parameters(ParameterHandler &prm);
     };
-
-    /** Subsection `Scene`: only the name; the scenes declare their own
-     * subsections below it. */
-    struct Scene
-    {
-      std::string name;
-
-      static void
-      declare_parameters(ParameterHandler &prm);
-      void
-      parse_parameters(ParameterHandler &prm);
-    };
   } // namespace parameters
 
   /**
-   * All parameters of a run. The ParameterHandler is kept because scenes
-   * read their own subsections from it, and because every run writes the
-   * resolved parameter set next to its results.
+   * All parameters of a run but the scene's. The ParameterHandler is kept
+   * because the scenes read subsection `Scene` from it, and because every
+   * run writes the resolved parameter set next to its results.
    */
   struct Parameters
   {
-    parameters::Scene          scene;
     parameters::Mesh           mesh;
     parameters::FiniteElements finite_elements;
     parameters::Contact        contact;
@@ -209,7 +176,8 @@ namespace coulomb_adapt
     parameters::Adaptation     adaptation;
     parameters::Output         output;
 
-    /** Declare every entry of the program, scenes included. */
+    /** Declare every entry of these subsections (the program's whole set
+     * is TwoBodyProblem::declare_parameters). */
     static void
     declare_parameters(ParameterHandler &prm);
     /** Read and check every entry; throws ParameterError on bad values. */

@@ -6,6 +6,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/core/options.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 
 #include <string>
@@ -34,7 +35,7 @@ namespace coulomb_adapt
   public:
     BodyOutput(const std::string &directory,
                const std::string &base_name,
-               const std::string &format);
+               const OutputFormat format);
 
     void
     write(const ElasticBody     &body,
@@ -44,7 +45,7 @@ namespace coulomb_adapt
   private:
     const std::string                           directory;
     const std::string                           base_name;
-    const std::string                           format;
+    const OutputFormat                          format;
     std::vector<std::pair<double, std::string>> pvd_records;
     std::vector<XDMFEntry>                      xdmf_entries;
   };

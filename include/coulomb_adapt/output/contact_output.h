@@ -4,6 +4,7 @@
 #include <deal.II/base/data_out_base.h>
 
 #include <coulomb_adapt/contact/contact_state.h>
+#include <coulomb_adapt/core/options.h>
 
 #include <string>
 #include <utility>
@@ -25,7 +26,7 @@ namespace coulomb_adapt
   public:
     ContactOutput(const std::string &directory,
                   const MPI_Comm     comm,
-                  const std::string &format);
+                  const OutputFormat format);
 
     /** Write the CSV, and with @p write_fields the polyline and its index.
      * @p contact_error_density (one value per slave node, may be empty) is
@@ -39,7 +40,7 @@ namespace coulomb_adapt
   private:
     const std::string                           directory;
     const MPI_Comm                              mpi_communicator;
-    const std::string                           format;
+    const OutputFormat                          format;
     std::vector<std::pair<double, std::string>> pvd_records;
     std::vector<XDMFEntry>                      xdmf_entries;
   };

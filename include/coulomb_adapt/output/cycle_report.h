@@ -66,7 +66,7 @@ namespace coulomb_adapt
      * made them (null on the first cycle). */
     void
     record_meshes(const std::array<const ElasticBody *, 2> &bodies,
-                  const std::string                        &strategy,
+                  const AdaptationStrategy                  strategy,
                   const MeshAdaptationReport               *last_adaptation,
                   const double                              calibration);
 

@@ -44,6 +44,9 @@ namespace coulomb_adapt
       BodyDescription
       describe_body(const unsigned int body) const override;
 
+      std::string
+      mesh_source() const override;
+
       /** What applies on the curves of one physical group. */
       struct GroupConditions
       {
@@ -72,6 +75,7 @@ namespace coulomb_adapt
       };
 
     private:
+      std::string                            mesh_file;
       TwoBodyGmshMeshes                      geometry;
       std::map<std::string, GroupConditions> conditions;
       std::array<MaterialConstants, 2>       materials;

@@ -91,6 +91,29 @@ namespace coulomb_adapt
     types::boundary_id contact_boundary_id = numbers::invalid_boundary_id;
     /** Exact displacement, when the scene knows it (for verification). */
     std::shared_ptr<const Function<2>> exact_displacement;
+    /** The boundary parts whose junctions with other parts are singular
+     * points of the displacement, where the optimal mesh uses a reduced
+     * convergence rate (theory.md section 4). Empty: singular_parts()'s
+     * rule. */
+    std::vector<types::boundary_id> singular_junction_parts;
+
+    /** singular_junction_parts, or if the scene gives none, the classical
+     * corner singularities of mixed boundary conditions: the contact part
+     * and every clamped part (all components prescribed). A roller's end
+     * is no such point (its mirror image continues the body smoothly). */
+    std::vector<types::boundary_id>
+    singular_parts() const
+    {
+      if (!singular_junction_parts.empty())
+        return singular_junction_parts;
+      std::vector<types::boundary_id> parts;
+      if (contact_boundary_id != numbers::invalid_boundary_id)
+        parts.push_back(contact_boundary_id);
+      for (const auto &condition : dirichlet)
+        if (condition.components.n_selected_components(2) == 2)
+          parts.push_back(condition.boundary_id);
+      return parts;
+    }
 
     /** The interior lines of the point constraints (symmetry lines that
      * a remeshed mesh must keep as lines of nodes). */
@@ -134,6 +157,11 @@ namespace coulomb_adapt
 
     virtual BodyDescription
     describe_body(const unsigned int body) const = 0;
+
+    /** Where the meshes come from, to prefix messages about them ("gmsh
+     * file 'x.msh': "). Default: empty, the built-in meshes. */
+    virtual std::string
+    mesh_source() const;
 
     /** Analytic reference values the scene knows (e.g. Hertz's a and p0),
      * by name; written to summary.json for plots and comparisons.
