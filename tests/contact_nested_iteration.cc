@@ -7,7 +7,10 @@
 //  - need fewer Newton steps on the fine mesh, at most 4 (the hertz cold
 //    start needs 9 here: its first step activates about twice the zone);
 // for hertz (graded quadrilaterals, mu = 0.3 and the frictionless path) and
-// blocks (triangles, rebuilt from the coarse mesh, mu = 0.3).
+// blocks (triangles, rebuilt from the coarse mesh, mu = 0.3); and, without
+// global refinements, on hertz's coarser gradings (its contact zone meshed
+// 2, 4, 8 times coarser: gmsh triangles, locally refined quadrilaterals).
+// Cold, the graded triangles take 10 Newton steps here.
 // The program's log says what the coarser meshes did, or why they were
 // skipped. Run on 1 and 2 ranks with the same output.
 
@@ -24,7 +27,8 @@ namespace
   compare(const std::string                                      &name,
           const std::vector<std::pair<std::string, std::string>> &settings,
           const unsigned int                                      n_levels,
-          ConditionalOStream                                     &out)
+          ConditionalOStream                                     &out,
+          const bool graded = false)
   {
     const auto cold = testing::solve_contact(settings);
 
@@ -33,15 +37,23 @@ namespace
     const auto &p      = nested->parameters;
     std::vector<NestedIterationLevel> levels;
     nested->solver->warm_start_from(
-      predict_contact_sets_on_coarser_meshes(MPI_COMM_WORLD,
-                                             *nested->scene,
-                                             p.mesh.cell_type,
-                                             p.mesh.global_refinements,
-                                             n_levels,
-                                             p.finite_elements,
-                                             p.contact,
-                                             p.linear_solver,
-                                             levels));
+      graded ? predict_contact_sets_on_coarser_graded_meshes(MPI_COMM_WORLD,
+                                                             *nested->scene,
+                                                             p.mesh.cell_type,
+                                                             n_levels,
+                                                             p.finite_elements,
+                                                             p.contact,
+                                                             p.linear_solver,
+                                                             levels) :
+               predict_contact_sets_on_coarser_meshes(MPI_COMM_WORLD,
+                                                      *nested->scene,
+                                                      p.mesh.cell_type,
+                                                      p.mesh.global_refinements,
+                                                      n_levels,
+                                                      p.finite_elements,
+                                                      p.contact,
+                                                      p.linear_solver,
+                                                      levels));
     nested->report = nested->solver->solve();
 
     AssertThrow(levels.size() == n_levels, ExcInternalError());
@@ -109,6 +121,22 @@ main(int argc, char *argv[])
           2,
           out);
 
+  compare("hertz P1 graded, mu = 0.3",
+          {{"Scene/Name", "hertz"},
+           {"Mesh/Cell type", "triangle"},
+           {"Scene/Hertz/Contact mesh size", "0.025"}},
+          3,
+          out,
+          true);
+  compare("hertz Q1 graded, mu = 0",
+          {{"Scene/Name", "hertz"},
+           {"Contact/Friction coefficient", "0"},
+           {"Scene/Hertz/Hold axis", "true"},
+           {"Scene/Hertz/Contact mesh size", "0.05"}},
+          2,
+          out,
+          true);
+
   const std::string output_directory = "/tmp/coulomb-adapt-test-nested";
   check_log({{"Scene/Name", "blocks"},
              {"Mesh/Global refinements", "2"},
@@ -125,5 +153,12 @@ main(int argc, char *argv[])
              {"Output/Output directory", output_directory}},
             "nested iteration skipped: 740 DoFs <= 'Contact/Nested "
             "iteration minimum DoFs' (20000)",
+            out);
+  check_log({{"Scene/Name", "hertz"},
+             {"Scene/Hertz/Contact mesh size", "0.05"},
+             {"Adaptation/Number of cycles", "1"},
+             {"Output/Write VTU", "false"},
+             {"Output/Output directory", output_directory}},
+            "nested iteration, graded zone 2x coarser",
             out);
 }

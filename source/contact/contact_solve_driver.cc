@@ -134,8 +134,9 @@ namespace coulomb_adapt
 
   // Nested iteration (contact/nested_iteration.h) on the first cycle: the
   // bodies are still the scene's meshes with 'Global refinements', so the
-  // coarser ones are the same meshes with fewer. Whether it runs, and why
-  // not, goes to the log and the record.
+  // coarser ones are the same meshes with fewer, or, without any, the
+  // scene's coarser gradings. Whether it runs, and why not, goes to the log
+  // and the record.
   bool
   ContactSolveDriver::start_from_coarser_meshes(
     std::vector<ContactNodeState> &predicted_sets,
@@ -144,12 +145,19 @@ namespace coulomb_adapt
     const auto                   &c = parameters.contact;
     const types::global_dof_index n_dofs =
       bodies[0]->dof_handler().n_dofs() + bodies[1]->dof_handler().n_dofs();
+    // Without global refinements, a scene that grades its meshes (hertz)
+    // offers coarser gradings of the same geometry instead.
+    const bool graded = parameters.mesh.global_refinements == 0 &&
+                        scene.with_coarser_graded_meshes(1) != nullptr;
     const unsigned int n_levels =
-      std::min(c.nested_iteration_levels, parameters.mesh.global_refinements);
+      graded ?
+        c.nested_iteration_levels :
+        std::min(c.nested_iteration_levels, parameters.mesh.global_refinements);
     if (c.nested_iteration_levels == 0)
       record.skipped = "switched off ('Contact/Nested iteration levels' = 0)";
     else if (n_levels == 0)
-      record.skipped = "no coarser mesh ('Mesh/Global refinements' = 0)";
+      record.skipped = "no coarser mesh ('Mesh/Global refinements' = 0 and "
+                       "the scene grades no mesh)";
     else if (n_dofs <= c.nested_iteration_min_dofs)
       record.skipped = std::to_string(n_dofs) +
                        " DoFs <= 'Contact/Nested iteration minimum DoFs' (" +
@@ -163,16 +171,25 @@ namespace coulomb_adapt
 
     try
       {
-        predicted_sets = predict_contact_sets_on_coarser_meshes(
-          mpi_communicator,
-          scene,
-          parameters.mesh.cell_type,
-          parameters.mesh.global_refinements,
-          n_levels,
-          parameters.finite_elements,
-          parameters.contact,
-          parameters.linear_solver,
-          record.levels);
+        predicted_sets = graded ? predict_contact_sets_on_coarser_graded_meshes(
+                                    mpi_communicator,
+                                    scene,
+                                    parameters.mesh.cell_type,
+                                    n_levels,
+                                    parameters.finite_elements,
+                                    parameters.contact,
+                                    parameters.linear_solver,
+                                    record.levels) :
+                                  predict_contact_sets_on_coarser_meshes(
+                                    mpi_communicator,
+                                    scene,
+                                    parameters.mesh.cell_type,
+                                    parameters.mesh.global_refinements,
+                                    n_levels,
+                                    parameters.finite_elements,
+                                    parameters.contact,
+                                    parameters.linear_solver,
+                                    record.levels);
       }
     catch (const std::exception &e)
       {
@@ -187,11 +204,14 @@ namespace coulomb_adapt
         return false;
       }
     for (const NestedIterationLevel &l : record.levels)
-      pcout << "  contact: nested iteration, " << l.global_refinements
-            << " global refinements: " << l.n_dofs << " DoFs, "
-            << l.newton_iterations << " Newton steps, " << l.n_active
-            << " active nodes, " << std::setprecision(3) << l.wall_time << " s"
-            << std::endl;
+      pcout << "  contact: nested iteration, "
+            << (l.coarsening > 0 ?
+                  "graded zone " + std::to_string(1u << l.coarsening) +
+                    "x coarser" :
+                  std::to_string(l.global_refinements) + " global refinements")
+            << ": " << l.n_dofs << " DoFs, " << l.newton_iterations
+            << " Newton steps, " << l.n_active << " active nodes, "
+            << std::setprecision(3) << l.wall_time << " s" << std::endl;
     return true;
   }
 

@@ -174,6 +174,7 @@ namespace coulomb_adapt
         for (const NestedIterationLevel &l : outcome.nested_iteration->levels)
           nested["levels"].push_back(
             {{"global_refinements", l.global_refinements},
+             {"graded_zone_coarsening", l.coarsening},
              {"n_dofs", l.n_dofs},
              {"newton_iterations", l.newton_iterations},
              {"active_nodes", l.n_active},

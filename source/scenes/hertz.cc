@@ -393,6 +393,19 @@ namespace coulomb_adapt
 
 
 
+    std::unique_ptr<Scene>
+    Hertz::with_coarser_graded_meshes(const unsigned int k) const
+    {
+      if (contact_mesh_factor == 0)
+        return nullptr;
+      auto coarser = std::make_unique<Hertz>(*this);
+      coarser->contact_mesh_factor *= std::pow(2., k);
+      coarser->gmsh_meshes.reset(); // meshed again with the coarser size
+      return coarser;
+    }
+
+
+
     double
     Hertz::contact_mesh_size() const
     {

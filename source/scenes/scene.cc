@@ -73,4 +73,12 @@ namespace coulomb_adapt
   void
   Scene::set_load_step(const unsigned int) const
   {}
+
+
+
+  std::unique_ptr<Scene>
+  Scene::with_coarser_graded_meshes(const unsigned int) const
+  {
+    return nullptr;
+  }
 } // namespace coulomb_adapt

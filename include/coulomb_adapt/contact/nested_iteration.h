@@ -15,11 +15,14 @@ namespace coulomb_adapt
   /** One coarser mesh of a nested iteration, for the log and summary.json. */
   struct NestedIterationLevel
   {
-    unsigned int            global_refinements = 0;
-    types::global_dof_index n_dofs             = 0;
-    unsigned int            newton_iterations  = 0;
-    unsigned int            n_active           = 0;
-    double                  wall_time          = 0;
+    unsigned int global_refinements = 0;
+    /** For graded meshes: the level's graded zone is 2^coarsening times
+     * coarser than the fine mesh's (0 for uniform refinement levels). */
+    unsigned int            coarsening        = 0;
+    types::global_dof_index n_dofs            = 0;
+    unsigned int            newton_iterations = 0;
+    unsigned int            n_active          = 0;
+    double                  wall_time         = 0;
   };
 
   /**
@@ -46,6 +49,26 @@ namespace coulomb_adapt
     const Scene                       &scene,
     const CellType                     cell_type,
     const unsigned int                 fine_refinements,
+    const unsigned int                 n_levels,
+    const parameters::FiniteElements  &fe_parameters,
+    const parameters::Contact         &contact_parameters,
+    const parameters::LinearSolver    &solver_parameters,
+    std::vector<NestedIterationLevel> &levels);
+
+  /**
+   * The same for first meshes that are not uniform refinements of coarser
+   * ones but graded by the scene (hertz: towards the contact point, gmsh's
+   * size field for triangles): the coarser levels are the scene's meshes
+   * with the graded zone 2^k times coarser, k = @p n_levels ... 1
+   * (Scene::with_coarser_graded_meshes()). The sets are carried from level
+   * to level by the nodes' positions, as between uniform levels. Returns
+   * no sets (and no levels) when the scene has no coarser graded meshes.
+   */
+  std::vector<ContactNodeState>
+  predict_contact_sets_on_coarser_graded_meshes(
+    const MPI_Comm                     mpi_communicator,
+    const Scene                       &scene,
+    const CellType                     cell_type,
     const unsigned int                 n_levels,
     const parameters::FiniteElements  &fe_parameters,
     const parameters::Contact         &contact_parameters,

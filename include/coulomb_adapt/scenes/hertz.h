@@ -68,6 +68,11 @@ namespace coulomb_adapt
       void
       set_load_step(const unsigned int step) const override;
 
+      /** The same contact with `Contact mesh size` times 2^k (its own
+       * gmsh meshes). */
+      std::unique_ptr<Scene>
+      with_coarser_graded_meshes(const unsigned int k) const override;
+
       /** Hertz's contact half-width a (mm). */
       double
       contact_half_width() const;

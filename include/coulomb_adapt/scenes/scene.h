@@ -178,6 +178,13 @@ namespace coulomb_adapt
      * traction functions of describe_body() follow it. */
     virtual void
     set_load_step(const unsigned int step) const;
+
+    /** The same scene with initial meshes @p 2^k times coarser where the
+     * scene grades them (towards the contact zone), for nested iteration
+     * when the first meshes are not uniform refinements of coarser ones;
+     * nullptr (the default) where the scene has no such grading. */
+    virtual std::unique_ptr<Scene>
+    with_coarser_graded_meshes(const unsigned int k) const;
   };
 } // namespace coulomb_adapt
 
