@@ -248,6 +248,32 @@ namespace coulomb_adapt
         values.push_back(value);
       return values;
     }
+
+    /** The half-width of a Hertz-like contact zone centred at x = 0: the
+     * least-squares fit p^2 = c0 + c1 x^2 over the nodes in contact (the
+     * elliptic pressure p0 sqrt(1 - x^2 / a^2) squared is exactly this), a
+     * = sqrt(-c0 / c1). Uses every contact node rather than the first open
+     * one, so that it resolves a between nodes. */
+    inline double
+    fitted_half_width(const std::vector<ContactNodeState> &states)
+    {
+      double s00 = 0, s01 = 0, s11 = 0, r0 = 0, r1 = 0;
+      for (const auto &s : states)
+        if (s.status != ContactStatus::open)
+          {
+            const double X = s.position[0] * s.position[0],
+                         Y = s.pressure * s.pressure;
+            s00 += 1;
+            s01 += X;
+            s11 += X * X;
+            r0 += Y;
+            r1 += X * Y;
+          }
+      const double det = s00 * s11 - s01 * s01;
+      const double c0  = (r0 * s11 - r1 * s01) / det;
+      const double c1  = (s00 * r1 - s01 * r0) / det;
+      return std::sqrt(-c0 / c1);
+    }
   } // namespace testing
 } // namespace coulomb_adapt
 

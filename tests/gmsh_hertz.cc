@@ -28,25 +28,12 @@ Accuracy
 evaluate(const testing::SolvedContactProblem &problem)
 {
   Accuracy n{0, 0, 0, 0};
-  double   s00 = 0, s01 = 0, s11 = 0, r0 = 0, r1 = 0;
   for (const auto &s : problem.solver->node_states())
     {
       n.peak = std::max(n.peak, s.pressure);
-      if (s.status == ContactStatus::open)
-        continue;
-      ++n.n_active;
-      const double X = s.position[0] * s.position[0],
-                   Y = s.pressure * s.pressure;
-      s00 += 1;
-      s01 += X;
-      s11 += X * X;
-      r0 += Y;
-      r1 += X * Y;
+      n.n_active += s.status != ContactStatus::open;
     }
-  const double det = s00 * s11 - s01 * s01;
-  const double c0  = (r0 * s11 - r1 * s01) / det;
-  const double c1  = (s00 * r1 - s01 * r0) / det;
-  n.half_width     = std::sqrt(-c0 / c1);
+  n.half_width = testing::fitted_half_width(problem.solver->node_states());
   for (const auto &body : problem.bodies)
     n.n_dofs += body->dof_handler().n_dofs();
   return n;
