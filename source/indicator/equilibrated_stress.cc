@@ -454,31 +454,32 @@ namespace coulomb_adapt
                                // estimate below the exact error).
                                degree_increase >= 3,
                                result);
-    for (auto &face : faces)
-      update_coefficients(face);
 
-    // 6. The local Neumann problems and the errors, cell by cell.
-    result.error_squared.reinit(body.triangulation().n_active_cells());
-    double         sum_norm = 0;
-    Vector<double> load(local.n_coefficients()), coefficients;
-    for (unsigned int slot = 0; slot < cells.size(); ++slot)
-      if (cells[slot].owned)
-        {
-          local.reinit(cells[slot].cell, u_kinematic);
-          cell_load(slot, load);
-          result.local_problem_defect =
-            std::max(result.local_problem_defect,
-                     local.solve(load, coefficients));
-          const auto errors = local.errors(coefficients);
-          result.error_squared(cells[slot].cell->active_cell_index()) =
-            errors[0];
-          sum_norm += errors[1];
-        }
-
-    result.sum_norm_squared = Utilities::MPI::sum(sum_norm, comm);
+    // 6. Without the optimisation (which gives the errors from each cell's
+    // quadratic form), the local Neumann problems and the errors, cell by
+    // cell.
     if (!optimise_tractions)
-      result.error_squared_before_optimisation =
-        Utilities::MPI::sum(result.error_squared.l1_norm(), comm);
+      {
+        result.error_squared.reinit(body.triangulation().n_active_cells());
+        double         sum_norm = 0;
+        Vector<double> load(local.n_coefficients()), coefficients;
+        for (unsigned int slot = 0; slot < cells.size(); ++slot)
+          if (cells[slot].owned)
+            {
+              local.reinit(cells[slot].cell, u_kinematic);
+              cell_load(slot, load);
+              result.local_problem_defect =
+                std::max(result.local_problem_defect,
+                         local.solve(load, coefficients));
+              const auto errors = local.errors(coefficients);
+              result.error_squared(cells[slot].cell->active_cell_index()) =
+                errors[0];
+              sum_norm += errors[1];
+            }
+        result.sum_norm_squared = Utilities::MPI::sum(sum_norm, comm);
+        result.error_squared_before_optimisation =
+          Utilities::MPI::sum(result.error_squared.l1_norm(), comm);
+      }
     result.node_system_defect =
       Utilities::MPI::max(result.node_system_defect, comm);
     result.local_problem_defect =

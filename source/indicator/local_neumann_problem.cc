@@ -38,7 +38,6 @@ namespace coulomb_adapt
     moment.reinit(2 * degree - 1, 2 * degree - 1);
     stiffness.reinit(2 * M, 2 * M);
     factor.reinit(2 * M, 2 * M);
-    factor_transposed.reinit(2 * M, 2 * M);
     body_force.reinit(2 * M);
     sigma_c_work.reinit(2 * M);
     whitened_sigma_c_work.reinit(2 * M);
@@ -118,8 +117,9 @@ namespace coulomb_adapt
     // the values the error needs (gradients, JxW, sigma_c), the work of
     // sigma_c and of the body force on each basis function.
     moment.fill(0.);
-    body_force   = 0;
-    sigma_c_work = 0;
+    body_force     = 0;
+    sigma_c_work   = 0;
+    sigma_c_energy = 0;
     for (const unsigned int q : fe_values->quadrature_point_indices())
       {
         const Point<2> &x = fe_values->quadrature_point(q);
@@ -127,6 +127,7 @@ namespace coulomb_adapt
         gradients_at[q]    = gradients;
         JxW[q]             = fe_values->JxW(q);
         sigma_c[q]         = material.stress(strains[q]);
+        sigma_c_energy += sigma_c[q] * strains[q] * JxW[q];
         const double xi[2] = {(x[0] - centre[0]) / h, (x[1] - centre[1]) / h};
         double       xi_power = JxW[q];
         for (unsigned int i = 0; i < n_moments; ++i, xi_power *= xi[0])
@@ -167,7 +168,6 @@ namespace coulomb_adapt
           for (unsigned int b = 0; b < 2 * M; ++b)
             stiffness(a, b) += scale * mode[a] * mode[b];
     factor.cholesky(stiffness);
-    factor_transposed.copy_transposed(factor);
     whiten(sigma_c_work, whitened_sigma_c_work);
   }
 
@@ -246,8 +246,7 @@ namespace coulomb_adapt
 
 
   double
-  LocalNeumannProblem::solve(const Vector<double> &load,
-                             Vector<double>       &coefficients) const
+  LocalNeumannProblem::load_defect(const Vector<double> &load) const
   {
     double size = 0, rigid_load = 0;
     for (unsigned int a = 0; a < load.size(); ++a)
@@ -259,10 +258,48 @@ namespace coulomb_adapt
           w += mode[a] * load(a);
         rigid_load = std::max(rigid_load, std::abs(w));
       }
-    coefficients.reinit(load.size(), true);
-    factor.forward(forward_scratch, load);
-    factor_transposed.backward(coefficients, forward_scratch);
     return size > 0 ? rigid_load / size : 0.;
+  }
+
+
+
+  void
+  LocalNeumannProblem::remove_rigid_load(Vector<double> &load) const
+  {
+    // The three modes are mutually orthogonal (disjoint or complementary
+    // supports), so each is removed on its own.
+    for (const auto &mode : rigid)
+      {
+        double work = 0, length = 0;
+        for (unsigned int a = 0; a < load.size(); ++a)
+          {
+            work += mode[a] * load(a);
+            length += mode[a] * mode[a];
+          }
+        for (unsigned int a = 0; a < load.size(); ++a)
+          load(a) -= work / length * mode[a];
+      }
+  }
+
+
+
+  double
+  LocalNeumannProblem::solve(const Vector<double> &load,
+                             Vector<double>       &coefficients) const
+  {
+    factor.forward(forward_scratch, load);
+    // L^T x = L^-1 load, by columns of L (no transposed copy of the
+    // factor).
+    const unsigned int n = load.size();
+    coefficients.reinit(n, true);
+    for (unsigned int i = n; i-- > 0;)
+      {
+        double x = forward_scratch(i);
+        for (unsigned int j = i + 1; j < n; ++j)
+          x -= factor(j, i) * coefficients(j);
+        coefficients(i) = x / factor(i, i);
+      }
+    return load_defect(load);
   }
 
 
@@ -281,6 +318,14 @@ namespace coulomb_adapt
   LocalNeumannProblem::whitened_kinematic_work() const
   {
     return whitened_sigma_c_work;
+  }
+
+
+
+  double
+  LocalNeumannProblem::kinematic_energy() const
+  {
+    return sigma_c_energy;
   }
 
 

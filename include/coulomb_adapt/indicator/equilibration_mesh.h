@@ -148,7 +148,8 @@ namespace coulomb_adapt
       std::function<void(unsigned int, const FaceData &, FullMatrix<double> &)>;
 
     /** Step 5: the free parameters that minimise the estimate (see the
-     * .cc); updates the faces' moments and bubbles. */
+     * .cc); updates the faces' moments and bubbles, and sets the errors of
+     * @p result (error_squared, sum_norm_squared and the classical estimate). */
     void
     optimise_free_parameters(const ElasticBody                   &body,
                              const std::vector<CellData>         &cells,

@@ -77,6 +77,18 @@ namespace coulomb_adapt
     double
     solve(const Vector<double> &load, Vector<double> &coefficients) const;
 
+    /** The work of @p load on the rigid motions relative to its size (what
+     * solve() returns, without solving). */
+    double
+    load_defect(const Vector<double> &load) const;
+
+    /** Remove from @p load its (Euclidean) component on the rigid motions'
+     * coefficients. That component moves the solution by a rigid motion
+     * only, which carries no stress, but it would add to the whitened
+     * load's length (the rigid motions are penalised, not removed). */
+    void
+    remove_rigid_load(Vector<double> &load) const;
+
     /** w = L^-1 @p load for a load orthogonal to the rigid motions: the
      * energy product of the responses to two loads is the dot product of
      * their w. */
@@ -87,6 +99,13 @@ namespace coulomb_adapt
      * response u with whitened load w, int sigma_c : eps(u) = w . this. */
     const Vector<double> &
     whitened_kinematic_work() const;
+
+    /** ||sigma_c||^2 on the cell (energy norm). With the whitened load w of
+     * a response sigma^, ||sigma^ - sigma_c||^2 = |w - w_c|^2 + this -
+     * |w_c|^2 for w_c = whitened_kinematic_work(): the last two terms are
+     * the part of sigma_c outside the local problem's stress space. */
+    double
+    kinematic_energy() const;
 
     /** ||sigma^ - sigma_c||^2 and ||sigma^ + sigma_c||^2 on the cell
      * (energy norm, N per unit thickness), sigma^ = K eps(u^), from the
@@ -123,11 +142,12 @@ namespace coulomb_adapt
     // to the total degree 2 (degree - 1) of the stiffness integrand.
     Table<2, double> moment;
     // The stiffness matrix with the rigid motions penalised (scratch of
-    // reinit()), its Cholesky factor L and L^T, the body force load, the
-    // work of sigma_c on each basis function and L^-1 of that work.
-    FullMatrix<double>                 stiffness, factor, factor_transposed;
+    // reinit()), its Cholesky factor L, the body force load, the work of
+    // sigma_c on each basis function, L^-1 of that work, and ||sigma_c||^2.
+    FullMatrix<double>                 stiffness, factor;
     Vector<double>                     body_force, sigma_c_work;
     Vector<double>                     whitened_sigma_c_work;
+    double                             sigma_c_energy = 0;
     mutable Vector<double>             forward_scratch;
     std::array<std::vector<double>, 3> rigid;
   };
