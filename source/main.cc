@@ -19,7 +19,10 @@ int
 main(int argc, char *argv[])
 {
   using namespace coulomb_adapt;
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Threads: as many as the cores left to this rank (one per core in all;
+  // DEAL_II_NUM_THREADS limits them). They run the cells of the cre
+  // estimator and deal.II's own threaded loops (DataOut).
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   const MPI_Comm                   comm = MPI_COMM_WORLD;
   const bool is_root = Utilities::MPI::this_mpi_process(comm) == 0;
 

@@ -343,7 +343,8 @@ namespace coulomb_adapt
     LocalNeumannProblem local(body, p + degree_increase);
     const QGauss<1>     edge_rule(p + degree_increase + 2);
     const auto          add_face_load =
-      [&](Vector<double>                           &load,
+      [&](const LocalNeumannProblem                &local,
+          Vector<double>                           &load,
           const unsigned int                        slot,
           const FaceData                           &face,
           const std::vector<std::array<double, 2>> &coefficients,
@@ -371,9 +372,10 @@ namespace coulomb_adapt
     // The work W(m, j) of the face's traction basis j (its nodal
     // polynomials, then the bubble), with the cell's orientation eta, on
     // monomial m of the cell's local problem.
-    const auto face_work = [&](const unsigned int  slot,
-                               const FaceData     &face,
-                               FullMatrix<double> &W) {
+    const auto face_work = [&](const LocalNeumannProblem &local,
+                               const unsigned int         slot,
+                               const FaceData            &face,
+                               FullMatrix<double>        &W) {
       const unsigned int n   = face.nodes.size();
       const unsigned int M   = local.n_coefficients() / 2;
       const double       eta = face.plus == static_cast<int>(slot) ? 1 : -1;
@@ -397,7 +399,9 @@ namespace coulomb_adapt
     // ... and the whole load of a cell: the body force, eta F where the
     // moments were solved for, the prescribed data elsewhere, and the
     // contact traction. local must be reinit'ed on the cell.
-    const auto cell_load = [&](const unsigned int slot, Vector<double> &load) {
+    const auto cell_load = [&](const LocalNeumannProblem &local,
+                               const unsigned int         slot,
+                               Vector<double>            &load) {
       const auto &cell = cells[slot].cell;
       load             = local.body_force_load();
       for (const unsigned int f : cell->face_indices())
@@ -407,7 +411,7 @@ namespace coulomb_adapt
             {face.unknown[0], face.unknown[1]}};
           if (solved[0] || solved[1])
             add_face_load(
-              load, slot, face, face.coefficients, face.bubble, solved);
+              local, load, slot, face, face.coefficients, face.bubble, solved);
           const std::array<bool, 2> prescribed = {{!solved[0], !solved[1]}};
           if (face.at_boundary && (prescribed[0] || prescribed[1]))
             {
@@ -467,7 +471,7 @@ namespace coulomb_adapt
           if (cells[slot].owned)
             {
               local.reinit(cells[slot].cell, u_kinematic);
-              cell_load(slot, load);
+              cell_load(local, slot, load);
               result.local_problem_defect =
                 std::max(result.local_problem_defect,
                          local.solve(load, coefficients));

@@ -54,6 +54,12 @@ namespace coulomb_adapt
 
 
 
+  LocalNeumannProblem::LocalNeumannProblem(const LocalNeumannProblem &other)
+    : LocalNeumannProblem(other.body, other.degree)
+  {}
+
+
+
   unsigned int
   LocalNeumannProblem::n_coefficients() const
   {

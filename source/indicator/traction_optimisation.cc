@@ -1,3 +1,5 @@
+#include <deal.II/base/work_stream.h>
+
 #include <deal.II/dofs/dof_tools.h>
 
 #include <deal.II/fe/fe_q.h>
@@ -33,6 +35,40 @@ namespace coulomb_adapt
         double       c                 = 0;
         double       t0                = 0;
       };
+
+      // What one thread needs for a cell: its own local problem and
+      // scratch vectors.
+      struct CellScratch
+      {
+        CellScratch(const LocalNeumannProblem &prototype,
+                    const unsigned int         n_name_dofs)
+          : local(prototype)
+          , load(prototype.n_coefficients())
+          , name_dofs(n_name_dofs)
+        {}
+
+        LocalNeumannProblem                  local;
+        Vector<double>                       load, base_whitened;
+        std::vector<types::global_dof_index> name_dofs, direction_dofs;
+        std::vector<Vector<double>>          direction_loads, whitened;
+        FullMatrix<double>                   W;
+      };
+
+      // What a cell adds: its quadratic form (H and g also for the global
+      // system), the names of its parameters, and where they act on the
+      // faces ([face, node, component] and [face, component]).
+      struct CellCopy
+      {
+        CellForm                                  form;
+        double                                    defect = 0;
+        std::vector<types::global_dof_index>      names;
+        FullMatrix<double>                        H;
+        std::vector<double>                       g, packed;
+        std::vector<std::array<unsigned int, 3>>  node_names;
+        std::vector<types::global_dof_index>      node_name_dofs;
+        std::vector<std::array<unsigned int, 2>>  bubble_names;
+        std::vector<types::global_dof_index>      bubble_name_dofs;
+      };
     } // namespace
 
 
@@ -54,7 +90,7 @@ namespace coulomb_adapt
     optimise_free_parameters(const ElasticBody                   &body,
                              const std::vector<CellData>         &cells,
                              std::vector<FaceData>               &faces,
-                             LocalNeumannProblem                 &local,
+                             const LocalNeumannProblem           &local,
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const CellLoad                      &cell_load,
                              const FaceWork                      &face_work,
@@ -83,19 +119,6 @@ namespace coulomb_adapt
       H.reinit(owned, owned, dsp, comm);
       TrilinosWrappers::MPI::Vector g(owned, comm), alpha(owned, comm);
 
-      std::vector<types::global_dof_index> name_dofs(
-        names_fe.n_dofs_per_cell());
-      double                               before = 0;
-      Vector<double>                       load(local.n_coefficients());
-      const unsigned int                   M = local.n_coefficients() / 2;
-      std::vector<Vector<double>>          direction_loads;
-      std::vector<types::global_dof_index> direction_dofs;
-      unsigned int                         n_directions = 0;
-      FullMatrix<double>                   W, cell_H;
-      std::vector<double>                  cell_g;
-      std::vector<Vector<double>>          whitened;
-      Vector<double>                       base_whitened;
-      std::vector<types::global_dof_index> indices;
       // Each cell's estimate is a quadratic in its parameters alpha_E,
       //   ||sigma^ - sigma_c||^2_E = c + 2 g . alpha_E + alpha_E . H alpha_E,
       // and ||sigma^ + sigma_c||^2_E exceeds it by 4 (sigma^, sigma_c)_E =
@@ -105,134 +128,188 @@ namespace coulomb_adapt
       std::vector<CellForm>                forms;
       std::vector<types::global_dof_index> form_names;
       std::vector<double>                  form_data;
+      double                               before = 0;
+
+      // Every face starts without named parameters; the cells name them
+      // (both cells of a face give the same names).
+      for (auto &face : faces)
+        face.parameter_of_node.assign(face.nodes.size(),
+                                      {{numbers::invalid_dof_index,
+                                        numbers::invalid_dof_index}});
+
+      // The cells are independent until their contributions are added:
+      // WorkStream runs cell_form() on the threads deal.II may use and
+      // add_cell_form() in the cells' order, so the sums and the result
+      // do not depend on the number of threads.
+      std::vector<unsigned int> owned_slots;
       for (unsigned int slot = 0; slot < cells.size(); ++slot)
         if (cells[slot].owned)
-          {
-            const auto &cell = cells[slot].cell;
-            local.reinit(cell, u_kinematic);
-            cell_load(slot, load);
-            result.local_problem_defect =
-              std::max(result.local_problem_defect, local.load_defect(load));
-            // The solution's stress ignores the load's rigid-motion part
-            // (round-off, or the body force's quadrature); its whitened
-            // length would not.
-            local.remove_rigid_load(load);
+          owned_slots.push_back(slot);
 
-            const DoFHandler<2>::active_cell_iterator name_cell(&tria,
-                                                                cell->level(),
-                                                                cell->index(),
-                                                                &names);
-            name_cell->get_dof_indices(name_dofs);
-            const auto name = [&](const unsigned int c, const unsigned int k) {
-              return name_dofs[names_fe.component_to_system_index(c, k)];
-            };
-            // The loads of the cell's free parameters, from the work W of
-            // each face's traction basis (the nodal polynomials, then the
-            // bubble) on the monomials.
-            n_directions = 0;
-            const auto direction =
-              [&](const types::global_dof_index dof) -> Vector<double> & {
-              for (unsigned int i = 0; i < n_directions; ++i)
-                if (direction_dofs[i] == dof)
-                  return direction_loads[i];
-              if (n_directions == direction_loads.size())
-                {
-                  direction_loads.emplace_back(local.n_coefficients());
-                  direction_dofs.push_back(dof);
-                }
-              direction_dofs[n_directions]  = dof;
-              direction_loads[n_directions] = 0;
-              return direction_loads[n_directions++];
-            };
-            for (const unsigned int f : cell->face_indices())
+      const auto cell_form = [&](const std::vector<unsigned int>::const_iterator
+                                   &slot_iterator,
+                                 CellScratch &scratch,
+                                 CellCopy    &copy) {
+        const unsigned int         slot  = *slot_iterator;
+        const auto                &cell  = cells[slot].cell;
+        LocalNeumannProblem       &local = scratch.local;
+        Vector<double>            &load  = scratch.load;
+        const unsigned int         M     = local.n_coefficients() / 2;
+        auto                      &name_dofs = scratch.name_dofs;
+        local.reinit(cell, u_kinematic);
+        cell_load(local, slot, load);
+        copy.defect = local.load_defect(load);
+        // The solution's stress ignores the load's rigid-motion part
+        // (round-off, or the body force's quadrature); its whitened length
+        // would not.
+        local.remove_rigid_load(load);
+
+        const DoFHandler<2>::active_cell_iterator name_cell(&tria,
+                                                            cell->level(),
+                                                            cell->index(),
+                                                            &names);
+        name_cell->get_dof_indices(name_dofs);
+        const auto name = [&](const unsigned int c, const unsigned int k) {
+          return name_dofs[names_fe.component_to_system_index(c, k)];
+        };
+        // The loads of the cell's free parameters, from the work W of each
+        // face's traction basis (the nodal polynomials, then the bubble)
+        // on the monomials.
+        unsigned int n_directions = 0;
+        const auto   direction =
+          [&](const types::global_dof_index dof) -> Vector<double> & {
+          for (unsigned int i = 0; i < n_directions; ++i)
+            if (scratch.direction_dofs[i] == dof)
+              return scratch.direction_loads[i];
+          if (n_directions == scratch.direction_loads.size())
+            {
+              scratch.direction_loads.emplace_back(local.n_coefficients());
+              scratch.direction_dofs.push_back(dof);
+            }
+          scratch.direction_dofs[n_directions]  = dof;
+          scratch.direction_loads[n_directions] = 0;
+          return scratch.direction_loads[n_directions++];
+        };
+        copy.node_names.clear();
+        copy.node_name_dofs.clear();
+        copy.bubble_names.clear();
+        copy.bubble_name_dofs.clear();
+        for (const unsigned int f : cell->face_indices())
+          {
+            const unsigned int face_index = cells[slot].faces[f];
+            const FaceData    &face       = faces[face_index];
+            const unsigned int n_face     = face.nodes.size();
+            face_work(local, slot, face, scratch.W);
+            for (unsigned int c = 0; c < 2; ++c)
               {
-                FaceData          &face   = faces[cells[slot].faces[f]];
-                const unsigned int n_face = face.nodes.size();
-                face.parameter_of_node.assign(n_face,
-                                              {{numbers::invalid_dof_index,
-                                                numbers::invalid_dof_index}});
-                face_work(slot, face, W);
-                for (unsigned int c = 0; c < 2; ++c)
-                  {
-                    // A vertex's null vector changes F on the faces
-                    // through it (moments b[k] += kernel[k]).
-                    for (unsigned int k = 0; k < n_face; ++k)
-                      if (face.kernel[k][c] != 0)
+                // A vertex's null vector changes F on the faces through it
+                // (moments b[k] += kernel[k]).
+                for (unsigned int k = 0; k < n_face; ++k)
+                  if (face.kernel[k][c] != 0)
+                    {
+                      unsigned int v = 0;
+                      while (v < cell->n_vertices() &&
+                             cells[slot].component_dofs[v][c] !=
+                               face.node_dofs[k][c])
+                        ++v;
+                      Assert(v < cell->n_vertices(), ExcInternalError());
+                      copy.node_names.push_back({{face_index, k, c}});
+                      copy.node_name_dofs.push_back(name(c, v));
+                      Vector<double> &d = direction(name(c, v));
+                      for (unsigned int l = 0; l < n_face; ++l)
                         {
-                          unsigned int v = 0;
-                          while (v < cell->n_vertices() &&
-                                 cells[slot].component_dofs[v][c] !=
-                                   face.node_dofs[k][c])
-                            ++v;
-                          Assert(v < cell->n_vertices(), ExcInternalError());
-                          face.parameter_of_node[k][c] = name(c, v);
-                          Vector<double> &d            = direction(name(c, v));
-                          for (unsigned int l = 0; l < n_face; ++l)
-                            {
-                              const double coefficient =
-                                face.mass_inverse(l, k) * face.kernel[k][c];
-                              for (unsigned int m = 0; m < M; ++m)
-                                d(c * M + m) += coefficient * W(m, l);
-                            }
+                          const double coefficient =
+                            face.mass_inverse(l, k) * face.kernel[k][c];
+                          for (unsigned int m = 0; m < M; ++m)
+                            d(c * M + m) += coefficient * scratch.W(m, l);
                         }
-                    // The edge bubble, named by the edge's DoF.
-                    if (with_bubbles && face.unknown[c])
-                      {
-                        const types::global_dof_index dof =
-                          name(c, cell->n_vertices() + f);
-                        face.parameter_of_bubble[c] = dof;
-                        Vector<double> &d           = direction(dof);
-                        for (unsigned int m = 0; m < M; ++m)
-                          d(c * M + m) += W(m, n_face);
-                      }
-                  }
-              }
-            // With K = L L^T and w = L^-1 l, the energy product of two
-            // responses is (S_i, S_j) = w_i . w_j, and the one of S_i with
-            // sigma^_0 - sigma_c is w_i . (w_0 - w_c), w_c = L^-1 (sigma_c's
-            // work). The part of sigma_c outside the local stress space
-            // adds ||sigma_c||^2 - |w_c|^2 (0 up to round-off where
-            // sigma_c is a polynomial of the space, as on triangles).
-            const Vector<double> &w_c = local.whitened_kinematic_work();
-            local.whiten(load, base_whitened);
-            CellForm form;
-            form.active_cell_index = cell->active_cell_index();
-            form.n                 = n_directions;
-            form.names_offset      = form_names.size();
-            form.data_offset       = form_data.size();
-            form.t0                = base_whitened * w_c;
-            base_whitened -= w_c;
-            form.c =
-              base_whitened.norm_sqr() +
-              std::max(local.kinematic_energy() - w_c.norm_sqr(), 0.);
-            before += form.c;
-            const unsigned int n = n_directions;
-            indices.assign(direction_dofs.begin(), direction_dofs.begin() + n);
-            whitened.resize(n);
-            for (unsigned int i = 0; i < n; ++i)
-              local.whiten(direction_loads[i], whitened[i]);
-            cell_H.reinit(n, n);
-            cell_g.resize(n);
-            for (unsigned int i = 0; i < n; ++i)
-              {
-                for (unsigned int j = 0; j <= i; ++j)
+                    }
+                // The edge bubble, named by the edge's DoF.
+                if (with_bubbles && face.unknown[c])
                   {
-                    cell_H(i, j) = cell_H(j, i) = whitened[i] * whitened[j];
-                    form_data.push_back(cell_H(i, j));
+                    const types::global_dof_index dof =
+                      name(c, cell->n_vertices() + f);
+                    copy.bubble_names.push_back({{face_index, c}});
+                    copy.bubble_name_dofs.push_back(dof);
+                    Vector<double> &d = direction(dof);
+                    for (unsigned int m = 0; m < M; ++m)
+                      d(c * M + m) += scratch.W(m, n_face);
                   }
-                cell_g[i] = whitened[i] * base_whitened;
-              }
-            form_data.insert(form_data.end(), cell_g.begin(), cell_g.end());
-            for (unsigned int i = 0; i < n; ++i)
-              form_data.push_back(whitened[i] * w_c);
-            form_names.insert(form_names.end(), indices.begin(), indices.end());
-            forms.push_back(form);
-            if (n > 0)
-              {
-                H.add(indices, cell_H);
-                g.add(indices, cell_g);
               }
           }
+        copy.names.assign(scratch.direction_dofs.begin(),
+                          scratch.direction_dofs.begin() + n_directions);
+
+        // With K = L L^T and w = L^-1 l, the energy product of two
+        // responses is (S_i, S_j) = w_i . w_j, and the one of S_i with
+        // sigma^_0 - sigma_c is w_i . (w_0 - w_c), w_c = L^-1 (sigma_c's
+        // work). The part of sigma_c outside the local stress space adds
+        // ||sigma_c||^2 - |w_c|^2 (0 up to round-off where sigma_c is a
+        // polynomial of the space, as on triangles).
+        const Vector<double> &w_c           = local.whitened_kinematic_work();
+        Vector<double>       &base_whitened = scratch.base_whitened;
+        local.whiten(load, base_whitened);
+        copy.form.active_cell_index = cell->active_cell_index();
+        copy.form.n                 = n_directions;
+        copy.form.t0                = base_whitened * w_c;
+        base_whitened -= w_c;
+        copy.form.c = base_whitened.norm_sqr() +
+                      std::max(local.kinematic_energy() - w_c.norm_sqr(), 0.);
+        const unsigned int n = n_directions;
+        scratch.whitened.resize(n);
+        for (unsigned int i = 0; i < n; ++i)
+          local.whiten(scratch.direction_loads[i], scratch.whitened[i]);
+        copy.H.reinit(n, n);
+        copy.g.resize(n);
+        copy.packed.clear();
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            for (unsigned int j = 0; j <= i; ++j)
+              {
+                copy.H(i, j) = copy.H(j, i) =
+                  scratch.whitened[i] * scratch.whitened[j];
+                copy.packed.push_back(copy.H(i, j));
+              }
+            copy.g[i] = scratch.whitened[i] * base_whitened;
+          }
+        copy.packed.insert(copy.packed.end(), copy.g.begin(), copy.g.end());
+        for (unsigned int i = 0; i < n; ++i)
+          copy.packed.push_back(scratch.whitened[i] * w_c);
+      };
+
+      const auto add_cell_form = [&](const CellCopy &copy) {
+        result.local_problem_defect =
+          std::max(result.local_problem_defect, copy.defect);
+        CellForm form     = copy.form;
+        form.names_offset = form_names.size();
+        form.data_offset  = form_data.size();
+        before += form.c;
+        forms.push_back(form);
+        form_names.insert(form_names.end(), copy.names.begin(), copy.names.end());
+        form_data.insert(form_data.end(), copy.packed.begin(), copy.packed.end());
+        for (unsigned int i = 0; i < copy.node_names.size(); ++i)
+          {
+            const auto [face, k, c] = copy.node_names[i];
+            faces[face].parameter_of_node[k][c] = copy.node_name_dofs[i];
+          }
+        for (unsigned int i = 0; i < copy.bubble_names.size(); ++i)
+          {
+            const auto [face, c] = copy.bubble_names[i];
+            faces[face].parameter_of_bubble[c] = copy.bubble_name_dofs[i];
+          }
+        if (copy.names.size() > 0)
+          {
+            H.add(copy.names, copy.H);
+            g.add(copy.names, copy.g);
+          }
+      };
+
+      WorkStream::run(owned_slots.cbegin(),
+                      owned_slots.cend(),
+                      cell_form,
+                      add_cell_form,
+                      CellScratch(local, names_fe.n_dofs_per_cell()),
+                      CellCopy());
       H.compress(VectorOperation::add);
       g.compress(VectorOperation::add);
       result.error_squared_before_optimisation =

@@ -142,19 +142,23 @@ namespace coulomb_adapt
 
     /** The load of a cell's local problem (LocalNeumannProblem::reinit()
      * done on that cell). */
-    using CellLoad = std::function<void(unsigned int, Vector<double> &)>;
+    using CellLoad = std::function<
+      void(const LocalNeumannProblem &, unsigned int, Vector<double> &)>;
     /** The work matrix of a face's traction basis on a cell's monomials. */
-    using FaceWork =
-      std::function<void(unsigned int, const FaceData &, FullMatrix<double> &)>;
+    using FaceWork = std::function<void(const LocalNeumannProblem &,
+                                        unsigned int,
+                                        const FaceData &,
+                                        FullMatrix<double> &)>;
 
     /** Step 5: the free parameters that minimise the estimate (see the
-     * .cc); updates the faces' moments and bubbles, and sets the errors of
+     * .cc), cell by cell on the threads deal.II may use (with a copy of
+     * @p local each); updates the faces' moments and bubbles, and sets the errors of
      * @p result (error_squared, sum_norm_squared and the classical estimate). */
     void
     optimise_free_parameters(const ElasticBody                   &body,
                              const std::vector<CellData>         &cells,
                              std::vector<FaceData>               &faces,
-                             LocalNeumannProblem                 &local,
+                             const LocalNeumannProblem           &local,
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const CellLoad                      &cell_load,
                              const FaceWork                      &face_work,

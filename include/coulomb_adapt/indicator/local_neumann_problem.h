@@ -41,6 +41,10 @@ namespace coulomb_adapt
   public:
     LocalNeumannProblem(const ElasticBody &body, const unsigned int degree);
 
+    /** A problem of the same body and degree with its own scratch (for
+     * one more thread): nothing of the current cell is copied. */
+    LocalNeumannProblem(const LocalNeumannProblem &other);
+
     /** Assemble and factor the stiffness matrix of @p cell, the load of
      * the body force, and the stress of @p u_kinematic (ghosted) at the
      * quadrature points: the FE stress the errors are measured against. */
