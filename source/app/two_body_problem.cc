@@ -1,3 +1,4 @@
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 
 #include <coulomb_adapt/app/finiteness.h>
@@ -455,7 +456,9 @@ namespace coulomb_adapt
   {
     pcout << "coulomb-adapt: scene '" << scene->name() << "', "
           << Utilities::MPI::n_mpi_processes(mpi_communicator)
-          << " MPI rank(s), results in '" << parameters.output.directory << "'"
+          << " MPI rank(s), " << MultithreadInfo::n_threads()
+          << " thread(s) per rank, results in '" << parameters.output.directory
+          << "'"
           << std::endl;
     remove_files_of_earlier_run();
     make_bodies();

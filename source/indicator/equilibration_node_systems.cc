@@ -1,3 +1,5 @@
+#include <deal.II/base/work_stream.h>
+
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
@@ -12,6 +14,27 @@ namespace coulomb_adapt
 {
   namespace equilibration
   {
+    namespace
+    {
+      // What a node system gives: the moments it solved for (and the
+      // null vector) at [face][node on the face][component], and its
+      // residual.
+      struct NodeSolution
+      {
+        struct Entry
+        {
+          unsigned int face, node, component;
+          double       moment;
+          bool         has_kernel;
+          double       kernel;
+        };
+        std::vector<Entry> entries;
+        double             defect = 0;
+      };
+    } // namespace
+
+
+
     // Step 3 of the element equilibration, for every node of a locally
     // owned cell (its star is then all local: the ghost layer holds every
     // cell that shares a vertex with an owned cell).
@@ -38,9 +61,19 @@ namespace coulomb_adapt
           largest_residual =
             std::max({largest_residual, std::abs(r[0]), std::abs(r[1])});
 
-      for (const auto node : owned_nodes)
+      // The node systems are independent: WorkStream solves them on the
+      // threads deal.II may use, and writes their moments in the nodes'
+      // order.
+      const auto solve_node = [&](const std::set<types::global_dof_index>::
+                                    const_iterator &node_iterator,
+                                  int & /*scratch*/,
+                                  NodeSolution &solution) {
         {
-          auto &cells_of_node = star[node];
+          const types::global_dof_index node = *node_iterator;
+          solution.entries.clear();
+          solution.defect = 0;
+          // Each node sorts its own star (no other node touches it).
+          auto &cells_of_node = star.find(node)->second;
           std::sort(cells_of_node.begin(),
                     cells_of_node.end(),
                     [&](const auto &a, const auto &b) {
@@ -101,8 +134,8 @@ namespace coulomb_adapt
                 }
               if (n_cols == 0)
                 {
-                  result.node_system_defect =
-                    std::max(result.node_system_defect, r.linfty_norm());
+                  solution.defect =
+                    std::max(solution.defect, r.linfty_norm());
                   continue;
                 }
               // x = b_avg + A^+ (r - A b_avg): the least-squares solution
@@ -151,31 +184,45 @@ namespace coulomb_adapt
               while (rank < std::min(n_rows, n_cols) &&
                      svd.singular_value(rank) > 1e-10 * svd.singular_value(0))
                 ++rank;
+              double largest = 0;
               if (rank < n_cols)
-                {
-                  double largest = 0;
-                  for (unsigned int j = 0; j < n_cols; ++j)
-                    largest =
-                      std::max(largest, std::abs(Vt(rank, j) * scale[j]));
-                  for (unsigned int j = 0; j < n_cols; ++j)
-                    {
-                      const auto &e = node_faces[columns[j]];
-                      faces[e.first].kernel[e.second][c] =
-                        Vt(rank, j) * scale[j] / largest;
-                    }
-                }
+                for (unsigned int j = 0; j < n_cols; ++j)
+                  largest = std::max(largest, std::abs(Vt(rank, j) * scale[j]));
               Vector<double> defect(n_rows);
               A.vmult(defect, y);
               defect -= rhs;
-              result.node_system_defect =
-                std::max(result.node_system_defect, defect.linfty_norm());
+              solution.defect = std::max(solution.defect, defect.linfty_norm());
               for (unsigned int j = 0; j < n_cols; ++j)
                 {
-                  const auto &e                       = node_faces[columns[j]];
-                  faces[e.first].moments[e.second][c] = x0(j) + y(j);
+                  const auto &e = node_faces[columns[j]];
+                  solution.entries.push_back(
+                    {e.first,
+                     e.second,
+                     c,
+                     x0(j) + y(j),
+                     rank < n_cols,
+                     rank < n_cols ? Vt(rank, j) * scale[j] / largest : 0.});
                 }
             }
         }
+      };
+      const auto write_node = [&](const NodeSolution &solution) {
+        result.node_system_defect =
+          std::max(result.node_system_defect, solution.defect);
+        for (const auto &e : solution.entries)
+          {
+            faces[e.face].moments[e.node][e.component] = e.moment;
+            if (e.has_kernel)
+              faces[e.face].kernel[e.node][e.component] = e.kernel;
+          }
+      };
+      int no_scratch = 0;
+      WorkStream::run(owned_nodes.cbegin(),
+                      owned_nodes.cend(),
+                      solve_node,
+                      write_node,
+                      no_scratch,
+                      NodeSolution());
       if (largest_residual > 0)
         result.node_system_defect /= largest_residual;
     }

@@ -1,3 +1,5 @@
+#include <deal.II/base/multithread_info.h>
+
 #include <coulomb_adapt/core/version.h>
 #include <coulomb_adapt/output/file_writer.h>
 #include <coulomb_adapt/output/run_summary.h>
@@ -17,7 +19,8 @@ namespace coulomb_adapt
     summary["parameter_file"] = parameter_file;
     summary["mpi_processes"] =
       dealii::Utilities::MPI::n_mpi_processes(mpi_communicator);
-    summary["cycles"] = nlohmann::json::array();
+    summary["threads_per_process"] = dealii::MultithreadInfo::n_threads();
+    summary["cycles"]              = nlohmann::json::array();
     write();
   }
 
