@@ -458,8 +458,7 @@ namespace coulomb_adapt
           << Utilities::MPI::n_mpi_processes(mpi_communicator)
           << " MPI rank(s), " << MultithreadInfo::n_threads()
           << " thread(s) per rank, results in '" << parameters.output.directory
-          << "'"
-          << std::endl;
+          << "'" << std::endl;
     remove_files_of_earlier_run();
     make_bodies();
     AssertThrow(!parameters.error_indicator.compute_exact_error ||

@@ -18,6 +18,7 @@
 #include <coulomb_adapt/indicator/equilibrated_stress.h>
 #include <coulomb_adapt/indicator/equilibration_mesh.h>
 #include <coulomb_adapt/indicator/local_neumann_problem.h>
+#include <coulomb_adapt/indicator/local_problem_loads.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,41 +29,45 @@ namespace coulomb_adapt
 {
   using namespace equilibration;
 
-
-
-  EquilibratedStressErrors
-  equilibrated_stress_errors(
-    const ElasticBody                   &body,
-    const TrilinosWrappers::MPI::Vector &u_equilibrium,
-    const TrilinosWrappers::MPI::Vector &u_kinematic_in,
-    const ContactTractionData           &contact,
-    const unsigned int                   degree_increase,
-    const bool                           optimise_tractions)
+  namespace
   {
-    // Ghosted copies: the node systems read the ghost cells too (the
-    // corrected solutions come without ghost entries).
-    const MPI_Comm comm = body.triangulation().get_communicator();
-    TrilinosWrappers::MPI::Vector u(body.locally_owned_dof_set(),
-                                    body.locally_relevant_dof_set(),
-                                    comm);
-    TrilinosWrappers::MPI::Vector u_kinematic(u);
-    u           = u_equilibrium;
-    u_kinematic = u_kinematic_in;
-
-    const auto                      &dof_handler = body.dof_handler();
-    const FiniteElement<2>          &fe          = dof_handler.get_fe();
-    const FiniteElement<2>          &base        = fe.base_element(0);
-    const unsigned int               p           = base.degree;
-    const unsigned int               n_nodes     = base.n_dofs_per_cell();
-    const ElasticMaterial           &material    = body.material();
-    const BodyDescription           &description = body.description();
-    const FEValuesExtractors::Vector displacement(0);
-
-    // 1. The local cells (owned and ghost) and their element residuals.
-    std::vector<CellData>          cells;
-    std::map<CellId, unsigned int> slot_of;
+    // The element equilibration needs every face to be a whole face of
+    // both its cells.
+    void
+    check_conforming(const ElasticBody                         &body,
+                     const DoFHandler<2>::active_cell_iterator &cell)
     {
-      FEValues<2> fe_values(body.mapping(),
+      for (const unsigned int f : cell->face_indices())
+        AssertThrow(cell->at_boundary(f) || (!cell->face(f)->has_children() &&
+                                             !cell->neighbor_is_coarser(f)),
+                    ExcMessage("Error indicator/Estimator = cre: the mesh of " +
+                               body.name() +
+                               " has hanging nodes. The element equilibration "
+                               "is written for conforming meshes: use "
+                               "Adaptation/Strategy = remesh or uniform "
+                               "(quadrilaterals without a scene's local "
+                               "refinement, or triangles)."));
+    }
+
+
+
+    // Step 1: the local cells (owned and ghost) and their element residuals
+    // int_E sigma(u) : eps(phi) - f . phi; slot_of maps a cell to its
+    // place in the result.
+    std::vector<CellData>
+    collect_cells(const ElasticBody                   &body,
+                  const TrilinosWrappers::MPI::Vector &u,
+                  std::map<CellId, unsigned int>      &slot_of)
+    {
+      const auto                      &dof_handler = body.dof_handler();
+      const FiniteElement<2>          &fe          = dof_handler.get_fe();
+      const FiniteElement<2>          &base        = fe.base_element(0);
+      const unsigned int               n_nodes     = base.n_dofs_per_cell();
+      const ElasticMaterial           &material    = body.material();
+      const BodyDescription           &description = body.description();
+      const FEValuesExtractors::Vector displacement(0);
+      std::vector<CellData>            cells;
+      FEValues<2>                      fe_values(body.mapping(),
                             fe,
                             body.cell_quadrature(),
                             update_values | update_gradients |
@@ -78,17 +83,7 @@ namespace coulomb_adapt
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned() || cell->is_ghost())
           {
-            for (const unsigned int f : cell->face_indices())
-              AssertThrow(
-                cell->at_boundary(f) || (!cell->face(f)->has_children() &&
-                                         !cell->neighbor_is_coarser(f)),
-                ExcMessage("Error indicator/Estimator = cre: the mesh of " +
-                           body.name() +
-                           " has hanging nodes. The element equilibration "
-                           "is written for conforming meshes: use "
-                           "Adaptation/Strategy = remesh or uniform "
-                           "(quadrilaterals without a scene's local "
-                           "refinement, or triangles)."));
+            check_conforming(body, cell);
             CellData data;
             data.cell  = cell;
             data.owned = cell->is_locally_owned();
@@ -125,83 +120,104 @@ namespace coulomb_adapt
             slot_of[cell->id()] = cells.size();
             cells.push_back(std::move(data));
           }
+      return cells;
     }
 
-    // 2. The faces: geometry, orientation, nodes, which moments are known.
-    std::map<types::boundary_id, ComponentMask> dirichlet_on;
-    for (const auto &d : description.dirichlet)
-      dirichlet_on[d.boundary_id] = d.components;
-    std::map<types::boundary_id, const TractionFunction *> traction_on;
-    for (const auto &t : description.tractions)
-      traction_on[t.boundary_id] = &t.traction;
 
-    std::vector<FaceData>                faces;
-    std::map<unsigned int, unsigned int> face_of_index;
-    for (unsigned int slot = 0; slot < cells.size(); ++slot)
-      {
-        const auto &cell = cells[slot].cell;
-        cells[slot].faces.resize(cell->n_faces());
-        for (const unsigned int f : cell->face_indices())
-          {
-            const unsigned int key = cell->face(f)->index();
-            auto [it, inserted]    = face_of_index.emplace(key, faces.size());
-            cells[slot].faces[f]   = it->second;
-            if (inserted)
-              faces.emplace_back();
-            FaceData &face = faces[it->second];
-            // The plus cell is the one with the smaller CellId.
-            const bool becomes_plus =
-              face.plus < 0 || cell->id() < cells[face.plus].cell->id();
-            if (face.plus >= 0 && !becomes_plus)
-              {
-                face.minus = slot;
-                continue;
-              }
-            if (face.plus >= 0)
-              face.minus = face.plus;
-            face.plus      = slot;
-            face.v0        = cell->face(f)->vertex(0);
-            face.v1        = cell->face(f)->vertex(1);
-            face.length    = face.v0.distance(face.v1);
-            face.normal[0] = (face.v1 - face.v0)[1] / face.length;
-            face.normal[1] = -(face.v1 - face.v0)[0] / face.length;
-            if ((cell->face(f)->center() - cell->center()) * face.normal < 0)
-              face.normal *= -1;
-            face.at_boundary = cell->at_boundary(f);
-            if (face.at_boundary)
-              {
-                const auto d = dirichlet_on.find(cell->face(f)->boundary_id());
-                for (unsigned int c = 0; c < 2; ++c)
-                  face.unknown[c] = (d != dirichlet_on.end() && d->second[c]);
-              }
-            face.nodes.clear();
-            face.s.clear();
-            face.node_dofs.clear();
-            // The nodes on the face: support points on its chord (up to
-            // the sagitta of a curved face; has_support_on_face() is not
-            // precise for every element).
-            for (unsigned int k = 0; k < n_nodes; ++k)
-              {
-                const Point<2> &x = cells[slot].points[k];
-                const double    s = face_parameter(face, x);
-                const double    distance =
-                  x.distance(face.v0 + s * (face.v1 - face.v0));
-                if (s > -1e-8 && s < 1 + 1e-8 && distance < 0.05 * face.length)
-                  {
-                    face.nodes.push_back(cells[slot].nodes[k]);
-                    face.node_dofs.push_back(cells[slot].component_dofs[k]);
-                    // Vertices at 0 and 1, an edge's middle node at 1/2.
-                    face.s.push_back(std::round(2 * s) / 2);
-                  }
-              }
-          }
-      }
 
-    // Known moments (loaded, free and contact edges) and the moments of the
-    // averaged FE traction on the others. The prescribed traction uses the
-    // FE assembly's face quadrature, so that the moments are those of the
-    // FE load vector.
+    // Step 2: the faces of the local cells: geometry, orientation (the
+    // plus cell is the one with the smaller CellId), their nodes, and which
+    // moments are unknown (interior and Dirichlet edges).
+    std::vector<FaceData>
+    collect_faces(const ElasticBody &body, std::vector<CellData> &cells)
     {
+      const unsigned int n_nodes =
+        body.dof_handler().get_fe().base_element(0).n_dofs_per_cell();
+      const BodyDescription &description = body.description();
+      std::map<types::boundary_id, ComponentMask> dirichlet_on;
+      for (const auto &d : description.dirichlet)
+        dirichlet_on[d.boundary_id] = d.components;
+      std::vector<FaceData>                faces;
+      std::map<unsigned int, unsigned int> face_of_index;
+      for (unsigned int slot = 0; slot < cells.size(); ++slot)
+        {
+          const auto &cell = cells[slot].cell;
+          cells[slot].faces.resize(cell->n_faces());
+          for (const unsigned int f : cell->face_indices())
+            {
+              const unsigned int key = cell->face(f)->index();
+              auto [it, inserted]    = face_of_index.emplace(key, faces.size());
+              cells[slot].faces[f]   = it->second;
+              if (inserted)
+                faces.emplace_back();
+              FaceData &face = faces[it->second];
+              // The plus cell is the one with the smaller CellId.
+              const bool becomes_plus =
+                face.plus < 0 || cell->id() < cells[face.plus].cell->id();
+              if (face.plus >= 0 && !becomes_plus)
+                {
+                  face.minus = slot;
+                  continue;
+                }
+              if (face.plus >= 0)
+                face.minus = face.plus;
+              face.plus      = slot;
+              face.v0        = cell->face(f)->vertex(0);
+              face.v1        = cell->face(f)->vertex(1);
+              face.length    = face.v0.distance(face.v1);
+              face.normal[0] = (face.v1 - face.v0)[1] / face.length;
+              face.normal[1] = -(face.v1 - face.v0)[0] / face.length;
+              if ((cell->face(f)->center() - cell->center()) * face.normal < 0)
+                face.normal *= -1;
+              face.at_boundary = cell->at_boundary(f);
+              if (face.at_boundary)
+                {
+                  const auto d =
+                    dirichlet_on.find(cell->face(f)->boundary_id());
+                  for (unsigned int c = 0; c < 2; ++c)
+                    face.unknown[c] = (d != dirichlet_on.end() && d->second[c]);
+                }
+              face.nodes.clear();
+              face.s.clear();
+              face.node_dofs.clear();
+              // The nodes on the face: support points on its chord (up to
+              // the sagitta of a curved face; has_support_on_face() is not
+              // precise for every element).
+              for (unsigned int k = 0; k < n_nodes; ++k)
+                {
+                  const Point<2> &x = cells[slot].points[k];
+                  const double    s = face_parameter(face, x);
+                  const double    distance =
+                    x.distance(face.v0 + s * (face.v1 - face.v0));
+                  if (s > -1e-8 && s < 1 + 1e-8 &&
+                      distance < 0.05 * face.length)
+                    {
+                      face.nodes.push_back(cells[slot].nodes[k]);
+                      face.node_dofs.push_back(cells[slot].component_dofs[k]);
+                      // Vertices at 0 and 1, an edge's middle node at 1/2.
+                      face.s.push_back(std::round(2 * s) / 2);
+                    }
+                }
+            }
+        }
+
+      return faces;
+    }
+
+
+
+    // Step 2, continued: the moments known on loaded edges. The prescribed
+    // traction uses the FE assembly's face quadrature, so that the moments
+    // are those of the FE load vector. Also sizes every face's moments.
+    void
+    set_prescribed_moments(const ElasticBody           &body,
+                           const std::vector<CellData> &cells,
+                           std::vector<FaceData>       &faces)
+    {
+      const unsigned int p = body.dof_handler().get_fe().base_element(0).degree;
+      std::map<types::boundary_id, const TractionFunction *> traction_on;
+      for (const auto &t : body.description().tractions)
+        traction_on[t.boundary_id] = &t.traction;
       const unsigned int n_face_q = p + 1;
       const QGauss<1>    face_gauss(n_face_q);
       for (auto &face : faces)
@@ -231,6 +247,17 @@ namespace coulomb_adapt
                       F[c] * phi[k] * face_gauss.weight(q) * face.length;
               }
         }
+    }
+
+
+
+    // ... and on contact edges, from the corrected contact traction.
+    void
+    add_contact_moments(const std::vector<CellData>          &cells,
+                        const std::map<CellId, unsigned int> &slot_of,
+                        const ContactTractionData            &contact,
+                        std::vector<FaceData>                &faces)
+    {
       // The contact traction, on the face of its cell that holds the point.
       for (const auto &[id, points] : contact)
         {
@@ -263,9 +290,23 @@ namespace coulomb_adapt
                       point.traction[c] * phi[k] * point.weight;
             }
         }
+    }
 
-      // Averaged traction 1/2 (sigma_c|E+ + sigma_c|E-) n+ (the one side's
-      // on Dirichlet edges), from each side's own face quadrature.
+
+
+    // The moments of the averaged FE traction 1/2 (sigma_c|E+ +
+    // sigma_c|E-) n+ (the one side's on Dirichlet edges), from each side's
+    // own face quadrature: what the node systems stay closest to.
+    void
+    set_averaged_moments(const ElasticBody                   &body,
+                         const TrilinosWrappers::MPI::Vector &u,
+                         const std::vector<CellData>         &cells,
+                         std::vector<FaceData>               &faces)
+    {
+      const FiniteElement<2>            &fe       = body.dof_handler().get_fe();
+      const unsigned int                 p        = fe.base_element(0).degree;
+      const ElasticMaterial             &material = body.material();
+      const FEValuesExtractors::Vector   displacement(0);
       FEFaceValues<2>                    face_values(body.mapping(),
                                   fe,
                                   QGauss<1>(p + 1),
@@ -299,15 +340,13 @@ namespace coulomb_adapt
           }
     }
 
-    // 3. The node systems, for every node of a locally owned cell (its
-    // star is then all local: the ghost layer holds every cell that shares
-    // a vertex with an owned cell).
-    EquilibratedStressErrors result;
-    solve_node_systems(cells, faces, n_nodes, result);
 
-    // 4. F on each face: the polynomial of degree p with the face's
-    // moments (the inverse edge mass matrix on the chord).
-    const auto update_coefficients = [](FaceData &face) {
+
+    // F on a face: the polynomial of degree p with the face's moments
+    // (the inverse edge mass matrix on the chord).
+    void
+    update_coefficients(FaceData &face)
+    {
       const unsigned int n = face.nodes.size();
       face.coefficients.assign(n, {{0., 0.}});
       if (face.plus < 0 || (!face.unknown[0] && !face.unknown[1]))
@@ -317,7 +356,13 @@ namespace coulomb_adapt
           for (unsigned int c = 0; c < 2; ++c)
             face.coefficients[k][c] +=
               face.mass_inverse(k, l) * face.moments[l][c];
-    };
+    }
+
+
+
+    // Step 4: each face's inverse edge mass matrix and F.
+    void
+    set_edge_polynomials(const unsigned int p, std::vector<FaceData> &faces)
     {
       const QGauss<1> gauss(p + 1);
       for (auto &face : faces)
@@ -338,102 +383,81 @@ namespace coulomb_adapt
         }
     }
 
-    // The loads of the local problems. A face's traction eta F with the
-    // given nodal coefficients, on the components in mask:
-    LocalNeumannProblem local(body, p + degree_increase);
-    const QGauss<1>     edge_rule(p + degree_increase + 2);
-    const auto          add_face_load =
-      [&](const LocalNeumannProblem                &local,
-          Vector<double>                           &load,
-          const unsigned int                        slot,
-          const FaceData                           &face,
-          const std::vector<std::array<double, 2>> &coefficients,
-          const std::array<double, 2>              &bubble,
-          const std::array<bool, 2>                &mask) {
-        const double eta = face.plus == static_cast<int>(slot) ? 1 : -1;
-        for (unsigned int q = 0; q < edge_rule.size(); ++q)
+
+
+    // Step 6 without the optimisation (which gives the errors from each
+    // cell's quadratic form): the local Neumann problems and the errors,
+    // cell by cell.
+    void
+    classical_errors(const ElasticBody                   &body,
+                     const std::vector<CellData>         &cells,
+                     LocalNeumannProblem                 &local,
+                     const LocalProblemLoads             &loads,
+                     const TrilinosWrappers::MPI::Vector &u_kinematic,
+                     EquilibratedStressErrors            &result)
+    {
+      result.error_squared.reinit(body.triangulation().n_active_cells());
+      double         sum_norm = 0;
+      Vector<double> load(local.n_coefficients()), coefficients;
+      for (unsigned int slot = 0; slot < cells.size(); ++slot)
+        if (cells[slot].owned)
           {
-            const double s   = edge_rule.point(q)[0];
-            const auto   phi = face_shape_values(face.s, s);
-            Tensor<1, 2> F;
-            for (unsigned int k = 0; k < face.nodes.size(); ++k)
-              for (unsigned int c = 0; c < 2; ++c)
-                F[c] += phi[k] * coefficients[k][c];
-            const double L = edge_bubble(p + 1, s);
-            for (unsigned int c = 0; c < 2; ++c)
-              F[c] += bubble[c] * L;
-            local.add_traction(load,
-                               face.v0 + s * (face.v1 - face.v0),
-                               eta * F,
-                               edge_rule.weight(q) * face.length,
-                               mask);
+            local.reinit(cells[slot].cell, u_kinematic);
+            loads.cell_load(local, slot, load);
+            result.local_problem_defect =
+              std::max(result.local_problem_defect,
+                       local.solve(load, coefficients));
+            const auto errors = local.errors(coefficients);
+            result.error_squared(cells[slot].cell->active_cell_index()) =
+              errors[0];
+            sum_norm += errors[1];
           }
-      };
-    // The work W(m, j) of the face's traction basis j (its nodal
-    // polynomials, then the bubble), with the cell's orientation eta, on
-    // monomial m of the cell's local problem.
-    const auto face_work = [&](const LocalNeumannProblem &local,
-                               const unsigned int         slot,
-                               const FaceData            &face,
-                               FullMatrix<double>        &W) {
-      const unsigned int n   = face.nodes.size();
-      const unsigned int M   = local.n_coefficients() / 2;
-      const double       eta = face.plus == static_cast<int>(slot) ? 1 : -1;
-      W.reinit(M, n + 1);
-      for (unsigned int q = 0; q < edge_rule.size(); ++q)
-        {
-          const double s   = edge_rule.point(q)[0];
-          const auto   phi = face_shape_values(face.s, s);
-          const double L   = edge_bubble(p + 1, s);
-          const double w   = eta * edge_rule.weight(q) * face.length;
-          const auto  &values =
-            local.monomial_values(face.v0 + s * (face.v1 - face.v0));
-          for (unsigned int m = 0; m < M; ++m)
-            {
-              for (unsigned int j = 0; j < n; ++j)
-                W(m, j) += phi[j] * values[m] * w;
-              W(m, n) += L * values[m] * w;
-            }
-        }
-    };
-    // ... and the whole load of a cell: the body force, eta F where the
-    // moments were solved for, the prescribed data elsewhere, and the
-    // contact traction. local must be reinit'ed on the cell.
-    const auto cell_load = [&](const LocalNeumannProblem &local,
-                               const unsigned int         slot,
-                               Vector<double>            &load) {
-      const auto &cell = cells[slot].cell;
-      load             = local.body_force_load();
-      for (const unsigned int f : cell->face_indices())
-        {
-          const FaceData           &face   = faces[cells[slot].faces[f]];
-          const std::array<bool, 2> solved = {
-            {face.unknown[0], face.unknown[1]}};
-          if (solved[0] || solved[1])
-            add_face_load(
-              local, load, slot, face, face.coefficients, face.bubble, solved);
-          const std::array<bool, 2> prescribed = {{!solved[0], !solved[1]}};
-          if (face.at_boundary && (prescribed[0] || prescribed[1]))
-            {
-              const auto t = traction_on.find(cell->face(f)->boundary_id());
-              if (t != traction_on.end())
-                for (unsigned int q = 0; q < edge_rule.size(); ++q)
-                  {
-                    const Point<2> x =
-                      face.v0 + edge_rule.point(q)[0] * (face.v1 - face.v0);
-                    local.add_traction(load,
-                                       x,
-                                       (*t->second)(x, face.normal),
-                                       edge_rule.weight(q) * face.length,
-                                       prescribed);
-                  }
-            }
-        }
-      if (const auto c = contact.find(cell->id()); c != contact.end())
-        for (const auto &point : c->second)
-          local.add_traction(
-            load, point.point, point.traction, point.weight, {{true, true}});
-    };
+      const MPI_Comm comm     = body.triangulation().get_communicator();
+      result.sum_norm_squared = Utilities::MPI::sum(sum_norm, comm);
+      result.error_squared_before_optimisation =
+        Utilities::MPI::sum(result.error_squared.l1_norm(), comm);
+    }
+  } // namespace
+
+
+
+  EquilibratedStressErrors
+  equilibrated_stress_errors(
+    const ElasticBody                   &body,
+    const TrilinosWrappers::MPI::Vector &u_equilibrium,
+    const TrilinosWrappers::MPI::Vector &u_kinematic_in,
+    const ContactTractionData           &contact,
+    const unsigned int                   degree_increase,
+    const bool                           optimise_tractions)
+  {
+    // Ghosted copies: the node systems read the ghost cells too (the
+    // corrected solutions come without ghost entries).
+    const MPI_Comm comm = body.triangulation().get_communicator();
+    TrilinosWrappers::MPI::Vector u(body.locally_owned_dof_set(),
+                                    body.locally_relevant_dof_set(),
+                                    comm);
+    TrilinosWrappers::MPI::Vector u_kinematic(u);
+    u                            = u_equilibrium;
+    u_kinematic                  = u_kinematic_in;
+    const FiniteElement<2> &base = body.dof_handler().get_fe().base_element(0);
+    const unsigned int      p    = base.degree;
+
+    // 1.-2. The local mesh, the known moments and the averaged ones.
+    std::map<CellId, unsigned int> slot_of;
+    std::vector<CellData>          cells = collect_cells(body, u, slot_of);
+    std::vector<FaceData>          faces = collect_faces(body, cells);
+    set_prescribed_moments(body, cells, faces);
+    add_contact_moments(cells, slot_of, contact, faces);
+    set_averaged_moments(body, u, cells, faces);
+
+    // 3. The node systems, for every node of a locally owned cell (its
+    // star is then all local: the ghost layer holds every cell that shares
+    // a vertex with an owned cell).
+    EquilibratedStressErrors result;
+    solve_node_systems(cells, faces, base.n_dofs_per_cell(), result);
+
+    // 4. F on each face.
+    set_edge_polynomials(p, faces);
 
     // 5. The free parameters of the node systems (one per interior or
     // Dirichlet node and component) chosen to minimise the estimate
@@ -442,15 +466,17 @@ namespace coulomb_adapt
     // symmetric positive definite system with the pattern of the
     // stiffness matrix. Any value of the parameters keeps sigma^
     // statically admissible, so an inexact solve only makes the bound
-    // less tight.
+    // less tight. The optimisation also gives the errors (6.).
+    LocalNeumannProblem     local(body, p + degree_increase);
+    const LocalProblemLoads loads(
+      body.description(), cells, faces, contact, p, p + degree_increase);
     if (optimise_tractions)
       optimise_free_parameters(body,
                                cells,
                                faces,
                                local,
                                u_kinematic,
-                               cell_load,
-                               face_work,
+                               loads,
                                // A bubble of degree p + 1 needs local
                                // problems of degree p + 3 to be resolved:
                                // with p + 2 the minimisation finds the
@@ -458,32 +484,9 @@ namespace coulomb_adapt
                                // estimate below the exact error).
                                degree_increase >= 3,
                                result);
+    else
+      classical_errors(body, cells, local, loads, u_kinematic, result);
 
-    // 6. Without the optimisation (which gives the errors from each cell's
-    // quadratic form), the local Neumann problems and the errors, cell by
-    // cell.
-    if (!optimise_tractions)
-      {
-        result.error_squared.reinit(body.triangulation().n_active_cells());
-        double         sum_norm = 0;
-        Vector<double> load(local.n_coefficients()), coefficients;
-        for (unsigned int slot = 0; slot < cells.size(); ++slot)
-          if (cells[slot].owned)
-            {
-              local.reinit(cells[slot].cell, u_kinematic);
-              cell_load(local, slot, load);
-              result.local_problem_defect =
-                std::max(result.local_problem_defect,
-                         local.solve(load, coefficients));
-              const auto errors = local.errors(coefficients);
-              result.error_squared(cells[slot].cell->active_cell_index()) =
-                errors[0];
-              sum_norm += errors[1];
-            }
-        result.sum_norm_squared = Utilities::MPI::sum(sum_norm, comm);
-        result.error_squared_before_optimisation =
-          Utilities::MPI::sum(result.error_squared.l1_norm(), comm);
-      }
     result.node_system_defect =
       Utilities::MPI::max(result.node_system_defect, comm);
     result.local_problem_defect =

@@ -130,9 +130,9 @@ namespace coulomb_adapt
       {
         const Point<2> &x = fe_values->quadrature_point(q);
         evaluate(x);
-        gradients_at[q]    = gradients;
-        JxW[q]             = fe_values->JxW(q);
-        sigma_c[q]         = material.stress(strains[q]);
+        gradients_at[q] = gradients;
+        JxW[q]          = fe_values->JxW(q);
+        sigma_c[q]      = material.stress(strains[q]);
         sigma_c_energy += sigma_c[q] * strains[q] * JxW[q];
         const double xi[2] = {(x[0] - centre[0]) / h, (x[1] - centre[1]) / h};
         double       xi_power = JxW[q];

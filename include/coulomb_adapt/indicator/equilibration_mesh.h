@@ -16,7 +16,6 @@
 
 #include <array>
 #include <cmath>
-#include <functional>
 #include <vector>
 
 namespace coulomb_adapt
@@ -140,28 +139,21 @@ namespace coulomb_adapt
                        const unsigned int           n_nodes,
                        EquilibratedStressErrors    &result);
 
-    /** The load of a cell's local problem (LocalNeumannProblem::reinit()
-     * done on that cell). */
-    using CellLoad = std::function<
-      void(const LocalNeumannProblem &, unsigned int, Vector<double> &)>;
-    /** The work matrix of a face's traction basis on a cell's monomials. */
-    using FaceWork = std::function<void(const LocalNeumannProblem &,
-                                        unsigned int,
-                                        const FaceData &,
-                                        FullMatrix<double> &)>;
+    class LocalProblemLoads;
 
     /** Step 5: the free parameters that minimise the estimate (see the
      * .cc), cell by cell on the threads deal.II may use (with a copy of
-     * @p local each); updates the faces' moments and bubbles, and sets the errors of
-     * @p result (error_squared, sum_norm_squared and the classical estimate). */
+     * @p local each); updates the faces' moments and bubbles, and sets the
+     * errors of
+     * @p result (error_squared, sum_norm_squared and the classical estimate).
+     */
     void
     optimise_free_parameters(const ElasticBody                   &body,
                              const std::vector<CellData>         &cells,
                              std::vector<FaceData>               &faces,
                              const LocalNeumannProblem           &local,
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
-                             const CellLoad                      &cell_load,
-                             const FaceWork                      &face_work,
+                             const LocalProblemLoads             &loads,
                              const bool                           with_bubbles,
                              EquilibratedStressErrors            &result);
   } // namespace equilibration

@@ -1,0 +1,120 @@
+#include <coulomb_adapt/indicator/local_problem_loads.h>
+
+namespace coulomb_adapt
+{
+  namespace equilibration
+  {
+    LocalProblemLoads::LocalProblemLoads(const BodyDescription &description,
+                                         const std::vector<CellData> &cells,
+                                         const std::vector<FaceData> &faces,
+                                         const ContactTractionData   &contact,
+                                         const unsigned int           fe_degree,
+                                         const unsigned int local_degree)
+      : cells(cells)
+      , faces(faces)
+      , contact(contact)
+      , fe_degree(fe_degree)
+      , edge_rule(local_degree + 2)
+    {
+      for (const auto &t : description.tractions)
+        traction_on[t.boundary_id] = &t.traction;
+    }
+
+
+
+    void
+    LocalProblemLoads::add_face_traction(const LocalNeumannProblem &local,
+                                         Vector<double>            &load,
+                                         const unsigned int         slot,
+                                         const FaceData            &face,
+                                         const std::array<bool, 2> &mask) const
+    {
+      const double eta = face.plus == static_cast<int>(slot) ? 1 : -1;
+      for (unsigned int q = 0; q < edge_rule.size(); ++q)
+        {
+          const double s   = edge_rule.point(q)[0];
+          const auto   phi = face_shape_values(face.s, s);
+          Tensor<1, 2> F;
+          for (unsigned int k = 0; k < face.nodes.size(); ++k)
+            for (unsigned int c = 0; c < 2; ++c)
+              F[c] += phi[k] * face.coefficients[k][c];
+          const double L = edge_bubble(fe_degree + 1, s);
+          for (unsigned int c = 0; c < 2; ++c)
+            F[c] += face.bubble[c] * L;
+          local.add_traction(load,
+                             face.v0 + s * (face.v1 - face.v0),
+                             eta * F,
+                             edge_rule.weight(q) * face.length,
+                             mask);
+        }
+    }
+
+
+
+    void
+    LocalProblemLoads::face_work(const LocalNeumannProblem &local,
+                                 const unsigned int         slot,
+                                 const FaceData            &face,
+                                 FullMatrix<double>        &W) const
+    {
+      const unsigned int n   = face.nodes.size();
+      const unsigned int M   = local.n_coefficients() / 2;
+      const double       eta = face.plus == static_cast<int>(slot) ? 1 : -1;
+      W.reinit(M, n + 1);
+      for (unsigned int q = 0; q < edge_rule.size(); ++q)
+        {
+          const double s   = edge_rule.point(q)[0];
+          const auto   phi = face_shape_values(face.s, s);
+          const double L   = edge_bubble(fe_degree + 1, s);
+          const double w   = eta * edge_rule.weight(q) * face.length;
+          const auto  &values =
+            local.monomial_values(face.v0 + s * (face.v1 - face.v0));
+          for (unsigned int m = 0; m < M; ++m)
+            {
+              for (unsigned int j = 0; j < n; ++j)
+                W(m, j) += phi[j] * values[m] * w;
+              W(m, n) += L * values[m] * w;
+            }
+        }
+    }
+
+
+
+    void
+    LocalProblemLoads::cell_load(const LocalNeumannProblem &local,
+                                 const unsigned int         slot,
+                                 Vector<double>            &load) const
+    {
+      const auto &cell = cells[slot].cell;
+      load             = local.body_force_load();
+      for (const unsigned int f : cell->face_indices())
+        {
+          const FaceData           &face   = faces[cells[slot].faces[f]];
+          const std::array<bool, 2> solved = {
+            {face.unknown[0], face.unknown[1]}};
+          if (solved[0] || solved[1])
+            add_face_traction(local, load, slot, face, solved);
+          const std::array<bool, 2> prescribed = {{!solved[0], !solved[1]}};
+          if (face.at_boundary && (prescribed[0] || prescribed[1]))
+            {
+              const auto t = traction_on.find(cell->face(f)->boundary_id());
+              if (t != traction_on.end())
+                for (unsigned int q = 0; q < edge_rule.size(); ++q)
+                  {
+                    const Point<2> x =
+                      face.v0 + edge_rule.point(q)[0] * (face.v1 - face.v0);
+                    local.add_traction(load,
+                                       x,
+                                       (*t->second)(x, face.normal),
+                                       edge_rule.weight(q) * face.length,
+                                       prescribed);
+                  }
+            }
+        }
+      if (const auto c = contact.find(cell->id()); c != contact.end())
+        for (const auto &point : c->second)
+          local.add_traction(
+            load, point.point, point.traction, point.weight, {{true, true}});
+    }
+  } // namespace equilibration
+} // namespace coulomb_adapt
