@@ -1,3 +1,5 @@
+#include <deal.II/base/timer.h>
+
 #include <coulomb_adapt/core/optional_timer_section.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 
@@ -199,13 +201,15 @@ namespace coulomb_adapt
     AssertThrow(entry != registered_estimators().end(),
                 ExcMessage("no error estimator is registered for '" +
                            to_string(estimator) + "'"));
+    Timer         timer; // wall time, started
     ErrorEstimate estimate = entry->second(bodies,
                                            contact_solver,
                                            mu,
                                            indicator_parameters,
                                            solver_parameters,
                                            options);
-    estimate.estimator     = estimator;
+    estimate.estimator = estimator;
+    estimate.wall_time = timer.wall_time();
     return estimate;
   }
 

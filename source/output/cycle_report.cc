@@ -321,7 +321,8 @@ namespace coulomb_adapt
         {"epsilon_volume",
          {estimate.epsilon_volume[0], estimate.epsilon_volume[1]}},
         {"epsilon_contact", estimate.epsilon_contact},
-        {"normalisation_squared", estimate.normalisation_squared}};
+        {"normalisation_squared", estimate.normalisation_squared},
+        {"wall_time_s", estimate.wall_time}};
     };
     nlohmann::json estimators;
     estimators[to_string(e.estimator)] = record_of(e);

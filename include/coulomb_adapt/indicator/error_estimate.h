@@ -37,6 +37,9 @@ namespace coulomb_adapt
     StressRecoveryMethod recovery = StressRecoveryMethod::l2_projection;
     /** Which estimator computed it. */
     ErrorEstimator estimator = ErrorEstimator::zz;
+    /** Wall time of computing it (s; with a known correction, without
+     * solving the corrected problem). */
+    double wall_time = 0;
     /** cre only: the equilibration's defects (equilibrated_stress.h), the
      * larger of the two bodies'. */
     double node_system_defect   = 0;
