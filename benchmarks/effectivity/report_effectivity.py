@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Table and plot of benchmarks/effectivity/results.csv (no runs):
-theta = epsilon / epsilon_exact of zz, spr and cre per case and mesh.
+theta = epsilon / epsilon_exact of zz, spr and cre per case and mesh, and
+from cost.csv each estimator's cost relative to the contact solve.
 
     benchmarks/effectivity/report_effectivity.py [--csv results.csv] [--png effectivity.png]
 """
@@ -14,10 +15,33 @@ import common  # noqa: E402
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
+def report_cost(path):
+    """Each estimator's wall time over the contact solve's, per case summed
+    over its cycles (the same solutions)."""
+    rows = common.read_csv(path, text=("case",), ints=("cycle", "n_dofs"))
+    print()
+    print("| case | largest DoFs | contact solve s | zz | spr | cre |")
+    print("|---|---|---|---|---|---|")
+    cases = []
+    for r in rows:
+        if r["case"] not in cases:
+            cases.append(r["case"])
+    for case in cases:
+        mine = [r for r in rows if r["case"] == case]
+        solve = sum(r["contact_solve_s"] or 0 for r in mine)
+        ratios = []
+        for e in ("zz", "spr", "cre"):
+            t = sum(r[e + "_s"] or 0 for r in mine)
+            ratios.append("%.2f×" % (t / solve) if solve > 0 else "")
+        print("| %s | %d | %.3f | %s | %s | %s |" % (
+            case, max(r["n_dofs"] for r in mine), solve, *ratios))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--csv", default=os.path.join(HERE, "results.csv"))
     parser.add_argument("--png", default=os.path.join(HERE, "effectivity.png"))
+    parser.add_argument("--cost-csv", default=os.path.join(HERE, "cost.csv"))
     args = parser.parse_args()
     rows = common.read_csv(args.csv, text=("case", "estimator", "reference"),
                            ints=("cycle", "n_dofs"))
@@ -37,6 +61,9 @@ def main():
             case, any_row["n_dofs"], 100 * any_row["epsilon_exact"],
             *["%.2f" % by[e]["effectivity"] if e in by else "" for e in
               ("zz", "spr", "cre")], any_row["reference"]))
+
+    if os.path.exists(args.cost_csv):
+        report_cost(args.cost_csv)
 
     plt = common.pyplot()
     cases = []

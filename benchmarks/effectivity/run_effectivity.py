@@ -9,8 +9,10 @@ reference solution otherwise, whose refinements are in the CSV).
     benchmarks/effectivity/run_effectivity.py [--exe build/coulomb-adapt]
         [--smoke] [--csv results.csv]
 
-Writes results.csv (one row per case, cycle and estimator), cost.csv and
-effectivity.png; report_effectivity.py re-tabulates them.
+Writes results.csv (one row per case, cycle and estimator) and cost.csv
+(per case and cycle: the contact solve's and each estimator's wall time on
+the same solution); report_effectivity.py tabulates them and draws
+effectivity.png.
 """
 import argparse
 import os
@@ -45,6 +47,30 @@ CASES = [
      ["Adaptation/Strategy=uniform", "Adaptation/Number of cycles=2",
       "Adaptation/Minimum number of cycles=1",
       "Error indicator/Reference refinements=3"]),
+    ("hertz mu=0 Q1 uniform", "prm/hertz.prm",
+     ["Adaptation/Strategy=uniform", "Adaptation/Number of cycles=2",
+      "Adaptation/Minimum number of cycles=1",
+      "Contact/Friction coefficient=0",
+      "Error indicator/Reference refinements=2"]),
+    ("hertz mu=0 P1 uniform", "prm/hertz.prm",
+     ["Mesh/Cell type=triangle", "Adaptation/Strategy=uniform",
+      "Adaptation/Number of cycles=2",
+      "Adaptation/Minimum number of cycles=1",
+      "Contact/Friction coefficient=0",
+      "Error indicator/Reference refinements=2"]),
+    # Adapted sequences, driven by the seed's zz (the others compared on the
+    # same meshes) and, last, by cre.
+    ("blocks mu=0.3 P1 remesh 5% (seed)", "prm/blocks.prm",
+     ["Error indicator/Reference refinements=4"]),
+    ("punch mu=0.3 P1 remesh 5%", "prm/punch.prm",
+     ["Mesh/Cell type=triangle", "Adaptation/Strategy=remesh",
+      "Adaptation/Target error=5", "Adaptation/Number of cycles=4",
+      "Error indicator/Reference refinements=3"]),
+    ("hertz mu=0 P1 remesh 2%", "prm/hertz.prm",
+     ["Mesh/Cell type=triangle", "Adaptation/Strategy=remesh",
+      "Adaptation/Target error=2", "Adaptation/Number of cycles=4",
+      "Contact/Friction coefficient=0",
+      "Error indicator/Reference refinements=2"]),
     # The seed's mesh but for the upper block's 4 (not 3) columns: holding
     # the centre line x = 100 needs it to be a mesh line.
     ("blocks mu=0 P1 remesh 5%", "prm/blocks.prm",
@@ -55,6 +81,8 @@ CASES = [
 ]
 SMOKE = [("manufactured Q1 uniform", "prm/two_body_demo.prm",
           ["Mesh/Global refinements=0", "Adaptation/Number of cycles=1"])]
+COST_FIELDS = ["case", "cycle", "n_dofs", "contact_solve_s", "zz_s", "spr_s",
+               "cre_s"]
 FIELDS = ["case", "cycle", "n_dofs", "estimator", "epsilon", "epsilon_exact",
           "effectivity", "element_effectivity_min", "element_effectivity_max",
           "reference"]
@@ -65,10 +93,11 @@ def main():
     parser.add_argument("--exe", default="build/coulomb-adapt")
     parser.add_argument("--smoke", action="store_true")
     parser.add_argument("--csv", default=os.path.join(HERE, "results.csv"))
+    parser.add_argument("--cost-csv", default=os.path.join(HERE, "cost.csv"))
     parser.add_argument("--timeout", type=float, default=1800)
     args = parser.parse_args()
     common.check_executable(args.exe)
-    rows = []
+    rows, cost = [], []
     for name, prm, settings in (SMOKE if args.smoke else CASES):
         print("  " + name, flush=True)
         result, summary = common.run_program(
@@ -80,6 +109,13 @@ def main():
                                                       result.stdout))
             continue
         for cycle in summary["cycles"]:
+            estimators = cycle.get("estimators", {})
+            cost.append(dict(
+                {"case": name, "cycle": cycle["cycle"],
+                 "n_dofs": cycle["n_dofs"],
+                 "contact_solve_s": cycle["timings_s"].get("contact solve")},
+                **{e + "_s": estimators.get(e, {}).get("wall_time_s")
+                   for e in ("zz", "spr", "cre")}))
             for estimator, values in cycle.get("estimators", {}).items():
                 rows.append({
                     "case": name, "cycle": cycle["cycle"],
@@ -95,7 +131,8 @@ def main():
                 print("    cycle %d, %s: theta %.3f" % (
                     cycle["cycle"], estimator, values.get("effectivity", 0)))
     common.write_csv(args.csv, rows, FIELDS)
-    print("wrote " + args.csv)
+    common.write_csv(args.cost_csv, cost, COST_FIELDS)
+    print("wrote " + args.csv + " and " + args.cost_csv)
 
 
 if __name__ == "__main__":
