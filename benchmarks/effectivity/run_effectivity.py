@@ -47,11 +47,8 @@ CASES = [
      ["Adaptation/Strategy=uniform", "Adaptation/Number of cycles=2",
       "Adaptation/Minimum number of cycles=1",
       "Error indicator/Reference refinements=3"]),
-    ("hertz mu=0 Q1 uniform", "prm/hertz.prm",
-     ["Adaptation/Strategy=uniform", "Adaptation/Number of cycles=2",
-      "Adaptation/Minimum number of cycles=1",
-      "Contact/Friction coefficient=0",
-      "Error indicator/Reference refinements=2"]),
+    # (hertz on quadrilaterals is locally refined: hanging nodes, which cre
+    # refuses.)
     ("hertz mu=0 P1 uniform", "prm/hertz.prm",
      ["Mesh/Cell type=triangle", "Adaptation/Strategy=uniform",
       "Adaptation/Number of cycles=2",
