@@ -37,10 +37,14 @@ namespace coulomb_adapt
                const std::string &base_name,
                const OutputFormat format);
 
+    /** With a @p load_scale P other than 1 (core/units.h), the body's
+     * solution is that of the scaled problem: the displacement, the
+     * stresses and the smoothed stresses are written multiplied by P. */
     void
     write(const ElasticBody     &body,
           const unsigned int     cycle,
-          const BodyErrorFields &error_fields = BodyErrorFields());
+          const BodyErrorFields &error_fields = BodyErrorFields(),
+          const double           load_scale   = 1);
 
   private:
     const std::string                           directory;
