@@ -234,8 +234,10 @@ main(int argc, char **argv)
                             {"Scene/Blocks/Body 1/Young's modulus", E.str()},
                             {"Scene/Blocks/Body 2/Young's modulus", E.str()}},
                            "output-moduli-" + factor);
-      const bool same = same_solution(r, reference, 1e-12);
-      out << "moduli and pressure times " << factor << ": epsilon = "
+      const bool   same  = same_solution(r, reference, 1e-12);
+      const double scale = r.summary.value("load_scale", 1.);
+      out << "moduli and pressure times " << factor << ": load scale 2^"
+          << std::ilogb(scale) << ", epsilon = "
           << std::fixed << std::setprecision(6) << 100 * r.epsilon << " %"
           << std::defaultfloat
           << ", epsilon, epsilon_E, DoFs and contact sets of each cycle as "
@@ -253,7 +255,8 @@ main(int argc, char **argv)
       const Result r = run({{"Scene/Name", "hertz"},
                             {"Scene/Hertz/Line load", load},
                             {"Scene/Hertz/Contact mesh size", "0"},
-                            {"Scene/Hertz/Hold axis", "false"}},
+                            {"Scene/Hertz/Hold axis", "false"},
+                            {"Mesh/Global refinements", "2"}},
                            "output-hertz-" + load);
       const unsigned int n_stopped =
         Utilities::MPI::sum(r.error.empty() ? 0u : 1u, MPI_COMM_WORLD);
