@@ -13,6 +13,8 @@
 //    the solve); energies that are no doubles (1e600) are reported scaled
 //    and listed in summary.json, which holds no null;
 //  - moduli times 1e100 and 1e-100 with the loads alike give the same;
+//  - manufactured (no contact) with amplitudes 1e-300 and 1e200: the
+//    epsilon, epsilon_E, DoFs and relative exact error of amplitude 1;
 //  - with an initial gap (hertz) the problem is not homogeneous: line
 //    loads 1e200 and 1e-200 stop before the solve, on every rank, with a
 //    message naming the scene's load entry and the gap.
@@ -114,10 +116,11 @@ namespace
         for (const auto &c : result.summary["cycles"])
           {
             result.cycles.push_back({{c["n_dofs"].get<unsigned int>(),
-                                      c["active_nodes"].get<unsigned int>(),
-                                      c["stick_nodes"].get<unsigned int>(),
-                                      c["slip_nodes"].get<unsigned int>()}});
-            result.contact_force = c["contact_force"][1].get<double>();
+                                      c.value("active_nodes", 0u),
+                                      c.value("stick_nodes", 0u),
+                                      c.value("slip_nodes", 0u)}});
+            if (c.contains("contact_force"))
+              result.contact_force = c["contact_force"][1].get<double>();
           }
       }
     return result;
@@ -246,6 +249,49 @@ main(int argc, char **argv)
           << (r.summary_has_null ? "no" : "yes") << std::endl;
       AssertThrow(r.error.empty(), ExcMessage(r.error));
       AssertThrow(same, ExcMessage("moduli: not the same solution"));
+      AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
+    }
+
+  // Without contact: the manufactured solution's body force, tractions
+  // and exact displacement scale together (before: amplitude 1e200 gave
+  // epsilon = nan and a CSV of -nan).
+  const auto run_manufactured = [&](const std::string &amplitude) {
+    return run({{"Scene/Name", "manufactured"},
+                {"Scene/Manufactured/Amplitude", amplitude}},
+               "output-manufactured-" + amplitude);
+  };
+  const Result manufactured = run_manufactured("1");
+  out << "manufactured, amplitude 1: epsilon = " << std::fixed
+      << std::setprecision(6) << 100 * manufactured.epsilon << " %"
+      << std::defaultfloat << std::endl;
+  AssertThrow(manufactured.error.empty(), ExcMessage(manufactured.error));
+  for (const std::string amplitude : {"1e-300", "1e200"})
+    {
+      const Result r     = run_manufactured(amplitude);
+      const bool   same  = same_solution(r, manufactured, 1e-12);
+      const double scale = r.summary.value("load_scale", 1.);
+      // The exact error relative to the exact solution's energy norm.
+      const auto relative_exact_error = [](const Result &x) {
+        return x.summary["cycles"].back()["bodies"][0]["exact_error"]
+                        ["relative_energy"]
+                          .get<double>();
+      };
+      const bool same_exact_error =
+        std::abs(relative_exact_error(r) / relative_exact_error(manufactured) -
+                 1) <= 1e-12;
+      out << "manufactured, amplitude " << amplitude << ": load scale 2^"
+          << std::ilogb(scale) << ", epsilon = " << std::fixed
+          << std::setprecision(6) << 100 * r.epsilon << " %"
+          << std::defaultfloat
+          << ", epsilon, epsilon_E and DoFs of each cycle as amplitude 1 to "
+             "1e-12: "
+          << (same ? "yes" : "no")
+          << ", relative exact error as amplitude 1 to 1e-12: "
+          << (same_exact_error ? "yes" : "no")
+          << ", summary.json without null: "
+          << (r.summary_has_null ? "no" : "yes") << std::endl;
+      AssertThrow(r.error.empty(), ExcMessage(r.error));
+      AssertThrow(same && same_exact_error, ExcMessage("not homogeneous"));
       AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
     }
 
