@@ -136,13 +136,15 @@ namespace
   // Whether @p r has the epsilon, every epsilon_E and the DoFs and contact
   // sets of every cycle of @p reference, to @p tolerance, on every rank.
   bool
-  same_solution(const Result &r, const Result &reference, const double tolerance)
+  same_solution(const Result &r,
+                const Result &reference,
+                const double  tolerance)
   {
-    bool same = r.error.empty() && r.cycles == reference.cycles &&
-                r.element_epsilon_squared.size() ==
-                  reference.element_epsilon_squared.size() &&
-                std::abs(r.epsilon - reference.epsilon) <=
-                  tolerance * reference.epsilon;
+    bool same =
+      r.error.empty() && r.cycles == reference.cycles &&
+      r.element_epsilon_squared.size() ==
+        reference.element_epsilon_squared.size() &&
+      std::abs(r.epsilon - reference.epsilon) <= tolerance * reference.epsilon;
     if (same)
       {
         double largest = 0;
@@ -201,11 +203,10 @@ main(int argc, char **argv)
       // pressure 1.
       const double force_ratio =
         r.contact_force / std::stod(pressure) / reference.contact_force;
-      const bool same_force = std::abs(force_ratio - 1) <= 1e-12;
-      const bool energies_scaled =
-        r.summary.contains("reported_scaled") &&
-        r.summary["reported_scaled"].dump().find("strain_energy") !=
-          std::string::npos;
+      const bool same_force      = std::abs(force_ratio - 1) <= 1e-12;
+      const bool energies_scaled = r.summary.contains("reported_scaled") &&
+                                   r.summary["reported_scaled"].dump().find(
+                                     "strain_energy") != std::string::npos;
       out << "pressure " << pressure << ": load scale 2^"
           << (scale > 0 ? std::ilogb(scale) : 0) << ", epsilon = " << std::fixed
           << std::setprecision(6) << 100 * r.epsilon << " %"
@@ -232,16 +233,16 @@ main(int argc, char **argv)
     {
       std::ostringstream E;
       E << 130000. * std::stod(factor);
-      const Result r = run({{"Scene/Name", "blocks"},
-                            {"Scene/Blocks/Pressure", factor},
-                            {"Scene/Blocks/Body 1/Young's modulus", E.str()},
-                            {"Scene/Blocks/Body 2/Young's modulus", E.str()}},
+      const Result r     = run({{"Scene/Name", "blocks"},
+                                {"Scene/Blocks/Pressure", factor},
+                                {"Scene/Blocks/Body 1/Young's modulus", E.str()},
+                                {"Scene/Blocks/Body 2/Young's modulus", E.str()}},
                            "output-moduli-" + factor);
       const bool   same  = same_solution(r, reference, 1e-12);
       const double scale = r.summary.value("load_scale", 1.);
       out << "moduli and pressure times " << factor << ": load scale 2^"
-          << std::ilogb(scale) << ", epsilon = "
-          << std::fixed << std::setprecision(6) << 100 * r.epsilon << " %"
+          << std::ilogb(scale) << ", epsilon = " << std::fixed
+          << std::setprecision(6) << 100 * r.epsilon << " %"
           << std::defaultfloat
           << ", epsilon, epsilon_E, DoFs and contact sets of each cycle as "
              "pressure 1 to 1e-12: "
@@ -272,9 +273,9 @@ main(int argc, char **argv)
       const double scale = r.summary.value("load_scale", 1.);
       // The exact error relative to the exact solution's energy norm.
       const auto relative_exact_error = [](const Result &x) {
-        return x.summary["cycles"].back()["bodies"][0]["exact_error"]
-                        ["relative_energy"]
-                          .get<double>();
+        return x.summary["cycles"]
+          .back()["bodies"][0]["exact_error"]["relative_energy"]
+          .get<double>();
       };
       const bool same_exact_error =
         std::abs(relative_exact_error(r) / relative_exact_error(manufactured) -
@@ -298,11 +299,11 @@ main(int argc, char **argv)
   // Not homogeneous: Hertz's curved surfaces have an initial gap.
   for (const std::string load : {"1e-200", "1e200"})
     {
-      const Result r = run({{"Scene/Name", "hertz"},
-                            {"Scene/Hertz/Line load", load},
-                            {"Scene/Hertz/Contact mesh size", "0"},
-                            {"Scene/Hertz/Hold axis", "false"},
-                            {"Mesh/Global refinements", "2"}},
+      const Result       r = run({{"Scene/Name", "hertz"},
+                                  {"Scene/Hertz/Line load", load},
+                                  {"Scene/Hertz/Contact mesh size", "0"},
+                                  {"Scene/Hertz/Hold axis", "false"},
+                                  {"Mesh/Global refinements", "2"}},
                            "output-hertz-" + load);
       const unsigned int n_stopped =
         Utilities::MPI::sum(r.error.empty() ? 0u : 1u, MPI_COMM_WORLD);
@@ -321,6 +322,7 @@ main(int argc, char **argv)
           << (names_it ? "yes" : "no") << std::endl;
       AssertThrow(n_stopped == Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
                   ExcMessage("not stopped on every rank"));
-      AssertThrow(names_it && before_solving, ExcMessage("message: " + r.error));
+      AssertThrow(names_it && before_solving,
+                  ExcMessage("message: " + r.error));
     }
 }

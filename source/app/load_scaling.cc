@@ -57,16 +57,17 @@ namespace coulomb_adapt
             continue;
           if (d.body_force)
             maxima[1] =
-              std::max(maxima[1], magnitude(d.body_force(cell->center())) * size);
+              std::max(maxima[1],
+                       magnitude(d.body_force(cell->center())) * size);
           for (const unsigned int f : cell->face_indices())
             {
               if (!cell->face(f)->at_boundary())
                 continue;
-              const auto         face = cell->face(f);
-              const types::boundary_id id = face->boundary_id();
-              const Point<2> points[3] = {face->vertex(0),
-                                          face->vertex(1),
-                                          face->center()};
+              const auto               face      = cell->face(f);
+              const types::boundary_id id        = face->boundary_id();
+              const Point<2>           points[3] = {face->vertex(0),
+                                                    face->vertex(1),
+                                                    face->center()};
               // The outward normal of the face's chord.
               const Tensor<1, 2> tangent = face->vertex(1) - face->vertex(0);
               Tensor<1, 2>       normal;
@@ -102,11 +103,11 @@ namespace coulomb_adapt
   load_stress_scale(const Scene                                       &scene,
                     const std::array<std::unique_ptr<ElasticBody>, 2> &bodies)
   {
-    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
-    std::array<double, 2> sizes = {{body_size(*bodies[0]),
-                                    body_size(*bodies[1])}};
+    const MPI_Comm        comm  = bodies[0]->dof_handler().get_communicator();
+    std::array<double, 2> sizes = {
+      {body_size(*bodies[0]), body_size(*bodies[1])}};
     // [body][kind], over the load steps.
-    std::array<std::array<double, 3>, 2> maxima = {};
+    std::array<std::array<double, 3>, 2> maxima  = {};
     const unsigned int                   n_steps = scene.n_load_steps();
     for (unsigned int step = 1; step <= n_steps; ++step)
       {
@@ -123,7 +124,7 @@ namespace coulomb_adapt
       scene.set_load_step(1);
 
     LoadStressScale result;
-    result.size = std::max(sizes[0], sizes[1]);
+    result.size          = std::max(sizes[0], sizes[1]);
     const char *kinds[3] = {"the traction on the boundary",
                             "the body force times the body's size",
                             "Young's modulus times the prescribed "

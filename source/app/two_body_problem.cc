@@ -118,8 +118,7 @@ namespace coulomb_adapt
         if (loads.stress <= units::accepted_stress &&
             loads.stress >= 1 / units::accepted_stress)
           {
-            pcout << s.str() << "; solved as given (load scale 1)"
-                  << std::endl;
+            pcout << s.str() << "; solved as given (load scale 1)" << std::endl;
             return;
           }
         throw ParameterError(
@@ -368,10 +367,10 @@ namespace coulomb_adapt
         // The physical values of a scaled problem: stresses and lengths of
         // the deformation times P, the contact term's density (MPa mm)
         // times P^2 where representable.
-        std::vector<ContactNodeState> states = contact_solver->node_states();
-        std::vector<double>           density =
-          error_estimate ? error_estimate->contact.nodal_density :
-                                     std::vector<double>();
+        std::vector<ContactNodeState> states  = contact_solver->node_states();
+        std::vector<double>           density = error_estimate ?
+                                                  error_estimate->contact.nodal_density :
+                                                  std::vector<double>();
         if (P != 1)
           {
             for (ContactNodeState &s : states)

@@ -10,7 +10,8 @@ namespace coulomb_adapt
     double
     power_of_two_near(const double magnitude)
     {
-      return std::ldexp(1., static_cast<int>(std::lround(std::log2(magnitude))));
+      return std::ldexp(1.,
+                        static_cast<int>(std::lround(std::log2(magnitude))));
     }
 
 

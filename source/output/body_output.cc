@@ -32,12 +32,11 @@ namespace coulomb_adapt
 
     // The physical fields of a scaled problem: copies times P (the owned
     // entries scaled, then the ghosts imported).
-    TrilinosWrappers::MPI::Vector scaled_solution;
+    TrilinosWrappers::MPI::Vector              scaled_solution;
     std::array<RecoveredStress::VectorType, 3> scaled_recovered;
     if (load_scale != 1)
       {
-        TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(),
-                                            comm);
+        TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(), comm);
         owned = body.solution();
         owned *= load_scale;
         scaled_solution.reinit(body.locally_owned_dof_set(),

@@ -63,8 +63,7 @@ namespace coulomb_adapt
                         const std::string &key)
   {
     double value = scaled;
-    if (load_scale == 1 ||
-        units::to_physical(scaled, load_scale, power, value))
+    if (load_scale == 1 || units::to_physical(scaled, load_scale, power, value))
       return value;
     if (scaled_keys.insert(key).second)
       {
@@ -229,12 +228,9 @@ namespace coulomb_adapt
     record["linear_solver"]     = {
           {{"method", outcome.linear_solver.method},
            {"iterations", outcome.linear_solver.n_iterations}}};
-    const double force[2] = {physical(report.contact_force[0],
-                                      1,
-                                      "contact_force"),
-                             physical(report.contact_force[1],
-                                      1,
-                                      "contact_force")};
+    const double force[2] = {
+      physical(report.contact_force[0], 1, "contact_force"),
+      physical(report.contact_force[1], 1, "contact_force")};
     const double max_pressure =
       physical(report.max_contact_pressure, 1, "max_contact_pressure");
     pcout << "  contact: " << report.newton_iterations << " Newton steps, "
@@ -294,8 +290,8 @@ namespace coulomb_adapt
     const double max_penetration =
       physical(c.max_penetration, 1, "max_penetration_clipped");
     if (c.max_penetration > 0)
-      pcout << "; penetration up to " << std::setprecision(3)
-            << max_penetration << " mm clipped";
+      pcout << "; penetration up to " << std::setprecision(3) << max_penetration
+            << " mm clipped";
     pcout << std::endl;
     record["correction"] = {{"skipped", c.skipped},
                             {"relative_change", c.relative_change},
@@ -366,9 +362,7 @@ namespace coulomb_adapt
          {estimate.epsilon_volume[0], estimate.epsilon_volume[1]}},
         {"epsilon_contact", estimate.epsilon_contact},
         {"normalisation_squared",
-         physical(estimate.normalisation_squared,
-                  2,
-                  "normalisation_squared")}};
+         physical(estimate.normalisation_squared, 2, "normalisation_squared")}};
     };
     nlohmann::json estimators;
     estimators[to_string(e.estimator)] = record_of(e);

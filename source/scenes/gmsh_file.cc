@@ -399,10 +399,10 @@ namespace coulomb_adapt
     GmshFile::load_entries() const
     {
       return {"Scene/Gmsh/Fixed components",
-                "Scene/Gmsh/Tractions",
-                "Scene/Gmsh/Normal pressures",
-                "Scene/Gmsh/Traction",
-                "Scene/Gmsh/Body 1 and 2/Density, Gravity, Angular velocity"};
+              "Scene/Gmsh/Tractions",
+              "Scene/Gmsh/Normal pressures",
+              "Scene/Gmsh/Traction",
+              "Scene/Gmsh/Body 1 and 2/Density, Gravity, Angular velocity"};
     }
 
 

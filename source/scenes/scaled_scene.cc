@@ -32,8 +32,7 @@ namespace coulomb_adapt
       }
 
       Tensor<1, 2>
-      gradient(const Point<2>    &p,
-               const unsigned int component) const override
+      gradient(const Point<2> &p, const unsigned int component) const override
       {
         return function->gradient(p, component) / *scale;
       }

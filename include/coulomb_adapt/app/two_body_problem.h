@@ -6,6 +6,7 @@
 
 #include <coulomb_adapt/adaptation/mesh_adaptation.h>
 #include <coulomb_adapt/adaptation/target_calibration.h>
+#include <coulomb_adapt/app/load_scaling.h>
 #include <coulomb_adapt/bodies/elastic_bodies.h>
 #include <coulomb_adapt/contact/contact_solve_driver.h>
 #include <coulomb_adapt/contact/contact_solver.h>
@@ -15,7 +16,6 @@
 #include <coulomb_adapt/output/body_output.h>
 #include <coulomb_adapt/output/contact_output.h>
 #include <coulomb_adapt/output/cycle_report.h>
-#include <coulomb_adapt/app/load_scaling.h>
 #include <coulomb_adapt/scenes/scaled_scene.h>
 
 #include <array>
@@ -115,7 +115,6 @@ namespace coulomb_adapt
     const Parameters                          &parameters;
     ConditionalOStream                         pcout;
     TimerOutput                                computing_timer;
-    /** The scene with its loads divided by the load scale. */
     std::unique_ptr<ScaledScene>               scene;
     ElasticBodies                              bodies;
     std::array<std::unique_ptr<BodyOutput>, 2> body_outputs;

@@ -64,7 +64,8 @@ namespace coulomb_adapt
     with_coarser_graded_meshes(const unsigned int k) const override;
 
   private:
-    ScaledScene(std::unique_ptr<Scene> scene, std::shared_ptr<double> load_scale);
+    ScaledScene(std::unique_ptr<Scene>  scene,
+                std::shared_ptr<double> load_scale);
 
     std::unique_ptr<Scene> scene;
     /** Shared with the functions handed out and with the coarser scenes. */
