@@ -361,16 +361,29 @@ namespace coulomb_adapt
     const WriteCycles write_cycles = parameters.output.write_cycles;
     const bool        write_fields = write_cycles == WriteCycles::all ||
                               (write_cycles == WriteCycles::last && last_cycle);
+    // The physical values of a scaled problem: stresses and lengths of the
+    // deformation times P, the contact term's density (MPa mm) times P^2,
+    // where doubles hold them (CSV, HDF5). VTU's 32-bit floats (1e-38 ...
+    // 3e38) cannot hold stresses beyond 1e+-100 MPa: VTU files get the
+    // fields of the scaled problem.
     const double P = scene->load_scale();
+    const bool   scaled_fields =
+      P != 1 && write_fields && parameters.output.format != OutputFormat::hdf5;
+    if (scaled_fields)
+      cycle_report->report_scaled(
+        "VTU fields",
+        "32-bit floats cannot hold them; multiply displacement, stresses, "
+        "smoothed stresses, contact_pressure, tangential_traction, gap and "
+        "slip by load_scale, contact_error_density by its square");
     if (contact_solver)
       {
-        // The physical values of a scaled problem: stresses and lengths of
-        // the deformation times P, the contact term's density (MPa mm)
-        // times P^2 where representable.
-        std::vector<ContactNodeState> states  = contact_solver->node_states();
-        std::vector<double>           density = error_estimate ?
-                                                  error_estimate->contact.nodal_density :
-                                                  std::vector<double>();
+        const std::vector<ContactNodeState> &scaled_states =
+          contact_solver->node_states();
+        const std::vector<double> scaled_density =
+          error_estimate ? error_estimate->contact.nodal_density :
+                           std::vector<double>();
+        std::vector<ContactNodeState> states  = scaled_states;
+        std::vector<double>           density = scaled_density;
         if (P != 1)
           {
             for (ContactNodeState &s : states)
@@ -380,7 +393,12 @@ namespace coulomb_adapt
             for (double &d : density)
               d = cycle_report->physical(d, 2, "contact_error_density");
           }
-        contact_output->write(states, density, cycle, write_fields);
+        contact_output->write(states,
+                              density,
+                              cycle,
+                              write_fields,
+                              scaled_fields ? &scaled_states : nullptr,
+                              scaled_fields ? &scaled_density : nullptr);
       }
     if (!write_fields)
       return;

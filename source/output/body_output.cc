@@ -30,11 +30,12 @@ namespace coulomb_adapt
     const Triangulation<2> &tria = body.triangulation();
     const MPI_Comm          comm = tria.get_communicator();
 
-    // The physical fields of a scaled problem: copies times P (the owned
-    // entries scaled, then the ghosts imported).
+    // The physical fields of a scaled problem, in HDF5's doubles: copies
+    // times P (the owned entries scaled, then the ghosts imported).
+    const bool scale = load_scale != 1 && format == OutputFormat::hdf5;
     TrilinosWrappers::MPI::Vector              scaled_solution;
     std::array<RecoveredStress::VectorType, 3> scaled_recovered;
-    if (load_scale != 1)
+    if (scale)
       {
         TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(), comm);
         owned = body.solution();
@@ -51,7 +52,7 @@ namespace coulomb_adapt
             }
       }
     const TrilinosWrappers::MPI::Vector &solution =
-      load_scale != 1 ? scaled_solution : body.solution();
+      scale ? scaled_solution : body.solution();
 
     DataOut<2> data_out;
     data_out.attach_dof_handler(body.dof_handler());
@@ -82,9 +83,8 @@ namespace coulomb_adapt
           {"smoothed_stress_xx", "smoothed_stress_yy", "smoothed_stress_xy"}};
         for (unsigned int c = 0; c < 3; ++c)
           data_out.add_data_vector(error_fields.recovered->dof_handler(),
-                                   load_scale != 1 ?
-                                     scaled_recovered[c] :
-                                     error_fields.recovered->component(c),
+                                   scale ? scaled_recovered[c] :
+                                           error_fields.recovered->component(c),
                                    names[c]);
       }
     data_out.add_data_vector(material_id, "material_id");

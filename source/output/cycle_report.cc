@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <iomanip>
+#include <sstream>
 
 namespace coulomb_adapt
 {
@@ -65,18 +66,26 @@ namespace coulomb_adapt
     double value = scaled;
     if (load_scale == 1 || units::to_physical(scaled, load_scale, power, value))
       return value;
-    if (scaled_keys.insert(key).second)
-      {
-        pcout << "  units: " << key << " = " << std::setprecision(6) << scaled
-              << " of the scaled problem is reported as it is: times "
-                 "load_scale^"
-              << power << " (load_scale = " << load_scale
-              << ") it is not a finite normal double" << std::endl;
-        summary.set("reported_scaled",
-                    std::vector<std::string>(scaled_keys.begin(),
-                                             scaled_keys.end()));
-      }
+    std::ostringstream reason;
+    reason << std::setprecision(6) << "times load_scale^" << power
+           << " (load_scale = " << load_scale << ") " << key << " = " << scaled
+           << " of the scaled problem is no finite double";
+    report_scaled(key, reason.str());
     return scaled;
+  }
+
+
+
+  void
+  CycleReport::report_scaled(const std::string &key, const std::string &reason)
+  {
+    if (!scaled_keys.insert(key).second)
+      return;
+    pcout << "  units: " << key << " reported in the scaled form: " << reason
+          << std::endl;
+    summary.set("reported_scaled",
+                std::vector<std::string>(scaled_keys.begin(),
+                                         scaled_keys.end()));
   }
 
 

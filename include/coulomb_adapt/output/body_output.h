@@ -38,8 +38,11 @@ namespace coulomb_adapt
                const OutputFormat format);
 
     /** With a @p load_scale P other than 1 (core/units.h), the body's
-     * solution is that of the scaled problem: the displacement, the
-     * stresses and the smoothed stresses are written multiplied by P. */
+     * solution is that of the scaled problem: with format "hdf5" (doubles)
+     * the displacement, the stresses and the smoothed stresses are written
+     * multiplied by P. VTU files hold 32-bit floats (1e-38 ... 3e38),
+     * which cannot hold the stresses of a scaled problem (beyond 1e+-100
+     * MPa): they get the scaled fields. */
     void
     write(const ElasticBody     &body,
           const unsigned int     cycle,

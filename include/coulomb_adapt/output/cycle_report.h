@@ -66,6 +66,11 @@ namespace coulomb_adapt
     double
     physical(const double scaled, const int power, const std::string &key);
 
+    /** Record that @p key is reported in the scaled form (once: a log
+     * line with @p reason, and the key under "reported_scaled"). */
+    void
+    report_scaled(const std::string &key, const std::string &reason);
+
     /** Start the record and the clock of cycle @p cycle. */
     void
     begin_cycle(const unsigned int cycle);
