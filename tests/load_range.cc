@@ -1,18 +1,30 @@
 // Loads at the ends of the range of doubles (issue 21):
-//  - inside the accepted range (stresses 1e-120 ... 1e120 MPa) the static
-//    problem with zero initial gap is positively homogeneous (theory.md
-//    section 6): blocks with pressures 1e-110 and 1e110 give the epsilon
-//    of pressure 1 to 1e-12 (before: 1e152 gave 100 % with exit 0);
-//  - outside it the run stops after the solve with a NonFiniteResult on
-//    every rank, naming the body, its stress scale and over- or
-//    underflow (before: 1e200 gave epsilon = nan, 1e-300 epsilon = 0 and
-//    "target reached", both with exit 0);
-//  - summary.json holds no NaN (written as null) in either case.
+//  - blocks with pressures 1e-110 and 1e110 give the epsilon of pressure
+//    1 to 1e-12 (the first cases of the test, kept; before the accepted
+//    range 1e152 gave 100 % with exit 0);
+//  - within stresses of 1e-100 ... 1e100 MPa the problem is solved as
+//    given (summary.json has no load_scale for pressure 1); beyond, the
+//    static problem with zero initial gap is positively
+//    homogeneous (theory.md section 6), so it is solved with the loads
+//    divided by a power of 2 (core/units.h): pressures 1e-300 ... 1e300
+//    give the epsilon, every epsilon_E, the DoFs and the contact sets of
+//    each cycle of pressure 1 to 1e-12, and the contact force scales with
+//    the pressure (before: 1e200 gave epsilon = nan, 1e-300 epsilon = 0
+//    and "target reached", both with exit 0; then a NonFiniteResult after
+//    the solve); energies that are no doubles (1e600) are reported scaled
+//    and listed in summary.json, which holds no null;
+//  - moduli times 1e100 and 1e-100 with the loads alike give the same;
+//  - manufactured (no contact) with amplitudes 1e-300 and 1e200: the
+//    epsilon, epsilon_E, DoFs and relative exact error of amplitude 1;
+//  - with an initial gap (hertz) the problem is not homogeneous: line
+//    loads 1e200 and 1e-200 stop before the solve, on every rank, with a
+//    message naming the scene's load entry and the gap.
 
 #include <deal.II/base/mpi.h>
 
 #include <coulomb_adapt/app/finiteness.h>
 #include <coulomb_adapt/app/two_body_problem.h>
+#include <coulomb_adapt/core/parameter_error.h>
 
 #include "test_utilities.h"
 
@@ -46,40 +58,105 @@ namespace
     double      epsilon = -1;
     std::string error;
     bool        summary_has_null = false;
+    /** epsilon_E^2 = e_E^2 / D^2 of the last cycle's locally owned cells,
+     * both bodies. */
+    std::vector<double> element_epsilon_squared;
+    /** Per cycle: DoFs, active, stick and slip nodes. */
+    std::vector<std::array<unsigned int, 4>> cycles;
+    /** The last cycle's contact force (y, N/mm) as reported. */
+    double         contact_force = 0;
+    nlohmann::json summary;
+    std::string    log;
   };
 
   Result
-  run_blocks(const std::string &pressure)
+  run(const std::vector<std::pair<std::string, std::string>> &settings,
+      const std::string                                      &directory)
   {
     ParameterHandler prm;
-    const Parameters parameters =
-      testing::make_parameters(prm,
-                               {{"Scene/Name", "blocks"},
-                                {"Scene/Blocks/Pressure", pressure},
-                                {"Adaptation/Strategy", "refine"},
-                                {"Adaptation/Target error", "1"},
-                                {"Adaptation/Number of cycles", "2"},
-                                {"Output/Write VTU", "false"},
-                                {"Output/Output directory",
-                                 "output-" + pressure}});
+    auto             all = settings;
+    all.insert(all.end(),
+               {{"Adaptation/Strategy", "refine"},
+                {"Adaptation/Target error", "1"},
+                {"Adaptation/Number of cycles", "2"},
+                {"Output/Write VTU", "false"},
+                {"Output/Output directory", directory}});
+    const Parameters parameters = testing::make_parameters(prm, all);
     prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
     std::ostringstream log;
-    TwoBodyProblem     problem(MPI_COMM_WORLD, parameters, prm, "test", log);
     Result             result;
     try
       {
+        TwoBodyProblem problem(MPI_COMM_WORLD, parameters, prm, "test", log);
         problem.run();
-        result.epsilon = problem.last_error_estimate().epsilon;
+        const ErrorEstimate &e = problem.last_error_estimate();
+        result.epsilon         = e.epsilon;
+        for (unsigned int b = 0; b < 2; ++b)
+          for (const auto &cell :
+               problem.body(b).triangulation().active_cell_iterators())
+            if (cell->is_locally_owned())
+              result.element_epsilon_squared.push_back(
+                e.contribution_squared[b][cell->active_cell_index()] /
+                e.normalisation_squared);
       }
     catch (const NonFiniteResult &e)
       {
         result.error = e.what();
       }
+    catch (const ParameterError &e)
+      {
+        result.error = e.what();
+      }
+    result.log = log.str();
     MPI_Barrier(MPI_COMM_WORLD);
-    nlohmann::json summary;
-    std::ifstream(parameters.output.directory + "/summary.json") >> summary;
-    result.summary_has_null = has_null(summary);
+    std::ifstream summary(parameters.output.directory + "/summary.json");
+    if (summary)
+      {
+        summary >> result.summary;
+        result.summary_has_null = has_null(result.summary);
+        for (const auto &c : result.summary["cycles"])
+          {
+            result.cycles.push_back({{c["n_dofs"].get<unsigned int>(),
+                                      c.value("active_nodes", 0u),
+                                      c.value("stick_nodes", 0u),
+                                      c.value("slip_nodes", 0u)}});
+            if (c.contains("contact_force"))
+              result.contact_force = c["contact_force"][1].get<double>();
+          }
+      }
     return result;
+  }
+
+  Result
+  run_blocks(const std::string &pressure)
+  {
+    return run({{"Scene/Name", "blocks"}, {"Scene/Blocks/Pressure", pressure}},
+               "output-" + pressure);
+  }
+
+  // Whether @p r has the epsilon, every epsilon_E and the DoFs and contact
+  // sets of every cycle of @p reference, to @p tolerance, on every rank.
+  bool
+  same_solution(const Result &r,
+                const Result &reference,
+                const double  tolerance)
+  {
+    bool same =
+      r.error.empty() && r.cycles == reference.cycles &&
+      r.element_epsilon_squared.size() ==
+        reference.element_epsilon_squared.size() &&
+      std::abs(r.epsilon - reference.epsilon) <= tolerance * reference.epsilon;
+    if (same)
+      {
+        double largest = 0;
+        for (const double x : reference.element_epsilon_squared)
+          largest = std::max(largest, x);
+        for (unsigned int i = 0; i < r.element_epsilon_squared.size(); ++i)
+          same = same && std::abs(r.element_epsilon_squared[i] -
+                                  reference.element_epsilon_squared[i]) <=
+                           tolerance * largest;
+      }
+    return Utilities::MPI::min(same ? 1u : 0u, MPI_COMM_WORLD) == 1;
   }
 } // namespace
 
@@ -97,6 +174,8 @@ main(int argc, char **argv)
   AssertThrow(reference.epsilon > 0.01 && reference.error.empty(),
               ExcMessage("the reference run failed"));
   AssertThrow(!reference.summary_has_null, ExcMessage("null in summary"));
+  AssertThrow(!reference.summary.contains("load_scale"),
+              ExcMessage("ordinary loads scaled"));
 
   for (const std::string pressure : {"1e-110", "1e110"})
     {
@@ -114,28 +193,137 @@ main(int argc, char **argv)
       AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
     }
 
-  for (const auto &[pressure, kind] :
-       std::vector<std::pair<std::string, std::string>>{{"1e-300", "underflow"},
-                                                        {"1e-130", "underflow"},
-                                                        {"1e130", "overflow"},
-                                                        {"1e200", "overflow"}})
+  // Beyond the comfortable range: scaled by a power of 2.
+  for (const std::string pressure :
+       {"1e-300", "1e-200", "1e-130", "1e130", "1e200", "1e300"})
     {
-      const Result r = run_blocks(pressure);
-      // Every rank must have stopped the same way.
+      const Result r     = run_blocks(pressure);
+      const bool   same  = same_solution(r, reference, 1e-12);
+      const double scale = r.summary.value("load_scale", 0.);
+      // The reported force is the physical one: pressure times that of
+      // pressure 1.
+      const double force_ratio =
+        r.contact_force / std::stod(pressure) / reference.contact_force;
+      const bool same_force      = std::abs(force_ratio - 1) <= 1e-12;
+      const bool energies_scaled = r.summary.contains("reported_scaled") &&
+                                   r.summary["reported_scaled"].dump().find(
+                                     "strain_energy") != std::string::npos;
+      out << "pressure " << pressure << ": load scale 2^"
+          << (scale > 0 ? std::ilogb(scale) : 0) << ", epsilon = " << std::fixed
+          << std::setprecision(6) << 100 * r.epsilon << " %"
+          << std::defaultfloat
+          << ", epsilon, epsilon_E, DoFs and contact sets of each cycle as "
+             "pressure 1 to 1e-12: "
+          << (same ? "yes" : "no")
+          << ", contact force / pressure as pressure 1 to 1e-12: "
+          << (same_force ? "yes" : "no")
+          << ", energies reported scaled: " << (energies_scaled ? "yes" : "no")
+          << ", summary.json without null: "
+          << (r.summary_has_null ? "no" : "yes") << std::endl;
+      AssertThrow(r.error.empty(), ExcMessage(r.error));
+      AssertThrow(same && same_force, ExcMessage("not homogeneous"));
+      AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
+      AssertThrow(r.log.empty() ||
+                    r.log.find("solved with the loads divided by the load "
+                               "scale") != std::string::npos,
+                  ExcMessage("the log does not say the loads were scaled"));
+    }
+
+  // Moduli times 1e+-100 with the loads alike: the same strains.
+  for (const std::string factor : {"1e-100", "1e100"})
+    {
+      std::ostringstream E;
+      E << 130000. * std::stod(factor);
+      const Result r     = run({{"Scene/Name", "blocks"},
+                                {"Scene/Blocks/Pressure", factor},
+                                {"Scene/Blocks/Body 1/Young's modulus", E.str()},
+                                {"Scene/Blocks/Body 2/Young's modulus", E.str()}},
+                           "output-moduli-" + factor);
+      const bool   same  = same_solution(r, reference, 1e-12);
+      const double scale = r.summary.value("load_scale", 1.);
+      out << "moduli and pressure times " << factor << ": load scale 2^"
+          << std::ilogb(scale) << ", epsilon = " << std::fixed
+          << std::setprecision(6) << 100 * r.epsilon << " %"
+          << std::defaultfloat
+          << ", epsilon, epsilon_E, DoFs and contact sets of each cycle as "
+             "pressure 1 to 1e-12: "
+          << (same ? "yes" : "no") << ", summary.json without null: "
+          << (r.summary_has_null ? "no" : "yes") << std::endl;
+      AssertThrow(r.error.empty(), ExcMessage(r.error));
+      AssertThrow(same, ExcMessage("moduli: not the same solution"));
+      AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
+    }
+
+  // Without contact: the manufactured solution's body force, tractions
+  // and exact displacement scale together (before: amplitude 1e200 gave
+  // epsilon = nan and a CSV of -nan).
+  const auto run_manufactured = [&](const std::string &amplitude) {
+    return run({{"Scene/Name", "manufactured"},
+                {"Scene/Manufactured/Amplitude", amplitude}},
+               "output-manufactured-" + amplitude);
+  };
+  const Result manufactured = run_manufactured("1");
+  out << "manufactured, amplitude 1: epsilon = " << std::fixed
+      << std::setprecision(6) << 100 * manufactured.epsilon << " %"
+      << std::defaultfloat << std::endl;
+  AssertThrow(manufactured.error.empty(), ExcMessage(manufactured.error));
+  for (const std::string amplitude : {"1e-300", "1e200"})
+    {
+      const Result r     = run_manufactured(amplitude);
+      const bool   same  = same_solution(r, manufactured, 1e-12);
+      const double scale = r.summary.value("load_scale", 1.);
+      // The exact error relative to the exact solution's energy norm.
+      const auto relative_exact_error = [](const Result &x) {
+        return x.summary["cycles"]
+          .back()["bodies"][0]["exact_error"]["relative_energy"]
+          .get<double>();
+      };
+      const bool same_exact_error =
+        std::abs(relative_exact_error(r) / relative_exact_error(manufactured) -
+                 1) <= 1e-12;
+      out << "manufactured, amplitude " << amplitude << ": load scale 2^"
+          << std::ilogb(scale) << ", epsilon = " << std::fixed
+          << std::setprecision(6) << 100 * r.epsilon << " %"
+          << std::defaultfloat
+          << ", epsilon, epsilon_E and DoFs of each cycle as amplitude 1 to "
+             "1e-12: "
+          << (same ? "yes" : "no")
+          << ", relative exact error as amplitude 1 to 1e-12: "
+          << (same_exact_error ? "yes" : "no")
+          << ", summary.json without null: "
+          << (r.summary_has_null ? "no" : "yes") << std::endl;
+      AssertThrow(r.error.empty(), ExcMessage(r.error));
+      AssertThrow(same && same_exact_error, ExcMessage("not homogeneous"));
+      AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
+    }
+
+  // Not homogeneous: Hertz's curved surfaces have an initial gap.
+  for (const std::string load : {"1e-200", "1e200"})
+    {
+      const Result       r = run({{"Scene/Name", "hertz"},
+                                  {"Scene/Hertz/Line load", load},
+                                  {"Scene/Hertz/Contact mesh size", "0"},
+                                  {"Scene/Hertz/Hold axis", "false"},
+                                  {"Mesh/Global refinements", "2"}},
+                           "output-hertz-" + load);
       const unsigned int n_stopped =
         Utilities::MPI::sum(r.error.empty() ? 0u : 1u, MPI_COMM_WORLD);
       const bool names_it =
-        r.error.find("the stresses of body 1 (upper block) are of the "
-                     "order of") != std::string::npos &&
-        r.error.find(kind) != std::string::npos;
-      out << "pressure " << pressure << ": stopped on " << n_stopped << "/"
+        r.error.find("scene 'hertz', 'Scene/Hertz/Line load'") !=
+          std::string::npos &&
+        r.error.find("initial gap") != std::string::npos &&
+        r.error.find("not linear in the loads") != std::string::npos;
+      // Nothing solved: the log has no contact solve, no cycle recorded.
+      const bool before_solving =
+        r.log.find("Newton") == std::string::npos && r.cycles.empty();
+      out << "hertz, line load " << load << ": stopped on " << n_stopped << "/"
           << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
-          << " ranks, message names body 1 and " << kind << ": "
-          << (names_it ? "yes" : "no") << ", summary.json without null: "
-          << (r.summary_has_null ? "no" : "yes") << std::endl;
+          << " ranks before solving: " << (before_solving ? "yes" : "no")
+          << ", message names the entry and the gap: "
+          << (names_it ? "yes" : "no") << std::endl;
       AssertThrow(n_stopped == Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
                   ExcMessage("not stopped on every rank"));
-      AssertThrow(names_it, ExcMessage("message: " + r.error));
-      AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
+      AssertThrow(names_it && before_solving,
+                  ExcMessage("message: " + r.error));
     }
 }

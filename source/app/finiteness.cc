@@ -16,9 +16,10 @@ namespace coulomb_adapt
     // the same epsilon.
     const std::string units_hint =
       "Give loads and moduli in units that keep stresses well inside "
-      "1e-120 ... 1e120 (e.g. N, mm, MPa): with zero initial gap the "
-      "problem is linear in the loads (theory.md section 6, Homogeneity), "
-      "so scaling them all leaves epsilon unchanged.";
+      "1e-120 ... 1e120 (e.g. N, mm, MPa) relative to the moduli: loads "
+      "beyond 1e-100 ... 1e100 MPa are scaled automatically when the "
+      "initial gap is zero (theory.md section 6, Homogeneity), but the "
+      "ratio of stresses to moduli (the strains) is not.";
 
     std::string
     to_string(const double x)

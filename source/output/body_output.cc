@@ -24,21 +24,46 @@ namespace coulomb_adapt
   void
   BodyOutput::write(const ElasticBody     &body,
                     const unsigned int     cycle,
-                    const BodyErrorFields &error_fields)
+                    const BodyErrorFields &error_fields,
+                    const double           load_scale)
   {
     const Triangulation<2> &tria = body.triangulation();
     const MPI_Comm          comm = tria.get_communicator();
 
+    // The physical fields of a scaled problem, in HDF5's doubles: copies
+    // times P (the owned entries scaled, then the ghosts imported).
+    const bool scale = load_scale != 1 && format == OutputFormat::hdf5;
+    TrilinosWrappers::MPI::Vector              scaled_solution;
+    std::array<RecoveredStress::VectorType, 3> scaled_recovered;
+    if (scale)
+      {
+        TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(), comm);
+        owned = body.solution();
+        owned *= load_scale;
+        scaled_solution.reinit(body.locally_owned_dof_set(),
+                               body.locally_relevant_dof_set(),
+                               comm);
+        scaled_solution = owned;
+        if (error_fields.recovered)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              scaled_recovered[c] = error_fields.recovered->component(c);
+              scaled_recovered[c] *= load_scale;
+            }
+      }
+    const TrilinosWrappers::MPI::Vector &solution =
+      scale ? scaled_solution : body.solution();
+
     DataOut<2> data_out;
     data_out.attach_dof_handler(body.dof_handler());
     data_out.add_data_vector(
-      body.solution(),
+      solution,
       std::vector<std::string>(2, "displacement"),
       DataOut<2>::type_dof_data,
       std::vector<DataComponentInterpretation::DataComponentInterpretation>(
         2, DataComponentInterpretation::component_is_part_of_vector));
     const StressPostprocessor stresses(body.material());
-    data_out.add_data_vector(body.solution(), stresses);
+    data_out.add_data_vector(solution, stresses);
 
     Vector<float> material_id(tria.n_active_cells());
     Vector<float> subdomain(tria.n_active_cells());
@@ -58,7 +83,8 @@ namespace coulomb_adapt
           {"smoothed_stress_xx", "smoothed_stress_yy", "smoothed_stress_xy"}};
         for (unsigned int c = 0; c < 3; ++c)
           data_out.add_data_vector(error_fields.recovered->dof_handler(),
-                                   error_fields.recovered->component(c),
+                                   scale ? scaled_recovered[c] :
+                                           error_fields.recovered->component(c),
                                    names[c]);
       }
     data_out.add_data_vector(material_id, "material_id");

@@ -21,13 +21,19 @@ namespace coulomb_adapt
 
 
   void
-  ContactOutput::write(const std::vector<ContactNodeState> &states,
-                       const std::vector<double> &contact_error_density,
-                       const unsigned int         cycle,
-                       const bool                 write_fields)
+  ContactOutput::write(const std::vector<ContactNodeState> &csv_states,
+                       const std::vector<double>           &csv_density,
+                       const unsigned int                   cycle,
+                       const bool                           write_fields,
+                       const std::vector<ContactNodeState> *field_states,
+                       const std::vector<double>           *field_density)
   {
+    const std::vector<ContactNodeState> &states =
+      field_states != nullptr ? *field_states : csv_states;
+    const std::vector<double> &contact_error_density =
+      field_density != nullptr ? *field_density : csv_density;
     // Every rank holds all slave nodes; rank 0 writes (write_file).
-    const bool        with_density = !contact_error_density.empty();
+    const bool        with_density = !csv_density.empty();
     const std::string stem = "contact_" + Utilities::int_to_string(cycle, 3);
     const std::string base = directory + "/" + stem;
 
@@ -36,15 +42,15 @@ namespace coulomb_adapt
              "tangential_traction,gap,slip,status,facing_master"
           << (with_density ? ",contact_error_density\n" : "\n");
       csv << std::setprecision(12);
-      for (unsigned int j = 0; j < states.size(); ++j)
+      for (unsigned int j = 0; j < csv_states.size(); ++j)
         {
-          const ContactNodeState &s = states[j];
+          const ContactNodeState &s = csv_states[j];
           csv << s.position[0] << ',' << s.position[1] << ',' << s.normal[0]
               << ',' << s.normal[1] << ',' << s.weight << ',' << s.pressure
               << ',' << s.tangential_traction << ',' << s.gap << ',' << s.slip
               << ',' << to_string(s.status) << ',' << (s.facing_master ? 1 : 0);
           if (with_density)
-            csv << ',' << contact_error_density[j];
+            csv << ',' << csv_density[j];
           csv << '\n';
         }
     });

@@ -1,10 +1,12 @@
 #include <deal.II/base/utilities.h>
 
 #include <coulomb_adapt/adaptation/optimal_size.h>
+#include <coulomb_adapt/core/units.h>
 #include <coulomb_adapt/output/cycle_report.h>
 
 #include <cmath>
 #include <iomanip>
+#include <sstream>
 
 namespace coulomb_adapt
 {
@@ -42,6 +44,48 @@ namespace coulomb_adapt
                              const nlohmann::json &value)
   {
     summary.set(key, value);
+  }
+
+
+
+  void
+  CycleReport::set_load_scale(const double load_scale)
+  {
+    this->load_scale = load_scale;
+    summary.set("load_scale", load_scale);
+  }
+
+
+
+  // With P = 1 (ordinary loads) every number is reported as it is.
+  double
+  CycleReport::physical(const double       scaled,
+                        const int          power,
+                        const std::string &key)
+  {
+    double value = scaled;
+    if (load_scale == 1 || units::to_physical(scaled, load_scale, power, value))
+      return value;
+    std::ostringstream reason;
+    reason << std::setprecision(6) << "times load_scale^" << power
+           << " (load_scale = " << load_scale << ") " << key << " = " << scaled
+           << " of the scaled problem is no finite double";
+    report_scaled(key, reason.str());
+    return scaled;
+  }
+
+
+
+  void
+  CycleReport::report_scaled(const std::string &key, const std::string &reason)
+  {
+    if (!scaled_keys.insert(key).second)
+      return;
+    pcout << "  units: " << key << " reported in the scaled form: " << reason
+          << std::endl;
+    summary.set("reported_scaled",
+                std::vector<std::string>(scaled_keys.begin(),
+                                         scaled_keys.end()));
   }
 
 
@@ -193,11 +237,15 @@ namespace coulomb_adapt
     record["linear_solver"]     = {
           {{"method", outcome.linear_solver.method},
            {"iterations", outcome.linear_solver.n_iterations}}};
+    const double force[2] = {
+      physical(report.contact_force[0], 1, "contact_force"),
+      physical(report.contact_force[1], 1, "contact_force")};
+    const double max_pressure =
+      physical(report.max_contact_pressure, 1, "max_contact_pressure");
     pcout << "  contact: " << report.newton_iterations << " Newton steps, "
           << report.n_active << " active nodes, "
-          << "contact force (" << report.contact_force[0] << ", "
-          << report.contact_force[1] << ") N/mm, max pressure "
-          << report.max_contact_pressure << " MPa" << std::endl;
+          << "contact force (" << force[0] << ", " << force[1]
+          << ") N/mm, max pressure " << max_pressure << " MPa" << std::endl;
     record["newton_iterations"] = report.newton_iterations;
     if (outcome.newton_iterations_of_stopped_starts > 0)
       record["newton_iterations_of_stopped_starts"] =
@@ -206,9 +254,8 @@ namespace coulomb_adapt
     record["active_nodes"]         = report.n_active;
     record["stick_nodes"]          = report.n_stick;
     record["slip_nodes"]           = report.n_slip;
-    record["contact_force"]        = {report.contact_force[0],
-                                      report.contact_force[1]};
-    record["max_contact_pressure"] = report.max_contact_pressure;
+    record["contact_force"]        = {force[0], force[1]};
+    record["max_contact_pressure"] = max_pressure;
     record["frictionless"]         = report.frictionless;
     if (report.slave_rotation_free)
       record["body_1_rotation_free"] = true;
@@ -249,14 +296,16 @@ namespace coulomb_adapt
                "relative change "
             << std::scientific << std::setprecision(3) << c.relative_change
             << std::defaultfloat << "; corrected problem solved";
+    const double max_penetration =
+      physical(c.max_penetration, 1, "max_penetration_clipped");
     if (c.max_penetration > 0)
-      pcout << "; penetration up to " << std::setprecision(3)
-            << c.max_penetration << " mm clipped";
+      pcout << "; penetration up to " << std::setprecision(3) << max_penetration
+            << " mm clipped";
     pcout << std::endl;
     record["correction"] = {{"skipped", c.skipped},
                             {"relative_change", c.relative_change},
                             {"projected_nodes", c.n_projected_nodes},
-                            {"max_penetration_clipped", c.max_penetration}};
+                            {"max_penetration_clipped", max_penetration}};
   }
 
 
@@ -315,13 +364,14 @@ namespace coulomb_adapt
                         e.epsilon_before_optimisation}};
     if (compared.empty())
       return;
-    auto record_of = [](const ErrorEstimate &estimate) {
+    auto record_of = [this](const ErrorEstimate &estimate) {
       return nlohmann::json{
         {"epsilon", estimate.epsilon},
         {"epsilon_volume",
          {estimate.epsilon_volume[0], estimate.epsilon_volume[1]}},
         {"epsilon_contact", estimate.epsilon_contact},
-        {"normalisation_squared", estimate.normalisation_squared},
+        {"normalisation_squared",
+         physical(estimate.normalisation_squared, 2, "normalisation_squared")},
         {"wall_time_s", estimate.wall_time}};
     };
     nlohmann::json estimators;
@@ -388,18 +438,24 @@ namespace coulomb_adapt
     const double                   reference_energy,
     const double                   epsilon_energy)
   {
+    const double strain_energy = physical(energy, 2, "strain_energy");
+    const double reference_strain_energy[2] = {
+      physical(reference.strain_energy(0), 2, "reference_strain_energy"),
+      physical(reference.strain_energy(1), 2, "reference_strain_energy")};
     pcout << "  exact error: reference's own error " << std::fixed
           << std::setprecision(3) << 100 * reference.own_error()
           << " % (from the energies " << 100 * reference.own_error_from_energy()
           << " %); energy check: epsilon_energy = " << 100 * epsilon_energy
-          << " % (strain energy " << std::scientific << energy << ", reference "
-          << reference_energy << ")" << std::defaultfloat << std::endl;
+          << " % (strain energy " << std::scientific << strain_energy
+          << ", reference "
+          << physical(reference_energy, 2, "reference_strain_energy") << ")"
+          << std::defaultfloat << std::endl;
     record["exact_error_reference_error"] = reference.own_error();
     record["exact_error_reference_error_energy"] =
       reference.own_error_from_energy();
     record["exact_error_reference_dofs"] = reference.n_dofs();
-    record["reference_strain_energy"]    = {reference.strain_energy(0),
-                                            reference.strain_energy(1)};
+    record["reference_strain_energy"]    = {reference_strain_energy[0],
+                                            reference_strain_energy[1]};
     record["epsilon_energy"]             = epsilon_energy;
   }
 
@@ -410,12 +466,14 @@ namespace coulomb_adapt
                                  const ElasticBody      &body,
                                  const ElasticityErrors &e)
   {
+    const double l2     = physical(e.l2, 1, "exact_error.l2");
+    const double energy = physical(e.energy, 1, "exact_error.energy");
     pcout << "  " << body.name() << ": error against the exact solution: L2 "
-          << std::scientific << std::setprecision(3) << e.l2 << " mm, energy "
-          << e.energy << " (relative " << e.energy / e.energy_of_exact << ")"
+          << std::scientific << std::setprecision(3) << l2 << " mm, energy "
+          << energy << " (relative " << e.energy / e.energy_of_exact << ")"
           << std::defaultfloat << std::endl;
-    body_records[b]["exact_error"] = {{"l2", e.l2},
-                                      {"energy", e.energy},
+    body_records[b]["exact_error"] = {{"l2", l2},
+                                      {"energy", energy},
                                       {"relative_energy",
                                        e.energy / e.energy_of_exact}};
   }
@@ -425,7 +483,7 @@ namespace coulomb_adapt
   void
   CycleReport::record_strain_energy(const unsigned int b, const double energy)
   {
-    body_records[b]["strain_energy"] = energy;
+    body_records[b]["strain_energy"] = physical(energy, 2, "strain_energy");
   }
 
 

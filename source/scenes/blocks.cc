@@ -64,6 +64,14 @@ namespace coulomb_adapt
 
 
 
+    std::vector<std::string>
+    Blocks::load_entries() const
+    {
+      return {"Scene/Blocks/Pressure"};
+    }
+
+
+
     std::string
     Blocks::name() const
     {

@@ -395,6 +395,18 @@ namespace coulomb_adapt
 
 
 
+    std::vector<std::string>
+    GmshFile::load_entries() const
+    {
+      return {"Scene/Gmsh/Fixed components",
+              "Scene/Gmsh/Tractions",
+              "Scene/Gmsh/Normal pressures",
+              "Scene/Gmsh/Traction",
+              "Scene/Gmsh/Body 1 and 2/Density, Gravity, Angular velocity"};
+    }
+
+
+
     std::string
     GmshFile::name() const
     {

@@ -236,6 +236,17 @@ namespace coulomb_adapt
 
 
 
+    std::vector<std::string>
+    Hertz::load_entries() const
+    {
+      if (cattaneo)
+        return {"Scene/Cattaneo/Normal displacement",
+                "Scene/Cattaneo/Tangential displacement"};
+      return {"Scene/Hertz/Line load"};
+    }
+
+
+
     std::string
     Hertz::name() const
     {

@@ -119,6 +119,14 @@ namespace coulomb_adapt
 
 
 
+    std::vector<std::string>
+    Manufactured::load_entries() const
+    {
+      return {"Scene/Manufactured/Amplitude"};
+    }
+
+
+
     std::string
     Manufactured::name() const
     {

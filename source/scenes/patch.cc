@@ -81,6 +81,14 @@ namespace coulomb_adapt
 
 
 
+    std::vector<std::string>
+    Patch::load_entries() const
+    {
+      return {"Scene/Patch/Pressure", "Scene/Patch/Shear traction"};
+    }
+
+
+
     std::string
     Patch::name() const
     {

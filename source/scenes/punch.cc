@@ -77,6 +77,14 @@ namespace coulomb_adapt
 
 
 
+    std::vector<std::string>
+    Punch::load_entries() const
+    {
+      return {"Scene/Punch/Pressure"};
+    }
+
+
+
     std::string
     Punch::name() const
     {

@@ -62,6 +62,14 @@ namespace coulomb_adapt
 
 
 
+  std::vector<std::string>
+  Scene::load_entries() const
+  {
+    return {"the load entries of scene '" + name() + "'"};
+  }
+
+
+
   unsigned int
   Scene::n_load_steps() const
   {

@@ -6,6 +6,7 @@
 
 #include <coulomb_adapt/adaptation/mesh_adaptation.h>
 #include <coulomb_adapt/adaptation/target_calibration.h>
+#include <coulomb_adapt/app/load_scaling.h>
 #include <coulomb_adapt/bodies/elastic_bodies.h>
 #include <coulomb_adapt/contact/contact_solve_driver.h>
 #include <coulomb_adapt/contact/contact_solver.h>
@@ -15,7 +16,7 @@
 #include <coulomb_adapt/output/body_output.h>
 #include <coulomb_adapt/output/contact_output.h>
 #include <coulomb_adapt/output/cycle_report.h>
-#include <coulomb_adapt/scenes/scene.h>
+#include <coulomb_adapt/scenes/scaled_scene.h>
 
 #include <array>
 #include <iostream>
@@ -70,6 +71,12 @@ namespace coulomb_adapt
      * directory (rank 0; the log says how many). */
     void
     remove_files_of_earlier_run() const;
+    /** The load scale of the run (core/units.h), on the first meshes
+     * (set up): P = 1 for ordinary loads; beyond, the loads divided by P
+     * if the problem is homogeneous in them (no initial gap), else a
+     * ParameterError before anything is solved. Logs its choice. */
+    void
+    choose_load_scale(const LoadStressScale &loads);
     void
     setup_system();
     void
@@ -108,7 +115,7 @@ namespace coulomb_adapt
     const Parameters                          &parameters;
     ConditionalOStream                         pcout;
     TimerOutput                                computing_timer;
-    std::unique_ptr<Scene>                     scene;
+    std::unique_ptr<ScaledScene>               scene;
     ElasticBodies                              bodies;
     std::array<std::unique_ptr<BodyOutput>, 2> body_outputs;
     /** The log lines and summary.json record of each cycle. */

@@ -37,10 +37,17 @@ namespace coulomb_adapt
                const std::string &base_name,
                const OutputFormat format);
 
+    /** With a @p load_scale P other than 1 (core/units.h), the body's
+     * solution is that of the scaled problem: with format "hdf5" (doubles)
+     * the displacement, the stresses and the smoothed stresses are written
+     * multiplied by P. VTU files hold 32-bit floats (1e-38 ... 3e38),
+     * which cannot hold the stresses of a scaled problem (beyond 1e+-100
+     * MPa): they get the scaled fields. */
     void
     write(const ElasticBody     &body,
           const unsigned int     cycle,
-          const BodyErrorFields &error_fields = BodyErrorFields());
+          const BodyErrorFields &error_fields = BodyErrorFields(),
+          const double           load_scale   = 1);
 
   private:
     const std::string                           directory;

@@ -30,12 +30,17 @@ namespace coulomb_adapt
 
     /** Write the CSV, and with @p write_fields the polyline and its index.
      * @p contact_error_density (one value per slave node, may be empty) is
-     * the density of the indicator's contact term. */
+     * the density of the indicator's contact term. The polyline gets
+     * @p field_states and @p field_density where given (a scaled
+     * problem's VTU: the CSV's doubles hold the physical values, VTU's
+     * 32-bit floats only the scaled ones). */
     void
     write(const std::vector<ContactNodeState> &states,
           const std::vector<double>           &contact_error_density,
           const unsigned int                   cycle,
-          const bool                           write_fields);
+          const bool                           write_fields,
+          const std::vector<ContactNodeState> *field_states  = nullptr,
+          const std::vector<double>           *field_density = nullptr);
 
   private:
     const std::string                           directory;

@@ -20,6 +20,7 @@
 
 #include <array>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,6 +50,26 @@ namespace coulomb_adapt
     /** A top-level entry of summary.json (not per cycle). */
     void
     set_run_entry(const std::string &key, const nlohmann::json &value);
+
+    /** The load scale P of the run (core/units.h), written to summary.json
+     * as "load_scale": from now on the numbers of the scaled problem
+     * handed in are reported multiplied by P (displacements, stresses,
+     * forces) or P^2 (energies), where that is a finite normal double;
+     * otherwise as given, their keys listed under "reported_scaled" and
+     * said so in the log. */
+    void
+    set_load_scale(const double load_scale);
+
+    /** @p scaled (of the scaled problem, proportional to the loads to the
+     * power @p power) as a physical value, or as given if that is not
+     * representable (then @p key is listed as reported scaled). */
+    double
+    physical(const double scaled, const int power, const std::string &key);
+
+    /** Record that @p key is reported in the scaled form (once: a log
+     * line with @p reason, and the key under "reported_scaled"). */
+    void
+    report_scaled(const std::string &key, const std::string &reason);
 
     /** Start the record and the clock of cycle @p cycle. */
     void
@@ -153,6 +174,9 @@ namespace coulomb_adapt
     types::global_dof_index       n_dofs_of_cycle = 0;
     /** One row per cycle, printed at the end. */
     TableHandler table;
+
+    double                load_scale = 1;
+    std::set<std::string> scaled_keys;
   };
 } // namespace coulomb_adapt
 

@@ -36,6 +36,9 @@ namespace coulomb_adapt
       std::string
       name() const override;
 
+      std::vector<std::string>
+      load_entries() const override;
+
       void
       create_coarse_mesh(const unsigned int body,
                          const CellType     cell_type,

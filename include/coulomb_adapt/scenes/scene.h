@@ -169,6 +169,12 @@ namespace coulomb_adapt
     virtual std::map<std::string, double>
     reference_values() const;
 
+    /** The parameter entries that give the scene's loads (full paths, e.g.
+     * "Scene/Blocks/Pressure"), for messages about their size. Default:
+     * the scene's subsection. */
+    virtual std::vector<std::string>
+    load_entries() const;
+
     /** Number of load steps of the scene's quasi-static load path; 1 (the
      * default) is the static problem. */
     virtual unsigned int

@@ -1,0 +1,188 @@
+#include <deal.II/lac/vector.h>
+
+#include <coulomb_adapt/scenes/scaled_scene.h>
+
+namespace coulomb_adapt
+{
+  namespace
+  {
+    // A function of the scene divided by the load scale, at every point
+    // and for every derivative the program asks for.
+    class ScaledFunction : public Function<2>
+    {
+    public:
+      ScaledFunction(std::shared_ptr<const Function<2>> function,
+                     std::shared_ptr<const double>      scale)
+        : Function<2>(function->n_components)
+        , function(std::move(function))
+        , scale(std::move(scale))
+      {}
+
+      double
+      value(const Point<2> &p, const unsigned int component) const override
+      {
+        return function->value(p, component) / *scale;
+      }
+
+      void
+      vector_value(const Point<2> &p, Vector<double> &values) const override
+      {
+        function->vector_value(p, values);
+        values /= *scale;
+      }
+
+      Tensor<1, 2>
+      gradient(const Point<2> &p, const unsigned int component) const override
+      {
+        return function->gradient(p, component) / *scale;
+      }
+
+      void
+      vector_gradient(const Point<2>            &p,
+                      std::vector<Tensor<1, 2>> &gradients) const override
+      {
+        function->vector_gradient(p, gradients);
+        for (auto &g : gradients)
+          g /= *scale;
+      }
+
+    private:
+      const std::shared_ptr<const Function<2>> function;
+      const std::shared_ptr<const double>      scale;
+    };
+  } // namespace
+
+
+
+  ScaledScene::ScaledScene(std::unique_ptr<Scene> scene)
+    : scene(std::move(scene))
+    , scale(std::make_shared<double>(1.))
+  {}
+
+
+
+  ScaledScene::ScaledScene(std::unique_ptr<Scene>  scene,
+                           std::shared_ptr<double> load_scale)
+    : scene(std::move(scene))
+    , scale(std::move(load_scale))
+  {}
+
+
+
+  void
+  ScaledScene::set_load_scale(const double load_scale)
+  {
+    *scale = load_scale;
+  }
+
+
+
+  double
+  ScaledScene::load_scale() const
+  {
+    return *scale;
+  }
+
+
+
+  std::string
+  ScaledScene::name() const
+  {
+    return scene->name();
+  }
+
+
+
+  void
+  ScaledScene::create_coarse_mesh(const unsigned int body,
+                                  const CellType     cell_type,
+                                  Triangulation<2>  &tria) const
+  {
+    scene->create_coarse_mesh(body, cell_type, tria);
+  }
+
+
+
+  void
+  ScaledScene::refine_initial_mesh(const unsigned int body,
+                                   Triangulation<2>  &tria) const
+  {
+    scene->refine_initial_mesh(body, tria);
+  }
+
+
+
+  BodyDescription
+  ScaledScene::describe_body(const unsigned int body) const
+  {
+    BodyDescription                     d = scene->describe_body(body);
+    const std::shared_ptr<const double> s = scale;
+    for (auto &t : d.tractions)
+      t.traction = [traction = t.traction, s](const Point<2>     &x,
+                                              const Tensor<1, 2> &n) {
+        return traction(x, n) / *s;
+      };
+    if (d.body_force)
+      d.body_force = [body_force = d.body_force, s](const Point<2> &x) {
+        return body_force(x) / *s;
+      };
+    for (auto &dirichlet : d.dirichlet)
+      dirichlet.displacement =
+        std::make_shared<ScaledFunction>(dirichlet.displacement, s);
+    if (d.exact_displacement)
+      d.exact_displacement =
+        std::make_shared<ScaledFunction>(d.exact_displacement, s);
+    return d;
+  }
+
+
+
+  std::string
+  ScaledScene::mesh_source() const
+  {
+    return scene->mesh_source();
+  }
+
+
+
+  std::map<std::string, double>
+  ScaledScene::reference_values() const
+  {
+    return scene->reference_values();
+  }
+
+
+
+  std::vector<std::string>
+  ScaledScene::load_entries() const
+  {
+    return scene->load_entries();
+  }
+
+
+
+  unsigned int
+  ScaledScene::n_load_steps() const
+  {
+    return scene->n_load_steps();
+  }
+
+
+
+  void
+  ScaledScene::set_load_step(const unsigned int step) const
+  {
+    scene->set_load_step(step);
+  }
+
+
+
+  std::unique_ptr<Scene>
+  ScaledScene::with_coarser_graded_meshes(const unsigned int k) const
+  {
+    std::unique_ptr<Scene> coarser = scene->with_coarser_graded_meshes(k);
+    if (!coarser)
+      return nullptr;
+    return std::unique_ptr<Scene>(new ScaledScene(std::move(coarser), scale));
+  }
+} // namespace coulomb_adapt
