@@ -8,7 +8,6 @@
 #include <gmsh.h>
 
 #include <algorithm>
-#include <tuple>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -567,87 +566,6 @@ namespace coulomb_adapt
 
 
 
-  GmshRemeshing::GmshRemeshing(
-    const Triangulation<2>                     &geometry,
-    const std::vector<SizeFieldTriangle>       &size_field,
-    const std::string                          &body_name,
-    const MPI_Comm                              comm,
-    const std::string                          &algorithm,
-    const std::vector<std::array<Point<2>, 2>> &interior_lines,
-    const std::vector<Point<2>>                &support_points)
-    : comm(comm)
-    , body_name(body_name)
-    , interior_lines(interior_lines)
-    , support_points(support_points)
-  {
-    // Only rank 0 meshes (gmsh is serial); the others wait in finish().
-    if (Utilities::MPI::this_mpi_process(comm) != 0)
-      return;
-    // gmsh's Mesh.Algorithm numbers.
-    const int algorithm_number = algorithm == "delaunay" ? 5 : 6;
-    // The thread touches no MPI, and of the caller's objects only the
-    // geometry and the size field, which the caller keeps alive until
-    // finish().
-    result = std::async(std::launch::async,
-                        [this, &geometry, &size_field, algorithm_number]() {
-      std::pair<std::vector<double>, std::string> packed_or_error;
-      auto &[data, error] = packed_or_error;
-      gmsh::initialize();
-      gmsh::option::setNumber("General.Terminal", 0);
-      gmsh::option::setNumber("General.Verbosity", 0);
-      try
-        {
-          data = pack(mesh_in_gmsh(geometry,
-                                   size_field,
-                                   this->body_name,
-                                   algorithm_number,
-                                   this->interior_lines,
-                                   this->support_points));
-        }
-      catch (const std::exception &e)
-        {
-          error = e.what();
-        }
-      catch (const std::string &thrown)
-        {
-          error = "gmsh: " + gmsh_error_message(thrown);
-        }
-      catch (...)
-        {
-          error = "gmsh: " + gmsh_error_message("");
-        }
-      gmsh::finalize();
-      return packed_or_error;
-    });
-  }
-
-
-
-  GmshRemeshing::~GmshRemeshing()
-  {
-    // Not finished (an exception on the way): gmsh must be done with the
-    // arguments before they go.
-    if (result.valid())
-      result.wait();
-  }
-
-
-
-  CoarseMeshData
-  GmshRemeshing::finish()
-  {
-    std::vector<double> data;
-    std::string         error;
-    if (result.valid())
-      std::tie(data, error) = result.get();
-    error = Utilities::MPI::broadcast(comm, error, 0);
-    AssertThrow(error.empty(),
-                ExcMessage("remeshing " + body_name + " failed: " + error));
-    return unpack(Utilities::MPI::broadcast(comm, data, 0));
-  }
-
-
-
   CoarseMeshData
   remesh_with_gmsh(const Triangulation<2>                     &geometry,
                    const std::vector<SizeFieldTriangle>       &size_field,
@@ -657,13 +575,42 @@ namespace coulomb_adapt
                    const std::vector<std::array<Point<2>, 2>> &interior_lines,
                    const std::vector<Point<2>>                &support_points)
   {
-    return GmshRemeshing(geometry,
-                         size_field,
-                         body_name,
-                         comm,
-                         algorithm,
-                         interior_lines,
-                         support_points)
-      .finish();
+    // gmsh's Mesh.Algorithm numbers.
+    const int algorithm_number = algorithm == "delaunay" ? 5 : 6;
+    // One rank meshes (gmsh is serial), every rank gets the mesh.
+    std::vector<double> data;
+    std::string         error;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        gmsh::initialize();
+        gmsh::option::setNumber("General.Terminal", 0);
+        gmsh::option::setNumber("General.Verbosity", 0);
+        try
+          {
+            data = pack(mesh_in_gmsh(geometry,
+                                     size_field,
+                                     body_name,
+                                     algorithm_number,
+                                     interior_lines,
+                                     support_points));
+          }
+        catch (const std::exception &e)
+          {
+            error = e.what();
+          }
+        catch (const std::string &thrown)
+          {
+            error = "gmsh: " + gmsh_error_message(thrown);
+          }
+        catch (...)
+          {
+            error = "gmsh: " + gmsh_error_message("");
+          }
+        gmsh::finalize();
+      }
+    error = Utilities::MPI::broadcast(comm, error, 0);
+    AssertThrow(error.empty(),
+                ExcMessage("remeshing " + body_name + " failed: " + error));
+    return unpack(Utilities::MPI::broadcast(comm, data, 0));
   }
 } // namespace coulomb_adapt

@@ -11,9 +11,7 @@
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 
 #include <array>
-#include <future>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace coulomb_adapt
@@ -65,44 +63,6 @@ namespace coulomb_adapt
                    const std::string                          &algorithm,
                    const std::vector<std::array<Point<2>, 2>> &interior_lines,
                    const std::vector<Point<2>> &support_points = {});
-
-  /**
-   * remesh_with_gmsh in two halves, so that the caller can work while gmsh
-   * meshes: the constructor starts gmsh on rank 0 in a background thread
-   * (gmsh itself uses no MPI), finish() waits for it and gives every rank
-   * the mesh (collective: a broadcast). @p geometry and @p size_field must
-   * stay alive until finish() or the destructor, which waits too (the
-   * other arguments are copied). gmsh is one per
-   * process: only one GmshRemeshing may be running at a time.
-   */
-  class GmshRemeshing
-  {
-  public:
-    GmshRemeshing(const Triangulation<2>                     &geometry,
-                  const std::vector<SizeFieldTriangle>       &size_field,
-                  const std::string                          &body_name,
-                  const MPI_Comm                              comm,
-                  const std::string                          &algorithm,
-                  const std::vector<std::array<Point<2>, 2>> &interior_lines,
-                  const std::vector<Point<2>> &support_points = {});
-
-    GmshRemeshing(const GmshRemeshing &) = delete;
-    GmshRemeshing &
-    operator=(const GmshRemeshing &) = delete;
-
-    ~GmshRemeshing();
-
-    CoarseMeshData
-    finish();
-
-  private:
-    MPI_Comm                                   comm;
-    std::string                                body_name;
-    std::vector<std::array<Point<2>, 2>>       interior_lines;
-    std::vector<Point<2>>                      support_points;
-    /** Rank 0: the packed mesh, or the error that stopped gmsh. */
-    std::future<std::pair<std::vector<double>, std::string>> result;
-  };
 } // namespace coulomb_adapt
 
 #endif
