@@ -504,13 +504,6 @@ namespace coulomb_adapt
             break;
           }
       }
-    {
-      // The last cycle's fields are written in the background.
-      TimerOutput::Scope t(computing_timer, "output");
-      for (auto &body_output : body_outputs)
-        if (body_output)
-          body_output->finish_writing();
-    }
     cycle_report->print_table();
     computing_timer.print_summary();
     pcout << "(the 'error indicator: ...' sections are parts of 'error "

@@ -7,7 +7,6 @@
 #include <coulomb_adapt/output/stress_postprocessor.h>
 
 #include <array>
-#include <memory>
 #include <string>
 
 namespace coulomb_adapt
@@ -22,23 +21,6 @@ namespace coulomb_adapt
 
 
 
-  namespace
-  {
-    // A DataOut with the postprocessor it refers to: the patches are
-    // written after write() has returned.
-    struct Patches
-    {
-      explicit Patches(const ElasticMaterial &material)
-        : stresses(material)
-      {}
-
-      const StressPostprocessor stresses;
-      DataOut<2>                data_out;
-    };
-  } // namespace
-
-
-
   void
   BodyOutput::write(const ElasticBody     &body,
                     const unsigned int     cycle,
@@ -47,8 +29,7 @@ namespace coulomb_adapt
     const Triangulation<2> &tria = body.triangulation();
     const MPI_Comm          comm = tria.get_communicator();
 
-    const auto  patches  = std::make_shared<Patches>(body.material());
-    DataOut<2> &data_out = patches->data_out;
+    DataOut<2> data_out;
     data_out.attach_dof_handler(body.dof_handler());
     data_out.add_data_vector(
       body.solution(),
@@ -56,7 +37,8 @@ namespace coulomb_adapt
       DataOut<2>::type_dof_data,
       std::vector<DataComponentInterpretation::DataComponentInterpretation>(
         2, DataComponentInterpretation::component_is_part_of_vector));
-    data_out.add_data_vector(body.solution(), patches->stresses);
+    const StressPostprocessor stresses(body.material());
+    data_out.add_data_vector(body.solution(), stresses);
 
     Vector<float> material_id(tria.n_active_cells());
     Vector<float> subdomain(tria.n_active_cells());
@@ -85,10 +67,7 @@ namespace coulomb_adapt
     data_out.build_patches(body.mapping(),
                            body.dof_handler().get_fe().degree,
                            DataOut<2>::curved_inner_cells);
-    // From here on the patches alone: the vectors and the mesh may change.
-    data_out.clear_input_data_references();
 
-    finish_writing();
     if (format == OutputFormat::hdf5)
       {
         const std::string h5 =
@@ -109,26 +88,11 @@ namespace coulomb_adapt
     DataOutBase::VtkFlags vtk_flags;
     vtk_flags.compression_level = DataOutBase::VtkFlags::best_speed;
     data_out.set_flags(vtk_flags);
-    pending = std::make_unique<VtuWrite>(
-      comm,
-      std::shared_ptr<const DataOutInterface<2, 2>>(patches, &data_out),
-      directory,
-      base_name,
-      cycle);
-    pending_cycle = cycle;
-    pending_comm  = comm;
-  }
+    const std::string pvtu =
+      write_vtu_with_pvtu_record(comm, data_out, directory, base_name, cycle);
 
-
-
-  void
-  BodyOutput::finish_writing()
-  {
-    if (!pending)
-      return;
-    const std::unique_ptr<VtuWrite> write = std::move(pending);
-    pvd_records.emplace_back(pending_cycle, write->finish());
-    write_file(pending_comm,
+    pvd_records.emplace_back(cycle, pvtu);
+    write_file(comm,
                directory + "/" + base_name + ".pvd",
                [&](std::ostream &pvd) {
                  DataOutBase::write_pvd_record(pvd, pvd_records);

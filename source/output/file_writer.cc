@@ -126,66 +126,44 @@ namespace coulomb_adapt
 
 
 
-  VtuWrite::VtuWrite(
-    const MPI_Comm                                          comm,
-    std::shared_ptr<const dealii::DataOutInterface<2, 2>> data_out,
-    const std::string                                      &directory,
-    const std::string                                      &base_name,
-    const unsigned int                                      cycle)
-    : comm(comm)
-    , data_out(std::move(data_out))
-    , directory(directory)
-    , stem(base_name + "_" + Utilities::int_to_string(cycle, 3))
+  std::string
+  write_vtu_with_pvtu_record(const MPI_Comm                comm,
+                             const DataOutInterface<2, 2> &data_out,
+                             const std::string            &directory,
+                             const std::string            &base_name,
+                             const unsigned int            cycle)
   {
     // deal.II's file names (DataOutInterface::write_vtu_with_pvtu_record
     // with one file per rank), so that a run looks the same as before.
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
     const unsigned int n_digits =
       Utilities::needed_digits(n_ranks > 1 ? n_ranks - 1 : 0);
+    const std::string stem =
+      base_name + "_" + Utilities::int_to_string(cycle, 3);
+    std::vector<std::string> pieces;
     for (unsigned int r = 0; r < n_ranks; ++r)
       pieces.push_back(stem + "." + Utilities::int_to_string(r, n_digits) +
                        ".vtu");
-    piece = directory + "/" + pieces[Utilities::MPI::this_mpi_process(comm)];
-    // Compressing and writing the piece is about half of the output's time
-    // (benchmarks/adaptive_run); in a thread it overlaps with the next
-    // cycle's work, which leaves a core idle on one rank.
-    error = std::async(std::launch::async, [this]() {
-      return write_temporary(piece, [this](std::ostream &out) {
-        this->data_out->write_vtu(out);
-      });
-    });
-  }
 
-
-
-  VtuWrite::~VtuWrite()
-  {
-    if (error.valid())
-      {
-        error.wait();
-        std::remove((piece + ".tmp").c_str());
-      }
-  }
-
-
-
-  std::string
-  VtuWrite::finish()
-  {
     // Every rank writes its piece to a temporary file; only when all have
     // succeeded are they renamed, and only then the record that lists them
     // is written. Every rank learns of any rank's failure.
-    std::string first = first_error(comm, error.get());
-    if (!first.empty())
+    const std::string piece =
+      directory + "/" + pieces[Utilities::MPI::this_mpi_process(comm)];
+    std::string error =
+      first_error(comm, write_temporary(piece, [&](std::ostream &out) {
+                    data_out.write_vtu(out);
+                  }));
+    if (!error.empty())
       {
         std::remove((piece + ".tmp").c_str());
-        AssertThrow(false, ExcMessage(first));
+        AssertThrow(false, ExcMessage(error));
       }
-    first = first_error(comm, rename_temporary(piece));
-    AssertThrow(first.empty(), ExcMessage(first));
+    error = first_error(comm, rename_temporary(piece));
+    AssertThrow(error.empty(), ExcMessage(error));
 
     write_file(comm, directory + "/" + stem + ".pvtu", [&](std::ostream &out) {
-      data_out->write_pvtu_record(out, pieces);
+      data_out.write_pvtu_record(out, pieces);
     });
     return stem + ".pvtu";
   }

@@ -8,9 +8,7 @@
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/core/options.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
-#include <coulomb_adapt/output/file_writer.h>
 
-#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,25 +42,12 @@ namespace coulomb_adapt
           const unsigned int     cycle,
           const BodyErrorFields &error_fields = BodyErrorFields());
 
-    /**
-     * Collective: the VTU piece of the last write(), written in the
-     * background, made visible (renamed, listed in the .pvtu and .pvd
-     * records), a write error thrown on every rank. write() does this
-     * for the cycle before; the caller for the last one.
-     */
-    void
-    finish_writing();
-
   private:
     const std::string                           directory;
     const std::string                           base_name;
     const OutputFormat                          format;
     std::vector<std::pair<double, std::string>> pvd_records;
     std::vector<XDMFEntry>                      xdmf_entries;
-    /** The VTU output being written, and its cycle. */
-    std::unique_ptr<VtuWrite> pending;
-    unsigned int              pending_cycle = 0;
-    MPI_Comm                  pending_comm  = MPI_COMM_NULL;
   };
 } // namespace coulomb_adapt
 

@@ -5,8 +5,6 @@
 #include <deal.II/base/mpi.h>
 
 #include <functional>
-#include <future>
-#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -34,48 +32,18 @@ namespace coulomb_adapt
   /**
    * DataOutInterface::write_vtu_with_pvtu_record with one piece per rank
    * (`BASE_CCC.R.vtu`, and `BASE_CCC.pvtu` listing them), made atomic and
-   * collective, and written while the caller goes on: the constructor
-   * starts a thread that writes this rank's piece to NAME.tmp (no MPI in
-   * it); finish() waits for it and, collectively, renames the pieces when
-   * every rank has written its own, then writes the record through
-   * write_file. A failure on any rank throws the same error, naming the
-   * file and the system's reason, on every rank, from finish().
-   * @p data_out holds the patches and nothing else the caller may change
-   * meanwhile (DataOut::clear_input_data_references()). An unfinished
-   * write (an exception on the way) is waited for and its temporary file
-   * removed by the destructor.
+   * collective: each piece is written to NAME.tmp and renamed only when
+   * every rank has written its own, then the record through write_file.
+   * A failure on any rank throws the same error, naming the file and the
+   * system's reason, on every rank. Returns the record's name (relative
+   * to @p directory, for a .pvd).
    */
-  class VtuWrite
-  {
-  public:
-    VtuWrite(const MPI_Comm                                          comm,
-             std::shared_ptr<const dealii::DataOutInterface<2, 2>> data_out,
-             const std::string                                      &directory,
-             const std::string                                      &base_name,
-             const unsigned int                                      cycle);
-
-    VtuWrite(const VtuWrite &) = delete;
-    VtuWrite &
-    operator=(const VtuWrite &) = delete;
-
-    ~VtuWrite();
-
-    /** Collective. Returns the record's name (relative to the directory,
-     * for a .pvd). */
-    std::string
-    finish();
-
-  private:
-    const MPI_Comm                                        comm;
-    const std::shared_ptr<const dealii::DataOutInterface<2, 2>> data_out;
-    const std::string                                     directory;
-    const std::string                                     stem;
-    std::vector<std::string>                              pieces;
-    /** This rank's piece, with the directory. */
-    std::string                                           piece;
-    /** What went wrong writing the piece, or empty. */
-    std::future<std::string>                              error;
-  };
+  std::string
+  write_vtu_with_pvtu_record(const MPI_Comm                        comm,
+                             const dealii::DataOutInterface<2, 2> &data_out,
+                             const std::string                    &directory,
+                             const std::string                    &base_name,
+                             const unsigned int                    cycle);
 
   /**
    * Write the HDF5 file @p path through @p write, which every rank of
