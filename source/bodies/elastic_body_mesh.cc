@@ -23,6 +23,7 @@
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -44,45 +45,53 @@ namespace coulomb_adapt
                    const std::string      &name,
                    const unsigned int      body_index)
   {
+    // The message is composed only for a bad cell: composing it for every
+    // cell (an ostringstream and the vertices printed) took about a third
+    // of the time of building a remeshed body's mesh (benchmarks/
+    // adaptive_run).
+    std::array<Point<2>, 4> polygon;
     for (const auto &cell : mesh.active_cell_iterators())
       {
-        std::vector<Point<2>> polygon;
-        if (cell->n_vertices() == 3)
-          polygon = {cell->vertex(0), cell->vertex(1), cell->vertex(2)};
+        const unsigned int n = cell->n_vertices();
+        if (n == 3)
+          polygon = {{cell->vertex(0), cell->vertex(1), cell->vertex(2)}};
         else
-          polygon = {cell->vertex(0),
-                     cell->vertex(1),
-                     cell->vertex(3),
-                     cell->vertex(2)};
-        std::ostringstream where;
-        where << "the mesh of body " << body_index + 1 << " (" << name
-              << ") has a cell with the vertices";
+          polygon = {{cell->vertex(0),
+                      cell->vertex(1),
+                      cell->vertex(3),
+                      cell->vertex(2)}};
         bool   finite   = true;
         double diameter = 0, area = 0;
-        for (unsigned int v = 0; v < polygon.size(); ++v)
+        for (unsigned int v = 0; v < n; ++v)
           {
             const Point<2> &a = polygon[v];
-            const Point<2> &b = polygon[(v + 1) % polygon.size()];
-            where << (v == 0 ? " (" : ", (") << a[0] << ", " << a[1] << ")";
+            const Point<2> &b = polygon[(v + 1) % n];
             finite = finite && std::isfinite(a[0]) && std::isfinite(a[1]);
-            for (const auto &c : polygon)
-              diameter = std::max(diameter, a.distance(c));
+            for (unsigned int w = 0; w < n; ++w)
+              diameter = std::max(diameter, a.distance(polygon[w]));
             area += a[0] * b[1] - b[0] * a[1];
           }
         area /= 2;
+        // Well below the round-off of the diameter squared there is no
+        // area (either orientation: gmsh's triangles may run clockwise).
+        if (finite && std::abs(area) > 1e-12 * diameter * diameter)
+          continue;
+        std::ostringstream where;
+        where << "the mesh of body " << body_index + 1 << " (" << name
+              << ") has a cell with the vertices";
+        for (unsigned int v = 0; v < n; ++v)
+          where << (v == 0 ? " (" : ", (") << polygon[v][0] << ", "
+                << polygon[v][1] << ")";
         if (!finite)
           throw std::runtime_error(where.str() +
                                    ": a coordinate is not a finite "
                                    "number");
-        // Well below the round-off of the diameter squared there is no
-        // area (either orientation: gmsh's triangles may run clockwise).
-        if (!(std::abs(area) > 1e-12 * diameter * diameter))
-          throw std::runtime_error(
-            where.str() +
-            ": it has no area (a repeated node, or its vertices on one "
-            "line)" +
-            "; the stiffness matrix of such a cell is singular. Fix the "
-            "mesh");
+        throw std::runtime_error(
+          where.str() +
+          ": it has no area (a repeated node, or its vertices on one "
+          "line)" +
+          "; the stiffness matrix of such a cell is singular. Fix the "
+          "mesh");
       }
   }
 
@@ -99,14 +108,16 @@ namespace coulomb_adapt
     create_scene_coarse_mesh(serial);
     if (remeshed)
       {
-        // Keep the scene's manifolds: the remesher copied their ids.
-        Triangulation<2> remeshed_tria;
-        remeshed->create_triangulation(remeshed_tria);
+        // Keep the scene's manifolds: the remesher copied their ids. The
+        // remeshed cells go straight into the serial mesh (a second
+        // triangulation and a copy of it cost as much as the check below).
+        std::map<types::manifold_id, std::unique_ptr<Manifold<2>>> manifolds;
         for (const auto id : serial.get_manifold_ids())
           if (id != numbers::flat_manifold_id)
-            remeshed_tria.set_manifold(id, serial.get_manifold(id));
-        serial.clear();
-        serial.copy_triangulation(remeshed_tria);
+            manifolds[id] = serial.get_manifold(id).clone();
+        remeshed->create_triangulation(serial);
+        for (const auto &[id, manifold] : manifolds)
+          serial.set_manifold(id, *manifold);
       }
     simplex = !serial.all_reference_cells_are_hyper_cube();
     check_mesh_cells(serial, body_description.name, body_index);
