@@ -124,6 +124,118 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // What the body's own equations give along the rigid modes z_m
+    // (translations, rotation about the centre over L): sums[m] = z_m^T f,
+    // sums[3 + m] = sum |z_m,i| (|f_i| + sum_j |K_ij u_j|), sums[6 + m] =
+    // max |z_m,i|, sums[9] = |f|_1, sums[10] = the number of rows, over the
+    // unconstrained rows of all ranks, and the longest row.
+    struct ResidualSums
+    {
+      std::vector<double> sums;
+      unsigned int        max_row_length = 0;
+    };
+
+    ResidualSums
+    residual_sums(const ElasticBody &body,
+                  const Point<2>    &centre,
+                  const double       L)
+    {
+      // (The rows of constrained DoFs are not equations of the body.)
+      const auto &K     = body.system_matrix();
+      const auto &f     = body.system_rhs();
+      const auto &u     = body.solution();
+      const auto &owned = body.locally_owned_dof_set();
+      const auto  modes = body.rigid_body_modes();
+      // [load_m (3), magnitude_m (3), max |z_m| (3), |f|_1, rows]
+      std::vector<double> sums(11, 0.);
+      unsigned int        max_row_length = 0;
+      double              z_max[3]       = {0, 0, 0};
+      for (unsigned int k = 0; k < owned.n_elements(); ++k)
+        {
+          const auto i = owned.nth_index_in_set(k);
+          if (body.constraints().is_constrained(i))
+            continue;
+          double       magnitude = std::abs(f(i));
+          unsigned int length    = 0;
+          for_each_entry(K, i, [&](const auto column, const double value) {
+            magnitude += std::abs(value * u(column));
+            ++length;
+          });
+          max_row_length = std::max(max_row_length, length);
+          // Rotation about the centre, over L: the rotation about the origin
+          // less the translation of the centre.
+          const double z[3] = {modes[0][k],
+                               modes[1][k],
+                               (modes[2][k] + centre[1] * modes[0][k] -
+                                centre[0] * modes[1][k]) /
+                                 L};
+          for (unsigned int m = 0; m < 3; ++m)
+            {
+              sums[m] += z[m] * f(i);
+              sums[3 + m] += std::abs(z[m]) * magnitude;
+              z_max[m] = std::max(z_max[m], std::abs(z[m]));
+            }
+          sums[9] += std::abs(f(i));
+          sums[10] += 1;
+        }
+      const MPI_Comm comm = body.triangulation().get_communicator();
+      ResidualSums   result;
+      result.sums = summed(sums, comm);
+      for (unsigned int m = 0; m < 3; ++m)
+        result.sums[6 + m] = Utilities::MPI::max(z_max[m], comm);
+      result.max_row_length = Utilities::MPI::max(max_row_length, comm);
+      return result;
+    }
+
+
+
+    // The contact forces' resultants along the rigid modes, and the sums
+    // of their magnitudes, from the multipliers every rank holds.
+    std::pair<Tensor<1, 3>, Tensor<1, 3>>
+    contact_resultants(const bool                           slave,
+                       const MortarInterface               &mortar,
+                       const std::vector<ContactNodeState> &states,
+                       const Point<2>                      &centre,
+                       const double                         L)
+    {
+      Tensor<1, 3> contact, contact_magnitude;
+      const auto add_force = [&](const Point<2> &x, const Tensor<1, 2> &force) {
+        const auto z = rigid_modes_at(x, centre, L);
+        for (unsigned int m = 0; m < 3; ++m)
+          {
+            contact[m] += z[m] * force;
+            contact_magnitude[m] += std::abs(z[m] * force);
+          }
+      };
+      const auto &D = mortar.slave_weights();
+      if (slave)
+        for (unsigned int j = 0; j < states.size(); ++j)
+          add_force(states[j].position,
+                    -D[j] *
+                      (states[j].pressure * states[j].normal +
+                       states[j].tangential_traction * states[j].tangent));
+      else
+        {
+          const auto               &M       = mortar.master_coupling();
+          const auto               &masters = mortar.master_nodes();
+          std::vector<Tensor<1, 2>> force(masters.size());
+          for (unsigned int j = 0; j < states.size(); ++j)
+            for (const auto &[l, m] : M[j])
+              force[l] +=
+                m * (states[j].pressure * states[j].normal +
+                     states[j].tangential_traction * states[j].tangent);
+          for (unsigned int l = 0; l < masters.size(); ++l)
+            add_force(masters[l].position, force[l]);
+        }
+
+      return {contact, contact_magnitude};
+    }
+  } // namespace
+
+
+
   BodyEquilibrium
   body_equilibrium(const ElasticBody                   &body,
                    const bool                           slave,
@@ -132,87 +244,15 @@ namespace coulomb_adapt
                    const double                         linear_tolerance)
   {
     BodyEquilibrium result;
-    const MPI_Comm  comm   = body.triangulation().get_communicator();
     const auto [centre, L] = centre_and_extent(body);
     result.centre          = centre;
     const auto free        = free_modes(body, centre, L);
     result.n_free_modes    = free.size();
     if (free.empty())
       return result;
-
-    // Per basis mode m: z_m^T f, sum |z_m,i| (|f_i| + sum_j |K_ij u_j|),
-    // sum z_m,i^2 and f_i^2 over the unconstrained owned rows (the rows of
-    // constrained DoFs are not equations of the body), and the longest row.
-    const auto &K     = body.system_matrix();
-    const auto &f     = body.system_rhs();
-    const auto &u     = body.solution();
-    const auto &owned = body.locally_owned_dof_set();
-    const auto  modes = body.rigid_body_modes();
-    // [load_m (3), magnitude_m (3), max |z_m| (3), |f|_1, rows]
-    std::vector<double> sums(11, 0.);
-    unsigned int        max_row_length = 0;
-    double              z_max[3]       = {0, 0, 0};
-    for (unsigned int k = 0; k < owned.n_elements(); ++k)
-      {
-        const auto i = owned.nth_index_in_set(k);
-        if (body.constraints().is_constrained(i))
-          continue;
-        double       magnitude = std::abs(f(i));
-        unsigned int length    = 0;
-        for_each_entry(K, i, [&](const auto column, const double value) {
-          magnitude += std::abs(value * u(column));
-          ++length;
-        });
-        max_row_length = std::max(max_row_length, length);
-        // Rotation about the centre, over L: the rotation about the origin
-        // less the translation of the centre.
-        const double z[3] = {modes[0][k],
-                             modes[1][k],
-                             (modes[2][k] + centre[1] * modes[0][k] -
-                              centre[0] * modes[1][k]) /
-                               L};
-        for (unsigned int m = 0; m < 3; ++m)
-          {
-            sums[m] += z[m] * f(i);
-            sums[3 + m] += std::abs(z[m]) * magnitude;
-            z_max[m] = std::max(z_max[m], std::abs(z[m]));
-          }
-        sums[9] += std::abs(f(i));
-        sums[10] += 1;
-      }
-    sums = summed(sums, comm);
-    for (unsigned int m = 0; m < 3; ++m)
-      sums[6 + m] = Utilities::MPI::max(z_max[m], comm);
-    max_row_length = Utilities::MPI::max(max_row_length, comm);
-
-    // The contact forces, from the multipliers every rank holds.
-    Tensor<1, 3> contact, contact_magnitude;
-    const auto   add_force = [&](const Point<2> &x, const Tensor<1, 2> &force) {
-      const auto z = rigid_modes_at(x, centre, L);
-      for (unsigned int m = 0; m < 3; ++m)
-        {
-          contact[m] += z[m] * force;
-          contact_magnitude[m] += std::abs(z[m] * force);
-        }
-    };
-    const auto &D = mortar.slave_weights();
-    if (slave)
-      for (unsigned int j = 0; j < states.size(); ++j)
-        add_force(states[j].position,
-                  -D[j] * (states[j].pressure * states[j].normal +
-                           states[j].tangential_traction * states[j].tangent));
-    else
-      {
-        const auto               &M       = mortar.master_coupling();
-        const auto               &masters = mortar.master_nodes();
-        std::vector<Tensor<1, 2>> force(masters.size());
-        for (unsigned int j = 0; j < states.size(); ++j)
-          for (const auto &[l, m] : M[j])
-            force[l] += m * (states[j].pressure * states[j].normal +
-                             states[j].tangential_traction * states[j].tangent);
-        for (unsigned int l = 0; l < masters.size(); ++l)
-          add_force(masters[l].position, force[l]);
-      }
+    const auto [sums, max_row_length] = residual_sums(body, centre, L);
+    const auto [contact, contact_magnitude] =
+      contact_resultants(slave, mortar, states, centre, L);
 
     const double eps = std::numeric_limits<double>::epsilon();
     // Each row's terms carry (row length + 1) eps of their magnitudes;
