@@ -79,26 +79,8 @@ namespace coulomb_adapt
       {
         const ElasticBody &body    = *bodies[b];
         const double       max_abs = displacement_range(body).first;
-        // The body's size: the larger side of its bounding box.
-        std::array<double, 2> lower = {{std::numeric_limits<double>::max(),
-                                        std::numeric_limits<double>::max()}};
-        std::array<double, 2> upper = {{-lower[0], -lower[1]}};
-        for (const auto &cell : body.triangulation().active_cell_iterators())
-          if (cell->is_locally_owned())
-            for (const unsigned int v : cell->vertex_indices())
-              for (unsigned int d = 0; d < 2; ++d)
-                {
-                  lower[d] = std::min(lower[d], cell->vertex(v)[d]);
-                  upper[d] = std::max(upper[d], cell->vertex(v)[d]);
-                }
-        const MPI_Comm comm = body.dof_handler().get_communicator();
-        for (unsigned int d = 0; d < 2; ++d)
-          {
-            lower[d] = Utilities::MPI::min(lower[d], comm);
-            upper[d] = Utilities::MPI::max(upper[d], comm);
-          }
-        const double size = std::max(upper[0] - lower[0], upper[1] - lower[1]);
-        const double stress_scale =
+        const double       size    = body.size();
+        const double       stress_scale =
           size > 0 ? 2 * body.material().mu() * max_abs / size : 0;
         const double limit = 1e120;
         if (stress_scale > limit ||

@@ -18,30 +18,6 @@ namespace coulomb_adapt
       return std::max(std::abs(t[0]), std::abs(t[1]));
     }
 
-    // The larger side of the body's bounding box.
-    double
-    body_size(const ElasticBody &body)
-    {
-      std::array<double, 2> lower = {{std::numeric_limits<double>::max(),
-                                      std::numeric_limits<double>::max()}};
-      std::array<double, 2> upper = {{-lower[0], -lower[1]}};
-      for (const auto &cell : body.triangulation().active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int d = 0; d < 2; ++d)
-              {
-                lower[d] = std::min(lower[d], cell->vertex(v)[d]);
-                upper[d] = std::max(upper[d], cell->vertex(v)[d]);
-              }
-      const MPI_Comm comm = body.dof_handler().get_communicator();
-      double         size = 0;
-      for (unsigned int d = 0; d < 2; ++d)
-        size = std::max(size,
-                        Utilities::MPI::max(upper[d], comm) -
-                          Utilities::MPI::min(lower[d], comm));
-      return size;
-    }
-
     // Largest value of each kind of load of one body at the current load
     // step: 0 traction, 1 body force times size, 2 E u_D / size.
     std::array<double, 3>
@@ -104,8 +80,7 @@ namespace coulomb_adapt
                     const std::array<std::unique_ptr<ElasticBody>, 2> &bodies)
   {
     const MPI_Comm        comm  = bodies[0]->dof_handler().get_communicator();
-    std::array<double, 2> sizes = {
-      {body_size(*bodies[0]), body_size(*bodies[1])}};
+    std::array<double, 2> sizes = {{bodies[0]->size(), bodies[1]->size()}};
     // [body][kind], over the load steps.
     std::array<std::array<double, 3>, 2> maxima  = {};
     const unsigned int                   n_steps = scene.n_load_steps();

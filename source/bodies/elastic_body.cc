@@ -24,7 +24,9 @@
 #include <coulomb_adapt/bodies/manifold_mapping_fe.h>
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -457,5 +459,32 @@ namespace coulomb_adapt
   ElasticBody::is_simplex_mesh() const
   {
     return simplex;
+  }
+
+
+
+  double
+  ElasticBody::size() const
+  {
+    // By hand rather than GridTools::compute_bounding_box(), which needs a
+    // locally owned cell on every rank.
+    std::array<double, 2> lower = {
+      {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()}};
+    std::array<double, 2> upper = {{-lower[0], -lower[1]}};
+    for (const auto &cell : triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              lower[d] = std::min(lower[d], cell->vertex(v)[d]);
+              upper[d] = std::max(upper[d], cell->vertex(v)[d]);
+            }
+    const MPI_Comm comm = triangulation().get_communicator();
+    double         size = 0;
+    for (unsigned int d = 0; d < 2; ++d)
+      size = std::max(size,
+                      Utilities::MPI::max(upper[d], comm) -
+                        Utilities::MPI::min(lower[d], comm));
+    return size;
   }
 } // namespace coulomb_adapt

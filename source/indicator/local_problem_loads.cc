@@ -38,9 +38,6 @@ namespace coulomb_adapt
           for (unsigned int k = 0; k < face.nodes.size(); ++k)
             for (unsigned int c = 0; c < 2; ++c)
               F[c] += phi[k] * face.coefficients[k][c];
-          const double L = edge_bubble(fe_degree + 1, s);
-          for (unsigned int c = 0; c < 2; ++c)
-            F[c] += face.bubble[c] * L;
           local.add_traction(load,
                              face.v0 + s * (face.v1 - face.v0),
                              eta * F,

@@ -79,20 +79,15 @@ namespace coulomb_adapt
       };
 
       // What a cell adds: its quadratic form (H and g also for the global
-      // system; packed = H's lower triangle by rows, g, t), the names of
-      // its parameters, and where they act on the faces ([face, node,
-      // component] and [face, component]).
+      // system; packed = H's lower triangle by rows, g, t) and the names of
+      // its parameters.
       struct CellCopy
       {
-        CellForm                                 form;
-        double                                   defect = 0;
-        std::vector<types::global_dof_index>     names;
-        FullMatrix<double>                       H;
-        std::vector<double>                      g, packed;
-        std::vector<std::array<unsigned int, 3>> node_names;
-        std::vector<types::global_dof_index>     node_name_dofs;
-        std::vector<std::array<unsigned int, 2>> bubble_names;
-        std::vector<types::global_dof_index>     bubble_name_dofs;
+        CellForm                             form;
+        double                               defect = 0;
+        std::vector<types::global_dof_index> names;
+        FullMatrix<double>                   H;
+        std::vector<double>                  g, packed;
       };
 
       // What every cell reads.
@@ -145,10 +140,6 @@ namespace coulomb_adapt
           scratch.direction_loads[n] = 0;
           return scratch.direction_loads[n++];
         };
-        copy.node_names.clear();
-        copy.node_name_dofs.clear();
-        copy.bubble_names.clear();
-        copy.bubble_name_dofs.clear();
         for (const unsigned int f : cell->face_indices())
           {
             const unsigned int face_index = in.cells[slot].faces[f];
@@ -168,8 +159,6 @@ namespace coulomb_adapt
                                face.node_dofs[k][c])
                         ++v;
                       Assert(v < cell->n_vertices(), ExcInternalError());
-                      copy.node_names.push_back({{face_index, k, c}});
-                      copy.node_name_dofs.push_back(name(c, v));
                       Vector<double> &d = direction(name(c, v));
                       for (unsigned int l = 0; l < n_face; ++l)
                         {
@@ -184,8 +173,6 @@ namespace coulomb_adapt
                   {
                     const types::global_dof_index dof =
                       name(c, cell->n_vertices() + f);
-                    copy.bubble_names.push_back({{face_index, c}});
-                    copy.bubble_name_dofs.push_back(dof);
                     Vector<double> &d = direction(dof);
                     for (unsigned int m = 0; m < M; ++m)
                       d(c * M + m) += scratch.W(m, n_face);
@@ -374,25 +361,6 @@ namespace coulomb_adapt
           }
         return control.last_step();
       }
-
-
-
-      // The faces' moments and bubbles at @p alpha (ghosted).
-      void
-      apply_parameters(const TrilinosWrappers::MPI::Vector &alpha,
-                       std::vector<FaceData>               &faces)
-      {
-        for (auto &face : faces)
-          for (unsigned int c = 0; c < 2; ++c)
-            {
-              for (unsigned int k = 0; k < face.parameter_of_node.size(); ++k)
-                if (face.parameter_of_node[k][c] != numbers::invalid_dof_index)
-                  face.moments[k][c] +=
-                    alpha(face.parameter_of_node[k][c]) * face.kernel[k][c];
-              if (face.parameter_of_bubble[c] != numbers::invalid_dof_index)
-                face.bubble[c] = alpha(face.parameter_of_bubble[c]);
-            }
-      }
     } // namespace
 
 
@@ -406,12 +374,12 @@ namespace coulomb_adapt
     // edge tractions per unit of parameter j; the minimum solves
     // H alpha = -g with
     //   H_ij = sum_E (S_i, S_j)_E,  g_i = sum_E (S_i, sigma^_0 - sigma_c)_E,
-    // assembled like a stiffness matrix. The moments and bubbles are
-    // updated in place, and the errors come from each cell's quadratic.
+    // assembled like a stiffness matrix. The errors come from each cell's
+    // quadratic at the minimum.
     void
     optimise_free_parameters(const ElasticBody                   &body,
                              const std::vector<CellData>         &cells,
-                             std::vector<FaceData>               &faces,
+                             const std::vector<FaceData>         &faces,
                              const LocalNeumannProblem           &local,
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const LocalProblemLoads             &loads,
@@ -429,13 +397,6 @@ namespace coulomb_adapt
       TrilinosWrappers::SparseMatrix H;
       H.reinit(names.owned, names.owned, dsp, comm);
       TrilinosWrappers::MPI::Vector g(names.owned, comm), alpha(g);
-
-      // Every face starts without named parameters; the cells name them
-      // (both cells of a face give the same names).
-      for (auto &face : faces)
-        face.parameter_of_node.assign(face.nodes.size(),
-                                      {{numbers::invalid_dof_index,
-                                        numbers::invalid_dof_index}});
 
       // The cells are independent until their contributions are added:
       // WorkStream runs cell_form() on the threads deal.II may use and
@@ -458,16 +419,6 @@ namespace coulomb_adapt
           result.local_problem_defect =
             std::max(result.local_problem_defect, copy.defect);
           forms.add(copy);
-          for (unsigned int i = 0; i < copy.node_names.size(); ++i)
-            {
-              const auto [face, k, c]             = copy.node_names[i];
-              faces[face].parameter_of_node[k][c] = copy.node_name_dofs[i];
-            }
-          for (unsigned int i = 0; i < copy.bubble_names.size(); ++i)
-            {
-              const auto [face, c]               = copy.bubble_names[i];
-              faces[face].parameter_of_bubble[c] = copy.bubble_name_dofs[i];
-            }
           if (copy.names.size() > 0)
             {
               H.add(copy.names, copy.H);
@@ -486,7 +437,6 @@ namespace coulomb_adapt
                                                   names.relevant,
                                                   comm);
       alpha_ghosted = alpha;
-      apply_parameters(alpha_ghosted, faces);
       forms.errors(alpha_ghosted,
                    body.triangulation().n_active_cells(),
                    result);

@@ -134,6 +134,11 @@ namespace coulomb_adapt
     bool
     is_simplex_mesh() const;
 
+    /** The larger side of the body's bounding box over all ranks (mm; a
+     * length scale for stresses and loads). Collective. */
+    double
+    size() const;
+
     /** Number of vertices of the active mesh over all ranks (hanging
      * vertices included). */
     types::global_dof_index

@@ -75,17 +75,6 @@ namespace coulomb_adapt
        * of the edge mass matrix that maps moments to them. */
       std::vector<std::array<double, 2>> coefficients;
       FullMatrix<double>                 mass_inverse;
-      /** Amplitude per component of the edge bubble added to F: the
-       * Legendre polynomial of degree p + 1 along the edge, orthogonal to
-       * every shape function on it, so that it leaves the moments and the
-       * prolongation conditions unchanged (a free parameter of every edge
-       * whose tractions are unknown). */
-      std::array<double, 2> bubble = {{0., 0.}};
-      /** Names of the free parameters in the optimisation's numbering:
-       * per node and component (vertices), and of the bubble. */
-      std::vector<std::array<types::global_dof_index, 2>> parameter_of_node;
-      std::array<types::global_dof_index, 2> parameter_of_bubble = {
-        {numbers::invalid_dof_index, numbers::invalid_dof_index}};
     };
 
     // Lagrange polynomials of the face's nodes at parameter s (p <= 2:
@@ -141,16 +130,16 @@ namespace coulomb_adapt
 
     class LocalProblemLoads;
 
-    /** Step 5: the free parameters that minimise the estimate (see the
-     * .cc), cell by cell on the threads deal.II may use (with a copy of
-     * @p local each); updates the faces' moments and bubbles, and sets the
-     * errors of
-     * @p result (error_squared, sum_norm_squared and the classical estimate).
-     */
+    /** Steps 5 and 6: the free parameters that minimise the estimate (see
+     * the .cc; the faces' edge bubbles of degree p + 1 among them when
+     * @p with_bubbles), cell by cell on the threads deal.II may use (with a
+     * copy of @p local each), and the errors at the minimum in @p result
+     * (error_squared, sum_norm_squared and the classical estimate). The
+     * faces keep the classical moments. */
     void
     optimise_free_parameters(const ElasticBody                   &body,
                              const std::vector<CellData>         &cells,
-                             std::vector<FaceData>               &faces,
+                             const std::vector<FaceData>         &faces,
                              const LocalNeumannProblem           &local,
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const LocalProblemLoads             &loads,

@@ -21,10 +21,10 @@ namespace coulomb_adapt
     /**
      * The loads of the cells' local Neumann problems in the element
      * equilibration: on each face the traction eta F (F from the face's
-     * nodal coefficients and bubble, eta = +1 on the face's plus cell and
-     * -1 on the other) where the moments were solved for, the prescribed
-     * traction elsewhere on the boundary, the contact traction, and the
-     * body force. Also the work of a face's traction basis on a cell's
+     * nodal coefficients (the classical moments), eta = +1 on the face's plus
+     * cell and -1 on the other) where the moments were solved for, the
+     * prescribed traction elsewhere on the boundary, the contact traction, and
+     * the body force. Also the work of a face's traction basis on a cell's
      * monomials, which the optimisation of the free parameters needs.
      *
      * Read-only: several threads may use one object, each with its own
@@ -58,7 +58,7 @@ namespace coulomb_adapt
 
     private:
       // eta F on the components in @p mask, from @p face's current nodal
-      // coefficients and bubble.
+      // coefficients.
       void
       add_face_traction(const LocalNeumannProblem &local,
                         Vector<double>            &load,
