@@ -12,12 +12,18 @@
 // 2, 4, 8 times coarser: gmsh triangles, locally refined quadrilaterals).
 // Cold, the graded triangles take 10 Newton steps here.
 // The program's log says what the coarser meshes did, or why they were
-// skipped. Run on 1 and 2 ranks with the same output.
+// skipped. A load path (cattaneo: the Hertz contact, then a tangential load
+// in 5 steps) predicts its first load step's sets the same way, and its
+// later cycles start from the first load step's sets of the cycle before:
+// the first step then takes at most 4 Newton steps (cold: 7), every cycle
+// reaches the cold start's estimate, and no later load step changes.
+// Run on 1 and 2 ranks with the same output.
 
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/contact/nested_iteration.h>
 
 #include "contact_test_utilities.h"
+#include "program_run.h"
 
 using namespace coulomb_adapt;
 
@@ -95,6 +101,65 @@ namespace
                   ExcMessage("log lacks '" + expected + "':\n" + log.str()));
     out << "log: '" << expected << "' found" << std::endl;
   }
+
+  // A load path run twice, with and without the predicted starts of the
+  // first load step (nested iteration on the first meshes, the previous
+  // cycle's first-step sets after): the same estimate in every cycle, the
+  // same Newton steps after the first load step, at most 4 in the first.
+  void
+  compare_load_path(const std::string  &cell_type,
+                    const unsigned int  n_cycles,
+                    ConditionalOStream &out)
+  {
+    const std::string cycles = std::to_string(n_cycles);
+    const auto run = [&](const bool predicted) {
+      const testing::ProgramRun run(
+        {{"Scene/Name", "cattaneo"},
+         {"Mesh/Cell type", cell_type},
+         {"Adaptation/Number of cycles", cycles},
+         {"Adaptation/Minimum number of cycles", cycles},
+         {"Adaptation/Warm start", predicted ? "true" : "false"},
+         {"Contact/Nested iteration levels", predicted ? "3" : "0"},
+         {"Output/Write VTU", "false"},
+         {"Output/Output directory",
+          "/tmp/coulomb-adapt-test-nested-path-" + cell_type +
+            (predicted ? "-predicted" : "-cold")}});
+      return run.summary["cycles"];
+    };
+    const nlohmann::json cold = run(false), predicted = run(true);
+    AssertThrow(cold.size() == n_cycles && predicted.size() == n_cycles,
+                ExcInternalError());
+    for (unsigned int c = 0; c < n_cycles; ++c)
+      {
+        const auto &a = cold[c], &b = predicted[c];
+        const std::vector<unsigned int> steps_cold =
+          a["newton_iterations_per_load_step"];
+        const std::vector<unsigned int> steps =
+          b["newton_iterations_per_load_step"];
+        const double e_cold = a["epsilon"], e = b["epsilon"];
+        AssertThrow(std::abs(e - e_cold) <= 1e-8 * e_cold,
+                    ExcMessage("cattaneo " + cell_type + ", cycle " +
+                               std::to_string(c) +
+                               ": the predicted start's estimate differs"));
+        AssertThrow(steps.size() == 6 && steps_cold.size() == 6 &&
+                      steps[0] <= 4 && steps[0] < steps_cold[0] &&
+                      std::equal(steps.begin() + 1,
+                                 steps.end(),
+                                 steps_cold.begin() + 1),
+                    ExcMessage("cattaneo " + cell_type + ", cycle " +
+                               std::to_string(c) +
+                               ": unexpected Newton steps per load step"));
+        out << "cattaneo " << cell_type << ", cycle " << c << ", "
+            << b["n_dofs"] << " DoFs, "
+            << (c == 0 ? "nested iteration" : "previous first-step sets")
+            << ": first load step " << steps[0] << " Newton steps (cold "
+            << steps_cold[0] << "), later steps";
+        for (unsigned int k = 1; k < steps.size(); ++k)
+          out << " " << steps[k];
+        out << " as cold; epsilon " << std::setprecision(6) << 100 * e
+            << " % as cold" << std::endl;
+      }
+  }
 } // namespace
 
 int
@@ -137,6 +202,9 @@ main(int argc, char *argv[])
           out,
           true);
 
+  compare_load_path("triangle", 2, out);
+  compare_load_path("quadrilateral", 1, out);
+
   const std::string output_directory = "/tmp/coulomb-adapt-test-nested";
   check_log({{"Scene/Name", "blocks"},
              {"Mesh/Global refinements", "2"},
@@ -160,5 +228,14 @@ main(int argc, char *argv[])
              {"Output/Write VTU", "false"},
              {"Output/Output directory", output_directory}},
             "nested iteration, graded zone 2x coarser",
+            out);
+  // Graded meshes below the DoF threshold too (the default hertz, 4,026
+  // DoFs on triangles): the threshold is for global refinements only.
+  check_log({{"Scene/Name", "hertz"},
+             {"Mesh/Cell type", "triangle"},
+             {"Adaptation/Number of cycles", "1"},
+             {"Output/Write VTU", "false"},
+             {"Output/Output directory", output_directory}},
+            "nested iteration, graded zone 8x coarser: 830 DoFs",
             out);
 }

@@ -25,12 +25,15 @@ namespace coulomb_adapt
 
   // The start: the previous cycle's sets (warm start), else on the first
   // meshes the sets of the coarser meshes (nested iteration), else the
-  // initial gap. Load paths (quasi-static scenes) always start from the
-  // initial gap: their stick/slip history lives in the solver.
+  // initial gap. On a load path (quasi-static scene) the start is that of
+  // its first load step only: the later steps go on from the step before,
+  // whose stick/slip history lives in the solver, and the first step's
+  // start is a guess like any other (the Newton iteration runs to its own
+  // convergence), so a load path starts as a static problem does.
   ContactSolveOutcome
   ContactSolveDriver::solve(
     const std::vector<ContactNodeState> &previous_states,
-    const bool                           first_meshes) const
+    const bool                           first_meshes)
   {
     pcout << "  contact: "
           << (parameters.contact.friction_coefficient > 0 ?
@@ -41,14 +44,15 @@ namespace coulomb_adapt
                             "stick/slip sets"))
           << std::endl;
     ContactSolveOutcome outcome;
-    const bool          static_problem = scene.n_load_steps() == 1;
-    outcome.warm_start                 = parameters.adaptation.warm_start &&
-                         !previous_states.empty() && static_problem;
+    const std::vector<ContactNodeState> &previous_start =
+      scene.n_load_steps() == 1 ? previous_states : first_load_step_states;
+    outcome.warm_start = parameters.adaptation.warm_start &&
+                         !previous_states.empty() && !previous_start.empty();
     std::vector<ContactNodeState> predicted_sets;
     if (outcome.warm_start)
-      predicted_sets = previous_states;
+      predicted_sets = previous_start;
     bool nested = false;
-    if (!outcome.warm_start && static_problem && first_meshes)
+    if (!outcome.warm_start && first_meshes)
       {
         outcome.nested_iteration.emplace();
         nested =
@@ -94,19 +98,20 @@ namespace coulomb_adapt
   // c_n = c_t, the natural constants, from the predicted sets and from the
   // initial gap: the solution does not depend on c, only the path of the
   // active set iteration does, and an extreme scale can keep the sets from
-  // settling. A quasi-static path is not restarted: its stick/slip history
+  // settling. A quasi-static path is restarted only in its first load
+  // step, and only from the initial gap: later, its stick/slip history
   // lives in the solver.
   std::vector<ContactSolveDriver::Restart>
   ContactSolveDriver::restarts(const bool predicted_start) const
   {
     std::vector<Restart> restarts;
-    if (scene.n_load_steps() != 1)
-      return restarts;
     if (predicted_start)
       restarts.push_back({parameters.contact,
                           false,
                           "from the initial gap",
                           "retried_from_initial_gap"});
+    if (scene.n_load_steps() != 1)
+      return restarts;
     if (parameters.contact.complementarity_scale != 1.)
       {
         parameters::Contact natural   = parameters.contact;
@@ -158,7 +163,11 @@ namespace coulomb_adapt
     else if (n_levels == 0)
       record.skipped = "no coarser mesh ('Mesh/Global refinements' = 0 and "
                        "the scene grades no mesh)";
-    else if (n_dofs <= c.nested_iteration_min_dofs)
+    // A graded mesh resolves the contact zone much finer than the bodies:
+    // many nodes across the zone, which the cold start's Newton iteration
+    // releases a band at a time, so its step count grows with them at
+    // every size. The DoF threshold is for global refinements only.
+    else if (!graded && n_dofs <= c.nested_iteration_min_dofs)
       record.skipped = std::to_string(n_dofs) +
                        " DoFs <= 'Contact/Nested iteration minimum DoFs' (" +
                        std::to_string(c.nested_iteration_min_dofs) + ")";
@@ -225,7 +234,7 @@ namespace coulomb_adapt
   ContactSolveDriver::solve_load_steps(
     const std::vector<Restart>          &restarts,
     const std::vector<ContactNodeState> &predicted_sets,
-    ContactSolveOutcome                 &outcome) const
+    ContactSolveOutcome                 &outcome)
   {
     const unsigned int n_steps                 = scene.n_load_steps();
     unsigned int       total_newton_iterations = 0;
@@ -251,7 +260,7 @@ namespace coulomb_adapt
           catch (const ContactDiagnosis &e)
             {
               outcome.newton_iterations_of_stopped_starts += e.newton_steps;
-              if (attempt == restarts.size())
+              if (attempt == restarts.size() || step > 1)
                 {
                   if (attempt == 0)
                     throw;
@@ -273,6 +282,10 @@ namespace coulomb_adapt
                                                          nullptr);
             }
         total_newton_iterations += outcome.report.newton_iterations;
+        outcome.newton_iterations_per_load_step.push_back(
+          outcome.report.newton_iterations);
+        if (step == 1 && n_steps > 1)
+          first_load_step_states = outcome.solver->node_states();
       }
     outcome.report.newton_iterations = total_newton_iterations;
     outcome.n_load_steps             = n_steps;

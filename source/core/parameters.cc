@@ -372,7 +372,9 @@ namespace coulomb_adapt
                           "Start the semismooth Newton method of a cycle "
                           "from the contact sets (open/stick/slip) of the "
                           "previous cycle, transferred to the new slave "
-                          "nodes, instead of from the initial gap.");
+                          "nodes, instead of from the initial gap (a load "
+                          "path: its first load step from the previous "
+                          "cycle's sets after that step).");
       }
       prm.leave_subsection();
     }

@@ -131,7 +131,8 @@ namespace coulomb_adapt
         prm.declare_entry("Nested iteration levels",
                           "3",
                           Patterns::Integer(0),
-                          "Static contact without a previous cycle's sets: "
+                          "Contact without a previous cycle's sets (for a "
+                          "load path, its first load step): "
                           "solve the same problem first on up to this many "
                           "meshes with fewer uniform refinements (at most "
                           "'Mesh/Global refinements' of them; with none, a "
@@ -146,9 +147,13 @@ namespace coulomb_adapt
         prm.declare_entry("Nested iteration minimum DoFs",
                           "20000",
                           Patterns::Integer(0),
-                          "Nested iteration only when both bodies together "
-                          "have more DoFs than this: below, a few extra "
-                          "Newton steps cost less than the coarser solves.");
+                          "Nested iteration over global refinements only "
+                          "when both bodies together have more DoFs than "
+                          "this: below, a few extra Newton steps cost less "
+                          "than the coarser solves. A scene's graded meshes "
+                          "use their coarser gradings at every size: their "
+                          "many nodes across the contact zone cost the cold "
+                          "start 7 or more Newton steps even when small.");
       }
       prm.leave_subsection();
     }

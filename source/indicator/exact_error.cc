@@ -236,4 +236,31 @@ namespace coulomb_adapt
       }
     return comparison;
   }
+
+
+  double
+  extrapolated_exact_error(const double       against_reference,
+                           const double       own_error,
+                           const unsigned int refinements)
+  {
+    const double a2 = against_reference * against_reference;
+    const double d2 = own_error * own_error;
+    if (refinements < 2 || !(refinements * d2 < a2))
+      return 0;
+    // f(t) = (1 + t)^R - 1 - r t is convex with f(0) = 0 and f'(0) =
+    // R - r < 0: one positive root, bracketed by doubling, then bisected.
+    const double r = a2 / d2;
+    const auto   f = [&](const double t) {
+      return std::pow(1 + t, refinements) - 1 - r * t;
+    };
+    double low = 0, high = 1;
+    while (f(high) < 0)
+      low = high, high *= 2;
+    for (unsigned int i = 0; i < 200 && high - low > 1e-15 * high; ++i)
+      {
+        const double middle = (low + high) / 2;
+        (f(middle) < 0 ? low : high) = middle;
+      }
+    return std::sqrt(a2 + d2 / high);
+  }
 } // namespace coulomb_adapt

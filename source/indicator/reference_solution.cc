@@ -440,6 +440,14 @@ namespace coulomb_adapt
 
 
 
+  unsigned int
+  ReferenceSolutionStress::n_refinements() const
+  {
+    return refinements;
+  }
+
+
+
   double
   ReferenceSolutionStress::own_error() const
   {

@@ -38,14 +38,16 @@ namespace coulomb_adapt
     /** Its report, with the Newton steps summed over the load steps. */
     ContactSolverReport report;
     bool                warm_start = false;
-    /** Set when nested iteration was considered (first meshes of a static
-     * problem without warm start). */
+    /** Set when nested iteration was considered (first meshes without
+     * warm start). */
     std::optional<NestedIterationRecord> nested_iteration;
     /** The summary keys of the restarts taken, in order. */
     std::vector<std::string> restarts;
     /** Newton steps of the starts that stopped with a diagnosis. */
     unsigned int newton_iterations_of_stopped_starts = 0;
     unsigned int n_load_steps                        = 1;
+    /** Newton steps of the converged start in each load step. */
+    std::vector<unsigned int> newton_iterations_per_load_step;
     /** Largest overlap and largest clearance of the initial gap (mm). */
     double             initial_overlap   = 0;
     double             initial_clearance = 0;
@@ -72,7 +74,9 @@ namespace coulomb_adapt
 
     /**
      * Solve the contact problem on the bodies' current (assembled) systems.
-     * @p previous_states are the previous cycle's sets (empty if none);
+     * @p previous_states are the previous cycle's sets (empty if none; on
+     * a load path the driver starts from the sets its own last solve had
+     * after the first load step instead);
      * @p first_meshes says the bodies still have the scene's meshes with
      * 'Mesh/Global refinements', whose coarser versions the nested
      * iteration solves. Throws the last ContactDiagnosis when every start
@@ -80,7 +84,7 @@ namespace coulomb_adapt
      */
     ContactSolveOutcome
     solve(const std::vector<ContactNodeState> &previous_states,
-          const bool                           first_meshes) const;
+          const bool                           first_meshes);
 
   private:
     /** One more start of a static solve that stopped with a diagnosis. */
@@ -109,7 +113,7 @@ namespace coulomb_adapt
     void
     solve_load_steps(const std::vector<Restart>          &restarts,
                      const std::vector<ContactNodeState> &predicted_sets,
-                     ContactSolveOutcome                 &outcome) const;
+                     ContactSolveOutcome                 &outcome);
     /** Largest overlap and clearance of the initial gap. */
     void
     measure_initial_gap(ContactSolveOutcome &outcome) const;
@@ -118,6 +122,10 @@ namespace coulomb_adapt
     const Scene                       &scene;
     const std::array<ElasticBody *, 2> bodies;
     const Parameters                  &parameters;
+    /** A load path's sets after its first load step, from the last solve:
+     * the next cycle's start (the last step's slip zone is no guess for
+     * the first step's). */
+    std::vector<ContactNodeState> first_load_step_states;
     const ConditionalOStream          &pcout;
   };
 } // namespace coulomb_adapt

@@ -78,6 +78,25 @@ namespace coulomb_adapt
                 const TrilinosWrappers::MPI::Vector &displacement);
 
   /**
+   * The exact error extrapolated from a reference on the judged meshes
+   * refined R times (theory.md section 8). With nested spaces, the error
+   * of the judged solution is e_h^2 = a^2 + e_R^2 (a = @p against_reference,
+   * the computed exact error) and the one of level R - 1 is
+   * e_{R-1}^2 = d^2 + e_R^2 (d = @p own_error, the change from R - 1 to R).
+   * If the error falls by the same factor from level to level,
+   * e_h^2 / e_R^2 = (e_{R-1}^2 / e_R^2)^R, which fixes e_R: the root
+   * t = d^2 / e_R^2 > 0 of (1 + t)^R = 1 + (a^2 / d^2) t. Returns
+   * sqrt(a^2 + e_R^2), or 0 when there is no such root (R < 2, or
+   * R d^2 >= a^2: the levels are not in the asymptotic range).
+   */
+  double
+  extrapolated_exact_error(const double       against_reference,
+                           const double       own_error,
+                           const unsigned int refinements);
+
+
+
+  /**
    * A reference solution of the same scene: the judged meshes themselves
    * (both bodies, as they are in this cycle) refined @p refinements times
    * uniformly and solved with contact (quietly), so that the reference is
@@ -109,6 +128,9 @@ namespace coulomb_adapt
     quadrature_subdivisions() const override;
     std::string
     description() const override;
+    /** R, the refinements of the judged meshes. */
+    unsigned int
+    n_refinements() const;
     /** Newton iterations of the reference contact solve. */
     unsigned int
     newton_iterations() const;
