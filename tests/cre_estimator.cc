@@ -14,8 +14,11 @@
 //    epsilon(cre) >= exact epsilon against a reference 3 refinements finer,
 //    whose own error (from the 2-refinement reference) is printed;
 //  - epsilon^2 = sum epsilon_E^2 and homogeneity (loads x 1e3 leave epsilon
-//    and every epsilon_E unchanged), blocks with friction;
+//    and every epsilon_E unchanged), blocks with friction; the same
+//    estimate, bit for bit, on up to 4 threads as on 1;
 //  - the 2-rank run prints what the 1-rank run prints.
+
+#include <deal.II/base/multithread_info.h>
 
 #include <coulomb_adapt/indicator/error_estimate.h>
 #include <coulomb_adapt/indicator/exact_error.h>
@@ -224,5 +227,24 @@ main(int argc, char **argv)
         << (largest_change < 1e-9 ? "yes" : "no") << std::endl;
     AssertThrow(sum_mismatch < 1e-12 && largest_change < 1e-9,
                 ExcMessage("cre: sum rule or homogeneity broken"));
+
+    // The cells and node systems run on deal.II's threads, their results
+    // added in the cells' order: the estimate must not depend on how many
+    // threads there are (the run above used 1).
+    MultithreadInfo::set_thread_limit(4);
+    AssertThrow(MultithreadInfo::n_threads() > 1,
+                ExcMessage("this check needs more than one thread: "
+                           "DEAL_II_NUM_THREADS limits them to 1"));
+    const ErrorEstimate threaded = cre(b1, p1->solver.get(), p1->parameters);
+    MultithreadInfo::set_thread_limit(1);
+    const auto i_threaded = testing::gathered_indicators(b1, threaded);
+    double     thread_change = std::abs(threaded.epsilon - e1.epsilon);
+    for (unsigned int i = 0; i < i1.size(); ++i)
+      thread_change = std::max(thread_change, std::abs(i_threaded[i] - i1[i]));
+    out << "  up to 4 threads instead of 1: epsilon and every epsilon_E "
+           "identical: "
+        << (thread_change == 0 ? "yes" : "no") << std::endl;
+    AssertThrow(thread_change == 0,
+                ExcMessage("cre: the estimate depends on the thread count"));
   }
 }
