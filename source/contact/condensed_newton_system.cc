@@ -10,6 +10,64 @@
 
 namespace coulomb_adapt
 {
+  namespace
+  {
+    std::string
+    node_name(const MortarInterface::Node &node)
+    {
+      return "A contact node of body 1 at (" +
+             std::to_string(node.position[0]) + ", " +
+             std::to_string(node.position[1]) + ")";
+    }
+
+
+
+    // The Dirichlet data a covered slave node may carry: a fixed Cartesian
+    // component along the contact surface, which takes the place of the
+    // tangential contact condition. A fixed normal displacement would
+    // contradict the normal condition (or, with the gap closed, make the
+    // pressure the support's reaction), and a node fixed in both
+    // components cannot take part in the contact at all. An empty string
+    // if the node is acceptable, the reason otherwise.
+    std::string
+    refused_dirichlet_data(const MortarInterface::Node &node,
+                           const AffineConstraints<double>  &constraints)
+    {
+      const std::array<bool, 2> fixed = {
+        {constraints.is_constrained(node.dofs[0]),
+         constraints.is_constrained(node.dofs[1])}};
+      for (unsigned int c = 0; c < 2; ++c)
+        if (fixed[c] && !constraints.get_constraint_entries(node.dofs[c])
+                           ->empty())
+          return node_name(node) +
+                 " is constrained to other nodes (a hanging node): contact "
+                 "nodes must be nodes of both neighbouring faces.";
+      if (fixed[0] && fixed[1])
+        return node_name(node) +
+               " has a Dirichlet condition on both components (a clamped "
+               "curve or a point support): a node that faces body 2 must be "
+               "free to move along its contact normal. Fix at most the "
+               "component along the contact surface there (a roller on a "
+               "symmetry line), or end the support before the contact "
+               "surface.";
+      for (unsigned int c = 0; c < 2; ++c)
+        if (fixed[c] && std::abs(node.normal[c]) >= std::abs(node.normal[1 - c]))
+          return node_name(node) + " has its " + (c == 0 ? "x" : "y") +
+                 " component fixed by a Dirichlet condition, along its "
+                 "contact normal n = (" +
+                 std::to_string(node.normal[0]) + ", " +
+                 std::to_string(node.normal[1]) +
+                 ") rather than along the contact surface: the support "
+                 "would fix the gap that the contact condition decides. "
+                 "Only the component along the contact surface may be "
+                 "fixed on a contact node (a roller on a symmetry line "
+                 "that meets the surface at a right angle).";
+      return "";
+    }
+  } // namespace
+
+
+
   // The combined index space, the K^1 rows of the slave DoFs (gathered on
   // all ranks) and the master-to-slave coupling.
   void
@@ -33,8 +91,9 @@ namespace coulomb_adapt
     owned.compress();
 
     // Rows of K^1 and f^1 at the slave DoFs, packed as
-    // [node, component, rhs, n, col_0, value_0, ...].
+    // [node, component, fixed, fixed value, rhs, n, col_0, value_0, ...].
     std::vector<double> packed;
+    std::string         refused;
     owned_slave_nodes.clear();
     const auto &K1 = slave.system_matrix();
     const auto &f1 = slave.system_rhs();
@@ -42,21 +101,19 @@ namespace coulomb_adapt
       if (owned_1.is_element(nodes[j].dofs[0]))
         {
           owned_slave_nodes.push_back(j);
+          // (Nodes beyond the master's edge never touch: they may be
+          // supported, their rows stay those of K^1.)
+          if (mortar.is_covered(j) && refused.empty())
+            refused = refused_dirichlet_data(nodes[j], slave.constraints());
           for (unsigned int c = 0; c < 2; ++c)
             {
-              const auto row = nodes[j].dofs[c];
-              // (Nodes beyond the master's edge never touch: they may be
-              // supported, their rows stay those of K^1.)
-              AssertThrow(!mortar.is_covered(j) ||
-                            !slave.constraints().is_constrained(row),
-                          ExcMessage("A contact node of body 1 at (" +
-                                     std::to_string(nodes[j].position[0]) +
-                                     ", " +
-                                     std::to_string(nodes[j].position[1]) +
-                                     ") has a Dirichlet condition; contact "
-                                     "nodes must be free."));
+              const auto row   = nodes[j].dofs[c];
+              const bool fixed = slave.constraints().is_constrained(row);
               packed.push_back(j);
               packed.push_back(c);
+              packed.push_back(fixed);
+              packed.push_back(
+                fixed ? slave.constraints().get_inhomogeneity(row) : 0.);
               packed.push_back(f1(row));
               packed.push_back(K1.row_length(row));
               for_each_entry(K1,
@@ -67,15 +124,28 @@ namespace coulomb_adapt
                              });
             }
         }
+    // Every rank stops, with the first rank's message.
+    for (const auto &message :
+         Utilities::MPI::all_gather(communicator, refused))
+      AssertThrow(message.empty(), ExcMessage(message));
+
     slave_rows.assign(n_slave, {});
+    fixed_component.assign(n_slave, -1);
+    fixed_value.assign(n_slave, 0.);
     for (const auto &values : Utilities::MPI::all_gather(communicator, packed))
       for (std::size_t i = 0; i < values.size();)
         {
-          SlaveRow &row = slave_rows[static_cast<unsigned int>(values[i])]
-                                    [static_cast<unsigned int>(values[i + 1])];
-          row.rhs              = values[i + 2];
-          const auto n_entries = static_cast<std::size_t>(values[i + 3]);
-          i += 4;
+          const auto j = static_cast<unsigned int>(values[i]);
+          const auto c = static_cast<unsigned int>(values[i + 1]);
+          if (values[i + 2] != 0 && mortar.is_covered(j))
+            {
+              fixed_component[j] = c;
+              fixed_value[j]     = values[i + 3];
+            }
+          SlaveRow &row        = slave_rows[j][c];
+          row.rhs              = values[i + 4];
+          const auto n_entries = static_cast<std::size_t>(values[i + 5]);
+          i += 6;
           for (std::size_t e = 0; e < n_entries; ++e, i += 2)
             {
               row.columns.push_back(
@@ -120,6 +190,10 @@ namespace coulomb_adapt
                 magnitude += std::abs(k.values[e] * u1(k.columns[e]));
               }
             lambda[c] = mortar.is_covered(j) ? (k.rhs - Ku) / weights[j] : 0.;
+            // (A fixed component's row is its Dirichlet condition, not an
+            // equation of the body: no round-off of a nodal force.)
+            if (static_cast<int>(c) == fixed_component[j])
+              continue;
             // Round-off of this difference of nodal forces, and of a
             // backward-stable solve's residual in the same row.
             if (mortar.is_covered(j))
@@ -127,6 +201,13 @@ namespace coulomb_adapt
                                    (k.columns.size() + 1) *
                                      std::numeric_limits<double>::epsilon() *
                                      magnitude / weights[j]);
+          }
+        // A roller: lambda = lambda_n n, from the free component's row.
+        if (fixed_component[j] >= 0)
+          {
+            const unsigned int free   = 1 - fixed_component[j];
+            const Tensor<1, 2> normal = mortar.slave_nodes()[j].normal;
+            lambda                    = lambda[free] / normal[free] * normal;
           }
         packed.insert(packed.end(), {double(j), lambda[0], lambda[1]});
       }
@@ -173,6 +254,8 @@ namespace coulomb_adapt
         node.weighted_slip        = previous_weighted_slip[j];
         node.slip_sign            = states[j].slip_sign;
         node.friction_coefficient = friction_coefficient;
+        node.fixed_component      = condensation.fixed_component[j];
+        node.fixed_value          = condensation.fixed_value[j];
         for (const auto &[l, m] : M[j])
           {
             SlaveNodeConditions::Coupling coupling;

@@ -118,6 +118,26 @@ namespace coulomb_adapt
         const Tensor<1, 2> &n = node.normal;
         const Tensor<1, 2> &t = node.tangent;
         const double        D = node.weight;
+        // A roller: the normal condition eliminates the free component,
+        // the fixed one is known (its value goes into the shift), and the
+        // test space is orthogonal to the traction lambda_n n, as at a
+        // frictionless node: Z~ = Z.
+        if (node.fixed_component >= 0)
+          {
+            const unsigned int o   = node.fixed_component;
+            const unsigned int c   = 1 - o;
+            Row               &row = eliminated[node.dofs[c]];
+            for (const auto &m : node.couplings)
+              for (unsigned int d = 0; d < 2; ++d)
+                {
+                  const double z         = m.value / D * n[d] / n[c];
+                  row.entries[m.dofs[d]] = {{z, m.constrained[d] ? 0. : z}};
+                  symmetric              = symmetric && !m.constrained[d];
+                }
+            row.shift =
+              (node.weighted_gap / D - n[o] * node.fixed_value) / n[c];
+            continue;
+          }
         if (node.stick)
           {
             // u^1_j = (g~ n + s~ t) / D + sum_l M_jl / D u^2_l.
