@@ -40,7 +40,7 @@ main(int argc, char *argv[])
                              root + "/prm/meshes/blocks_structured.geo"},
                             {"Mesh/Global refinements", "1"}},
                            file);
-  const auto &w = whole->solver->node_states();
+  const auto &w     = whole->solver->node_states();
   double      p_max = 0, u_max = 0, centre_traction = 0;
   for (const auto &s : w)
     {
@@ -74,7 +74,7 @@ main(int argc, char *argv[])
                 {"Mesh/Global refinements", "1"},
                 {"Linear solver/Type", solver}},
         file);
-      const auto  &h = half->solver->node_states();
+      const auto  &h        = half->solver->node_states();
       double       traction = 0, kinematics = 0, roller_traction = 0;
       unsigned int n_same = 0, n_rollers = 0;
       for (const auto &s : h)
@@ -87,11 +87,10 @@ main(int argc, char *argv[])
                       ExcMessage("a node of the half model is not a node of "
                                  "the whole one"));
           n_same += s.status == match->status;
-          traction =
-            std::max({traction,
-                      std::abs(s.pressure - match->pressure),
-                      std::abs(s.tangential_traction -
-                               match->tangential_traction)});
+          traction = std::max(
+            {traction,
+             std::abs(s.pressure - match->pressure),
+             std::abs(s.tangential_traction - match->tangential_traction)});
           kinematics = std::max({kinematics,
                                  std::abs(s.gap - match->gap),
                                  std::abs(s.slip - match->slip)});
@@ -103,12 +102,13 @@ main(int argc, char *argv[])
         }
       double energy = 0;
       for (unsigned int k = 0; k < 2; ++k)
-        energy = std::max(energy,
-                          std::abs(2 *
-                                     strain_energy(*half->bodies[k],
-                                                   half->bodies[k]->solution()) /
-                                     whole_energy[k] -
-                                   1));
+        energy =
+          std::max(energy,
+                   std::abs(2 *
+                              strain_energy(*half->bodies[k],
+                                            half->bodies[k]->solution()) /
+                              whole_energy[k] -
+                            1));
       const Tensor<1, 2> force = half->report.contact_force;
       const double       load  = 10 * 50; // p times the half's width
       const double       balance =
@@ -120,8 +120,8 @@ main(int argc, char *argv[])
       out << "Half model, " << solver << " solver: " << h.size()
           << " slave nodes, " << n_same << " in the whole model's state, "
           << n_rollers << " with a roller (tangential traction / p "
-          << (roller_traction < 1e-12 * p_max ? "below 1e-12" : "ABOVE")
-          << ")" << std::endl
+          << (roller_traction < 1e-12 * p_max ? "below 1e-12" : "ABOVE") << ")"
+          << std::endl
           << "  contact force (" << std::setprecision(5) << force[0] << ", "
           << std::setprecision(8) << force[1]
           << ") N/mm; largest difference from the whole model "

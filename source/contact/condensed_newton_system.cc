@@ -30,15 +30,15 @@ namespace coulomb_adapt
     // components cannot take part in the contact at all. An empty string
     // if the node is acceptable, the reason otherwise.
     std::string
-    refused_dirichlet_data(const MortarInterface::Node &node,
-                           const AffineConstraints<double>  &constraints)
+    refused_dirichlet_data(const MortarInterface::Node     &node,
+                           const AffineConstraints<double> &constraints)
     {
       const std::array<bool, 2> fixed = {
         {constraints.is_constrained(node.dofs[0]),
          constraints.is_constrained(node.dofs[1])}};
       for (unsigned int c = 0; c < 2; ++c)
-        if (fixed[c] && !constraints.get_constraint_entries(node.dofs[c])
-                           ->empty())
+        if (fixed[c] &&
+            !constraints.get_constraint_entries(node.dofs[c])->empty())
           return node_name(node) +
                  " is constrained to other nodes (a hanging node): contact "
                  "nodes must be nodes of both neighbouring faces.";
@@ -51,7 +51,8 @@ namespace coulomb_adapt
                "symmetry line), or end the support before the contact "
                "surface.";
       for (unsigned int c = 0; c < 2; ++c)
-        if (fixed[c] && std::abs(node.normal[c]) >= std::abs(node.normal[1 - c]))
+        if (fixed[c] &&
+            std::abs(node.normal[c]) >= std::abs(node.normal[1 - c]))
           return node_name(node) + " has its " + (c == 0 ? "x" : "y") +
                  " component fixed by a Dirichlet condition, along its "
                  "contact normal n = (" +
@@ -154,8 +155,41 @@ namespace coulomb_adapt
             }
         }
 
+    // The master nodes' Dirichlet data, gathered: a slave node's rows
+    // couple to master DoFs that its rank need not see. A constrained
+    // DoF is zero in the Newton solve (its row's right hand side is zero:
+    // deal.II fills in the value when the solution is distributed), so
+    // the conditions that couple to it take its value instead.
+    const auto         &master_nodes = mortar.master_nodes();
+    std::vector<double> master_packed;
+    for (unsigned int l = 0; l < master_nodes.size(); ++l)
+      if (owned_2.is_element(master_nodes[l].dofs[0]))
+        {
+          master_packed.push_back(l);
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              const auto row   = master_nodes[l].dofs[c];
+              const bool fixed = master.constraints().is_constrained(row);
+              master_packed.push_back(fixed);
+              master_packed.push_back(
+                fixed ? master.constraints().get_inhomogeneity(row) : 0.);
+            }
+        }
+    master_fixed.assign(master_nodes.size(), {{false, false}});
+    master_fixed_value.assign(master_nodes.size(), {{0., 0.}});
+    for (const auto &values :
+         Utilities::MPI::all_gather(communicator, master_packed))
+      for (std::size_t i = 0; i < values.size(); i += 5)
+        {
+          const auto l = static_cast<unsigned int>(values[i]);
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              master_fixed[l][c]       = values[i + 1 + 2 * c] != 0;
+              master_fixed_value[l][c] = values[i + 2 + 2 * c];
+            }
+        }
+
     master_dof_node.clear();
-    const auto &master_nodes = mortar.master_nodes();
     for (unsigned int l = 0; l < master_nodes.size(); ++l)
       for (unsigned int c = 0; c < 2; ++c)
         master_dof_node[master_nodes[l].dofs[c]] = {l, c};
@@ -236,7 +270,6 @@ namespace coulomb_adapt
     const auto &D            = mortar.slave_weights();
     const auto &M            = mortar.master_coupling();
     const auto &gaps         = mortar.weighted_initial_gaps();
-    const auto &constraints  = master.constraints();
 
     std::vector<SlaveNodeConditions> result;
     for (const unsigned int j : condensation.owned_slave_nodes)
@@ -263,8 +296,8 @@ namespace coulomb_adapt
               {
                 coupling.dofs[d] =
                   condensation.offset + master_nodes[l].dofs[d];
-                coupling.constrained[d] =
-                  constraints.is_constrained(master_nodes[l].dofs[d]);
+                coupling.constrained[d] = condensation.master_fixed[l][d];
+                coupling.fixed_value[d] = condensation.master_fixed_value[l][d];
               }
             coupling.value = m;
             node.couplings.push_back(coupling);

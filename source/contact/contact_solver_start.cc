@@ -36,10 +36,10 @@ namespace coulomb_adapt
       }
     for (unsigned int j = 0; j < n_slave; ++j)
       {
-        states[j].position = nodes[j].position;
-        states[j].normal   = nodes[j].normal;
-        states[j].tangent  = nodes[j].tangent;
-        states[j].weight   = D[j];
+        states[j].position          = nodes[j].position;
+        states[j].normal            = nodes[j].normal;
+        states[j].tangent           = nodes[j].tangent;
+        states[j].weight            = D[j];
         states[j].held_tangentially = condensation.fixed_component[j] >= 0;
       }
     support.reinit(slave, states);

@@ -133,8 +133,10 @@ namespace coulomb_adapt
                   const double z         = m.value / D * n[d] / n[c];
                   row.entries[m.dofs[d]] = {{z, m.constrained[d] ? 0. : z}};
                   symmetric              = symmetric && !m.constrained[d];
+                  if (m.constrained[d])
+                    row.shift += z * m.fixed_value[d];
                 }
-            row.shift =
+            row.shift +=
               (node.weighted_gap / D - n[o] * node.fixed_value) / n[c];
             continue;
           }
@@ -149,8 +151,11 @@ namespace coulomb_adapt
                     const double z         = m.value / D;
                     row.entries[m.dofs[c]] = {{z, m.constrained[c] ? 0. : z}};
                     symmetric              = symmetric && !m.constrained[c];
+                    // (A constrained master DoF is zero in the solve.)
+                    if (m.constrained[c])
+                      row.shift += z * m.fixed_value[c];
                   }
-                row.shift =
+                row.shift +=
                   (node.weighted_gap * n[c] + node.weighted_slip * t[c]) / D;
               }
             continue;
@@ -175,8 +180,10 @@ namespace coulomb_adapt
               row.entries[m.dofs[d]] = {
                 {z * n[d] / n[c], m.constrained[d] ? 0. : z * w[d] / w[c]}};
               symmetric = symmetric && !m.constrained[d];
+              if (m.constrained[d])
+                row.shift += z * n[d] / n[c] * m.fixed_value[d];
             }
-        row.shift = node.weighted_gap / (D * n[c]);
+        row.shift += node.weighted_gap / (D * n[c]);
         symmetric = symmetric && node.friction_coefficient == 0;
       }
     symmetric = Utilities::MPI::min(symmetric ? 1 : 0, communicator) == 1;

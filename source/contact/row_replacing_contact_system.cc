@@ -65,7 +65,7 @@ namespace coulomb_adapt
             {
               // A roller's force is lambda_n n, from its free row.
               const int  fixed = condensation.fixed_component[j];
-              const auto c = fixed >= 0 ? 1 - fixed : node->second.second;
+              const auto c     = fixed >= 0 ? 1 - fixed : node->second.second;
               dsp.add_entries(offset + row,
                               rows[j][c].columns.begin(),
                               rows[j][c].columns.end());
@@ -108,12 +108,12 @@ namespace coulomb_adapt
   RowReplacingContactSystem::assemble_stiffness_rows(
     const std::vector<SlaveNodeConditions> &nodes)
   {
-    const auto &K1     = slave->system_matrix();
-    const auto &K2     = master->system_matrix();
-    const auto &f1     = slave->system_rhs();
-    const auto &f2     = master->system_rhs();
-    const auto &D      = condensation->weights;
-    const auto  offset = condensation->offset;
+    const auto &K1           = slave->system_matrix();
+    const auto &K2           = master->system_matrix();
+    const auto &f1           = slave->system_rhs();
+    const auto &f2           = master->system_rhs();
+    const auto &D            = condensation->weights;
+    const auto  offset       = condensation->offset;
     const auto &mortar_nodes = mortar->slave_nodes();
 
     std::set<types::global_dof_index> slave_dofs;
@@ -145,9 +145,9 @@ namespace coulomb_adapt
             {
               // M_jl lambda_j: lambda_j = (f^1 - K^1 u^1)_j / D_jj, or at
               // a roller lambda_n n with lambda_n from the free row.
-              const int   fixed  = condensation->fixed_component[j];
-              double      factor = m / D[j];
-              unsigned int c     = node->second.second;
+              const int    fixed  = condensation->fixed_component[j];
+              double       factor = m / D[j];
+              unsigned int c      = node->second.second;
               if (fixed >= 0)
                 {
                   const auto &n = mortar_nodes[j].normal;
@@ -195,6 +195,8 @@ namespace coulomb_adapt
             {
               columns.push_back(coupling.dofs[d]);
               values.push_back(-scale * coupling.value * v[d]);
+              if (coupling.constrained[d])
+                value += coupling.value * v[d] * coupling.fixed_value[d];
             }
         }
       add_row(row, scale * value);
@@ -222,8 +224,8 @@ namespace coulomb_adapt
       {
         const unsigned int fixed = node.fixed_component;
         Tensor<1, 2>       e_fixed, e_free;
-        e_fixed[fixed]     = 1;
-        e_free[1 - fixed]  = 1;
+        e_fixed[fixed]    = 1;
+        e_free[1 - fixed] = 1;
         add_traction_row(node.dofs[fixed], e_fixed);
         if (node.active)
           add_jump_row(node.dofs[1 - fixed], n, node.weighted_gap);

@@ -89,6 +89,10 @@ namespace coulomb_adapt
      */
     std::vector<int>    fixed_component;
     std::vector<double> fixed_value;
+    /** Per master node and component: whether a Dirichlet condition
+     * fixes it, and to which value (on every rank). */
+    std::vector<std::array<bool, 2>>   master_fixed;
+    std::vector<std::array<double, 2>> master_fixed_value;
     /** D_jj of each slave node. */
     std::vector<double> weights;
     /** For a master DoF: its node and component. */
@@ -114,11 +118,16 @@ namespace coulomb_adapt
     double weight;
     /** Combined indices of the master DoFs of the coupled master nodes
      * (x and y), with M_jl, and whether that DoF is constrained in body
-     * 2 (its row stays K^2's and receives no contact force). */
+     * 2 (its row stays K^2's and receives no contact force) and to which
+     * value: the Newton solve has zero there (deal.II's constraint rows
+     * have a zero right hand side, the value comes with distribute()),
+     * so a condition coupled to it takes the value on its right hand
+     * side. */
     struct Coupling
     {
       std::array<types::global_dof_index, 2> dofs;
       std::array<bool, 2>                    constrained;
+      std::array<double, 2>                  fixed_value;
       double                                 value;
     };
     std::vector<Coupling> couplings;
