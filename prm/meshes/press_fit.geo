@@ -7,10 +7,9 @@
 // and at (b/2, 0) (y), the hub at (c, 0) and (-c, 0) (y) and at (0, c) (x).
 // These supports hold each body's three rigid motions and no more, so
 // (nothing else loading the pair) they carry no force and leave the
-// solution as if the pair floated. (A quarter model with rollers on the
-// symmetry lines would put a roller on the end nodes of the slave contact
-// surface, which the contact solver does not accept: its contact nodes
-// must be free of Dirichlet conditions.)
+// solution as if the pair floated. (prm/meshes/press_fit_quarter.geo is
+// the quarter model with rollers on the symmetry lines, which hold the
+// end nodes of the slave contact surface along the surface.)
 //
 // The shaft's surface and the hub's bore get the same element size, hence
 // (their lengths differ by 2 pi delta) the same number of nodes at the

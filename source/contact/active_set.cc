@@ -79,6 +79,8 @@ namespace coulomb_adapt
           status = ContactStatus::open;
         else if (mu == 0)
           status = ContactStatus::slip;
+        else if (s.held_tangentially)
+          status = ContactStatus::stick; // the support holds it
         else
           {
             const auto natural = trial_tractions(s,
@@ -135,7 +137,10 @@ namespace coulomb_adapt
     const double C_n = s.pressure - std::max(0., normal);
     // C_t is homogeneous of degree 2 in (lambda, c u): scale it by p
     // and by the size of its trial traction.
-    const double C_t = (mu == 0) ? s.tangential_traction * p :
+    // (At a node held tangentially the Dirichlet condition replaces the
+    // tangential one: lambda_t = 0 by construction.)
+    const double C_t = s.held_tangentially ? 0. :
+                       (mu == 0)           ? s.tangential_traction * p :
                                    std::max(mu * normal, std::abs(trial)) *
                                        s.tangential_traction -
                                      mu * std::max(0., normal) * trial;

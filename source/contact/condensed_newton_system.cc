@@ -10,6 +10,65 @@
 
 namespace coulomb_adapt
 {
+  namespace
+  {
+    std::string
+    node_name(const MortarInterface::Node &node)
+    {
+      return "A contact node of body 1 at (" +
+             std::to_string(node.position[0]) + ", " +
+             std::to_string(node.position[1]) + ")";
+    }
+
+
+
+    // The Dirichlet data a covered slave node may carry: a fixed Cartesian
+    // component along the contact surface, which takes the place of the
+    // tangential contact condition. A fixed normal displacement would
+    // contradict the normal condition (or, with the gap closed, make the
+    // pressure the support's reaction), and a node fixed in both
+    // components cannot take part in the contact at all. An empty string
+    // if the node is acceptable, the reason otherwise.
+    std::string
+    refused_dirichlet_data(const MortarInterface::Node     &node,
+                           const AffineConstraints<double> &constraints)
+    {
+      const std::array<bool, 2> fixed = {
+        {constraints.is_constrained(node.dofs[0]),
+         constraints.is_constrained(node.dofs[1])}};
+      for (unsigned int c = 0; c < 2; ++c)
+        if (fixed[c] &&
+            !constraints.get_constraint_entries(node.dofs[c])->empty())
+          return node_name(node) +
+                 " is constrained to other nodes (a hanging node): contact "
+                 "nodes must be nodes of both neighbouring faces.";
+      if (fixed[0] && fixed[1])
+        return node_name(node) +
+               " has a Dirichlet condition on both components (a clamped "
+               "curve or a point support): a node that faces body 2 must be "
+               "free to move along its contact normal. Fix at most the "
+               "component along the contact surface there (a roller on a "
+               "symmetry line), or end the support before the contact "
+               "surface.";
+      for (unsigned int c = 0; c < 2; ++c)
+        if (fixed[c] &&
+            std::abs(node.normal[c]) >= std::abs(node.normal[1 - c]))
+          return node_name(node) + " has its " + (c == 0 ? "x" : "y") +
+                 " component fixed by a Dirichlet condition, along its "
+                 "contact normal n = (" +
+                 std::to_string(node.normal[0]) + ", " +
+                 std::to_string(node.normal[1]) +
+                 ") rather than along the contact surface: the support "
+                 "would fix the gap that the contact condition decides. "
+                 "Only the component along the contact surface may be "
+                 "fixed on a contact node (a roller on a symmetry line "
+                 "that meets the surface at a right angle).";
+      return "";
+    }
+  } // namespace
+
+
+
   // The combined index space, the K^1 rows of the slave DoFs (gathered on
   // all ranks) and the master-to-slave coupling.
   void
@@ -33,8 +92,9 @@ namespace coulomb_adapt
     owned.compress();
 
     // Rows of K^1 and f^1 at the slave DoFs, packed as
-    // [node, component, rhs, n, col_0, value_0, ...].
+    // [node, component, fixed, fixed value, rhs, n, col_0, value_0, ...].
     std::vector<double> packed;
+    std::string         refused;
     owned_slave_nodes.clear();
     const auto &K1 = slave.system_matrix();
     const auto &f1 = slave.system_rhs();
@@ -42,21 +102,19 @@ namespace coulomb_adapt
       if (owned_1.is_element(nodes[j].dofs[0]))
         {
           owned_slave_nodes.push_back(j);
+          // (Nodes beyond the master's edge never touch: they may be
+          // supported, their rows stay those of K^1.)
+          if (mortar.is_covered(j) && refused.empty())
+            refused = refused_dirichlet_data(nodes[j], slave.constraints());
           for (unsigned int c = 0; c < 2; ++c)
             {
-              const auto row = nodes[j].dofs[c];
-              // (Nodes beyond the master's edge never touch: they may be
-              // supported, their rows stay those of K^1.)
-              AssertThrow(!mortar.is_covered(j) ||
-                            !slave.constraints().is_constrained(row),
-                          ExcMessage("A contact node of body 1 at (" +
-                                     std::to_string(nodes[j].position[0]) +
-                                     ", " +
-                                     std::to_string(nodes[j].position[1]) +
-                                     ") has a Dirichlet condition; contact "
-                                     "nodes must be free."));
+              const auto row   = nodes[j].dofs[c];
+              const bool fixed = slave.constraints().is_constrained(row);
               packed.push_back(j);
               packed.push_back(c);
+              packed.push_back(fixed);
+              packed.push_back(
+                fixed ? slave.constraints().get_inhomogeneity(row) : 0.);
               packed.push_back(f1(row));
               packed.push_back(K1.row_length(row));
               for_each_entry(K1,
@@ -67,15 +125,28 @@ namespace coulomb_adapt
                              });
             }
         }
+    // Every rank stops, with the first rank's message.
+    for (const auto &message :
+         Utilities::MPI::all_gather(communicator, refused))
+      AssertThrow(message.empty(), ExcMessage(message));
+
     slave_rows.assign(n_slave, {});
+    fixed_component.assign(n_slave, -1);
+    fixed_value.assign(n_slave, 0.);
     for (const auto &values : Utilities::MPI::all_gather(communicator, packed))
       for (std::size_t i = 0; i < values.size();)
         {
-          SlaveRow &row = slave_rows[static_cast<unsigned int>(values[i])]
-                                    [static_cast<unsigned int>(values[i + 1])];
-          row.rhs              = values[i + 2];
-          const auto n_entries = static_cast<std::size_t>(values[i + 3]);
-          i += 4;
+          const auto j = static_cast<unsigned int>(values[i]);
+          const auto c = static_cast<unsigned int>(values[i + 1]);
+          if (values[i + 2] != 0 && mortar.is_covered(j))
+            {
+              fixed_component[j] = c;
+              fixed_value[j]     = values[i + 3];
+            }
+          SlaveRow &row        = slave_rows[j][c];
+          row.rhs              = values[i + 4];
+          const auto n_entries = static_cast<std::size_t>(values[i + 5]);
+          i += 6;
           for (std::size_t e = 0; e < n_entries; ++e, i += 2)
             {
               row.columns.push_back(
@@ -84,8 +155,41 @@ namespace coulomb_adapt
             }
         }
 
+    // The master nodes' Dirichlet data, gathered: a slave node's rows
+    // couple to master DoFs that its rank need not see. A constrained
+    // DoF is zero in the Newton solve (its row's right hand side is zero:
+    // deal.II fills in the value when the solution is distributed), so
+    // the conditions that couple to it take its value instead.
+    const auto         &master_nodes = mortar.master_nodes();
+    std::vector<double> master_packed;
+    for (unsigned int l = 0; l < master_nodes.size(); ++l)
+      if (owned_2.is_element(master_nodes[l].dofs[0]))
+        {
+          master_packed.push_back(l);
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              const auto row   = master_nodes[l].dofs[c];
+              const bool fixed = master.constraints().is_constrained(row);
+              master_packed.push_back(fixed);
+              master_packed.push_back(
+                fixed ? master.constraints().get_inhomogeneity(row) : 0.);
+            }
+        }
+    master_fixed.assign(master_nodes.size(), {{false, false}});
+    master_fixed_value.assign(master_nodes.size(), {{0., 0.}});
+    for (const auto &values :
+         Utilities::MPI::all_gather(communicator, master_packed))
+      for (std::size_t i = 0; i < values.size(); i += 5)
+        {
+          const auto l = static_cast<unsigned int>(values[i]);
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              master_fixed[l][c]       = values[i + 1 + 2 * c] != 0;
+              master_fixed_value[l][c] = values[i + 2 + 2 * c];
+            }
+        }
+
     master_dof_node.clear();
-    const auto &master_nodes = mortar.master_nodes();
     for (unsigned int l = 0; l < master_nodes.size(); ++l)
       for (unsigned int c = 0; c < 2; ++c)
         master_dof_node[master_nodes[l].dofs[c]] = {l, c};
@@ -120,6 +224,10 @@ namespace coulomb_adapt
                 magnitude += std::abs(k.values[e] * u1(k.columns[e]));
               }
             lambda[c] = mortar.is_covered(j) ? (k.rhs - Ku) / weights[j] : 0.;
+            // (A fixed component's row is its Dirichlet condition, not an
+            // equation of the body: no round-off of a nodal force.)
+            if (static_cast<int>(c) == fixed_component[j])
+              continue;
             // Round-off of this difference of nodal forces, and of a
             // backward-stable solve's residual in the same row.
             if (mortar.is_covered(j))
@@ -127,6 +235,13 @@ namespace coulomb_adapt
                                    (k.columns.size() + 1) *
                                      std::numeric_limits<double>::epsilon() *
                                      magnitude / weights[j]);
+          }
+        // A roller: lambda = lambda_n n, from the free component's row.
+        if (fixed_component[j] >= 0)
+          {
+            const unsigned int free   = 1 - fixed_component[j];
+            const Tensor<1, 2> normal = mortar.slave_nodes()[j].normal;
+            lambda                    = lambda[free] / normal[free] * normal;
           }
         packed.insert(packed.end(), {double(j), lambda[0], lambda[1]});
       }
@@ -155,7 +270,6 @@ namespace coulomb_adapt
     const auto &D            = mortar.slave_weights();
     const auto &M            = mortar.master_coupling();
     const auto &gaps         = mortar.weighted_initial_gaps();
-    const auto &constraints  = master.constraints();
 
     std::vector<SlaveNodeConditions> result;
     for (const unsigned int j : condensation.owned_slave_nodes)
@@ -173,6 +287,8 @@ namespace coulomb_adapt
         node.weighted_slip        = previous_weighted_slip[j];
         node.slip_sign            = states[j].slip_sign;
         node.friction_coefficient = friction_coefficient;
+        node.fixed_component      = condensation.fixed_component[j];
+        node.fixed_value          = condensation.fixed_value[j];
         for (const auto &[l, m] : M[j])
           {
             SlaveNodeConditions::Coupling coupling;
@@ -180,8 +296,8 @@ namespace coulomb_adapt
               {
                 coupling.dofs[d] =
                   condensation.offset + master_nodes[l].dofs[d];
-                coupling.constrained[d] =
-                  constraints.is_constrained(master_nodes[l].dofs[d]);
+                coupling.constrained[d] = condensation.master_fixed[l][d];
+                coupling.fixed_value[d] = condensation.master_fixed_value[l][d];
               }
             coupling.value = m;
             node.couplings.push_back(coupling);

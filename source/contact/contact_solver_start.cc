@@ -36,10 +36,11 @@ namespace coulomb_adapt
       }
     for (unsigned int j = 0; j < n_slave; ++j)
       {
-        states[j].position = nodes[j].position;
-        states[j].normal   = nodes[j].normal;
-        states[j].tangent  = nodes[j].tangent;
-        states[j].weight   = D[j];
+        states[j].position          = nodes[j].position;
+        states[j].normal            = nodes[j].normal;
+        states[j].tangent           = nodes[j].tangent;
+        states[j].weight            = D[j];
+        states[j].held_tangentially = condensation.fixed_component[j] >= 0;
       }
     support.reinit(slave, states);
     master_gram = master.support_gram(Point<2>());
@@ -112,6 +113,9 @@ namespace coulomb_adapt
         transferred[j].slip_sign = nearest->slip_sign;
         if (mu == 0 && transferred[j].status == ContactStatus::stick)
           transferred[j].status = ContactStatus::slip;
+        if (mu > 0 && states[j].held_tangentially &&
+            transferred[j].status == ContactStatus::slip)
+          transferred[j].status = ContactStatus::stick;
         n_active += (transferred[j].status != ContactStatus::open);
       }
     if (n_active > 0 || support.holds_all_rigid_motions())

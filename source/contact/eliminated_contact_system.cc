@@ -118,6 +118,28 @@ namespace coulomb_adapt
         const Tensor<1, 2> &n = node.normal;
         const Tensor<1, 2> &t = node.tangent;
         const double        D = node.weight;
+        // A roller: the normal condition eliminates the free component,
+        // the fixed one is known (its value goes into the shift), and the
+        // test space is orthogonal to the traction lambda_n n, as at a
+        // frictionless node: Z~ = Z.
+        if (node.fixed_component >= 0)
+          {
+            const unsigned int o   = node.fixed_component;
+            const unsigned int c   = 1 - o;
+            Row               &row = eliminated[node.dofs[c]];
+            for (const auto &m : node.couplings)
+              for (unsigned int d = 0; d < 2; ++d)
+                {
+                  const double z         = m.value / D * n[d] / n[c];
+                  row.entries[m.dofs[d]] = {{z, m.constrained[d] ? 0. : z}};
+                  symmetric              = symmetric && !m.constrained[d];
+                  if (m.constrained[d])
+                    row.shift += z * m.fixed_value[d];
+                }
+            row.shift +=
+              (node.weighted_gap / D - n[o] * node.fixed_value) / n[c];
+            continue;
+          }
         if (node.stick)
           {
             // u^1_j = (g~ n + s~ t) / D + sum_l M_jl / D u^2_l.
@@ -129,8 +151,11 @@ namespace coulomb_adapt
                     const double z         = m.value / D;
                     row.entries[m.dofs[c]] = {{z, m.constrained[c] ? 0. : z}};
                     symmetric              = symmetric && !m.constrained[c];
+                    // (A constrained master DoF is zero in the solve.)
+                    if (m.constrained[c])
+                      row.shift += z * m.fixed_value[c];
                   }
-                row.shift =
+                row.shift +=
                   (node.weighted_gap * n[c] + node.weighted_slip * t[c]) / D;
               }
             continue;
@@ -155,8 +180,10 @@ namespace coulomb_adapt
               row.entries[m.dofs[d]] = {
                 {z * n[d] / n[c], m.constrained[d] ? 0. : z * w[d] / w[c]}};
               symmetric = symmetric && !m.constrained[d];
+              if (m.constrained[d])
+                row.shift += z * n[d] / n[c] * m.fixed_value[d];
             }
-        row.shift = node.weighted_gap / (D * n[c]);
+        row.shift += node.weighted_gap / (D * n[c]);
         symmetric = symmetric && node.friction_coefficient == 0;
       }
     symmetric = Utilities::MPI::min(symmetric ? 1 : 0, communicator) == 1;

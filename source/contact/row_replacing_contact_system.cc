@@ -20,6 +20,7 @@ namespace coulomb_adapt
     this->slave        = &slave;
     this->master       = &master;
     this->condensation = &condensation;
+    this->mortar       = &mortar;
     row_scale          = slave.description().material.youngs_modulus;
 
     const auto            &nodes        = mortar.slave_nodes();
@@ -61,9 +62,14 @@ namespace coulomb_adapt
             !master.constraints().is_constrained(row))
           for (const auto &[j, m] :
                condensation.master_to_slave[node->second.first])
-            dsp.add_entries(offset + row,
-                            rows[j][node->second.second].columns.begin(),
-                            rows[j][node->second.second].columns.end());
+            {
+              // A roller's force is lambda_n n, from its free row.
+              const int  fixed = condensation.fixed_component[j];
+              const auto c     = fixed >= 0 ? 1 - fixed : node->second.second;
+              dsp.add_entries(offset + row,
+                              rows[j][c].columns.begin(),
+                              rows[j][c].columns.end());
+            }
       }
     matrix.reinit(owned, owned, dsp, condensation.communicator);
     rhs.reinit(owned, condensation.communicator);
@@ -102,12 +108,13 @@ namespace coulomb_adapt
   RowReplacingContactSystem::assemble_stiffness_rows(
     const std::vector<SlaveNodeConditions> &nodes)
   {
-    const auto &K1     = slave->system_matrix();
-    const auto &K2     = master->system_matrix();
-    const auto &f1     = slave->system_rhs();
-    const auto &f2     = master->system_rhs();
-    const auto &D      = condensation->weights;
-    const auto  offset = condensation->offset;
+    const auto &K1           = slave->system_matrix();
+    const auto &K2           = master->system_matrix();
+    const auto &f1           = slave->system_rhs();
+    const auto &f2           = master->system_rhs();
+    const auto &D            = condensation->weights;
+    const auto  offset       = condensation->offset;
+    const auto &mortar_nodes = mortar->slave_nodes();
 
     std::set<types::global_dof_index> slave_dofs;
     for (const auto &node : nodes)
@@ -136,13 +143,24 @@ namespace coulomb_adapt
           for (const auto &[j, m] :
                condensation->master_to_slave[node->second.first])
             {
-              const auto &k = condensation->slave_rows[j][node->second.second];
+              // M_jl lambda_j: lambda_j = (f^1 - K^1 u^1)_j / D_jj, or at
+              // a roller lambda_n n with lambda_n from the free row.
+              const int    fixed  = condensation->fixed_component[j];
+              double       factor = m / D[j];
+              unsigned int c      = node->second.second;
+              if (fixed >= 0)
+                {
+                  const auto &n = mortar_nodes[j].normal;
+                  factor *= n[c] / n[1 - fixed];
+                  c = 1 - fixed;
+                }
+              const auto &k = condensation->slave_rows[j][c];
               for (unsigned int e = 0; e < k.columns.size(); ++e)
                 {
                   columns.push_back(k.columns[e]);
-                  values.push_back(m / D[j] * k.values[e]);
+                  values.push_back(factor * k.values[e]);
                 }
-              right_hand_side += m / D[j] * k.rhs;
+              right_hand_side += factor * k.rhs;
             }
         add_row(offset + row, right_hand_side);
       }
@@ -158,19 +176,27 @@ namespace coulomb_adapt
     const Tensor<1, 2> &t = node.tangent;
     const double        D = node.weight;
 
-    // v . (D u^1 - M u^2)_j = value, scaled to the size of K.
+    // v . (D u^1 - M u^2)_j = value, scaled to the size of K. A component
+    // a roller fixes is known: its term goes to the right hand side.
     const auto add_jump_row = [&](const types::global_dof_index row,
                                   const Tensor<1, 2>           &v,
-                                  const double                  value) {
+                                  double                        value) {
       const double scale = row_scale / D;
       for (unsigned int d = 0; d < 2; ++d)
         {
-          columns.push_back(node.dofs[d]);
-          values.push_back(scale * D * v[d]);
+          if (static_cast<int>(d) == node.fixed_component)
+            value -= D * v[d] * node.fixed_value;
+          else
+            {
+              columns.push_back(node.dofs[d]);
+              values.push_back(scale * D * v[d]);
+            }
           for (const auto &coupling : node.couplings)
             {
               columns.push_back(coupling.dofs[d]);
               values.push_back(-scale * coupling.value * v[d]);
+              if (coupling.constrained[d])
+                value += coupling.value * v[d] * coupling.fixed_value[d];
             }
         }
       add_row(row, scale * value);
@@ -191,6 +217,22 @@ namespace coulomb_adapt
         }
       add_row(row, right_hand_side);
     };
+
+    // A roller: its fixed component's row stays K^1's, its Dirichlet
+    // condition; the free row is lambda_n = 0 or the normal condition.
+    if (node.fixed_component >= 0)
+      {
+        const unsigned int fixed = node.fixed_component;
+        Tensor<1, 2>       e_fixed, e_free;
+        e_fixed[fixed]    = 1;
+        e_free[1 - fixed] = 1;
+        add_traction_row(node.dofs[fixed], e_fixed);
+        if (node.active)
+          add_jump_row(node.dofs[1 - fixed], n, node.weighted_gap);
+        else
+          add_traction_row(node.dofs[1 - fixed], e_free);
+        return;
+      }
 
     const unsigned int normal_component =
       std::abs(n[1]) >= std::abs(n[0]) ? 1 : 0;

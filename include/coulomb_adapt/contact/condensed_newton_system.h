@@ -44,8 +44,11 @@ namespace coulomb_adapt
       double                               rhs = 0;
     };
 
-    /** Once per mesh and load step (K^1 and f^1 assembled). Checks that
-     * no covered slave node carries Dirichlet data. */
+    /** Once per mesh and load step (K^1 and f^1 assembled). Checks the
+     * Dirichlet data of the covered slave nodes: one Cartesian component
+     * along the contact surface may be fixed (a roller: fixed_component),
+     * a component along the normal, both, or a hanging-node constraint
+     * may not (an error naming the node, on every rank). */
     void
     reinit(const MortarInterface &mortar,
            const ElasticBody     &slave,
@@ -72,6 +75,24 @@ namespace coulomb_adapt
     /** Slave nodes whose rows this rank owns. */
     std::vector<unsigned int>            owned_slave_nodes;
     std::vector<std::array<SlaveRow, 2>> slave_rows;
+    /**
+     * Slave nodes held along the contact surface (a roller on a symmetry
+     * line that meets the surface): the Cartesian component a Dirichlet
+     * condition fixes, -1 at free nodes and at nodes the master side
+     * does not cover; and the value it fixes. At such a node the
+     * Dirichlet condition replaces the tangential contact condition: the
+     * multiplier is lambda_n n, lambda_n from the equilibrium of the free
+     * component, (f^1 - K^1 u^1)_{j,free} = D_jj lambda_n n_free, and the
+     * support carries the tangential reaction (doc/contact.md section 2).
+     * The fixed component must lie nearer the tangent than the normal
+     * (|n_fixed| < |n_free|), so that n_free is far from zero.
+     */
+    std::vector<int>    fixed_component;
+    std::vector<double> fixed_value;
+    /** Per master node and component: whether a Dirichlet condition
+     * fixes it, and to which value (on every rank). */
+    std::vector<std::array<bool, 2>>   master_fixed;
+    std::vector<std::array<double, 2>> master_fixed_value;
     /** D_jj of each slave node. */
     std::vector<double> weights;
     /** For a master DoF: its node and component. */
@@ -97,11 +118,16 @@ namespace coulomb_adapt
     double weight;
     /** Combined indices of the master DoFs of the coupled master nodes
      * (x and y), with M_jl, and whether that DoF is constrained in body
-     * 2 (its row stays K^2's and receives no contact force). */
+     * 2 (its row stays K^2's and receives no contact force) and to which
+     * value: the Newton solve has zero there (deal.II's constraint rows
+     * have a zero right hand side, the value comes with distribute()),
+     * so a condition coupled to it takes the value on its right hand
+     * side. */
     struct Coupling
     {
       std::array<types::global_dof_index, 2> dofs;
       std::array<bool, 2>                    constrained;
+      std::array<double, 2>                  fixed_value;
       double                                 value;
     };
     std::vector<Coupling> couplings;
@@ -117,6 +143,11 @@ namespace coulomb_adapt
      * n + mu s t. */
     int    slip_sign;
     double friction_coefficient;
+    /** The component a roller fixes (SlaveCondensation::fixed_component,
+     * -1 if none) and its value: the node's conditions are the normal one
+     * and this Dirichlet condition, whatever its set says tangentially. */
+    int    fixed_component = -1;
+    double fixed_value     = 0;
   };
 
   /** The conditions of the slave nodes this rank owns, for the sets of

@@ -49,7 +49,13 @@ namespace coulomb_adapt
     /** Whether the master surface lies opposite the node (covers its
      * support); if not, the node cannot touch and gap/slip are not
      * defined (reported as 0). */
-    bool          facing_master;
+    bool facing_master;
+    /** A Dirichlet condition holds the node along the contact surface (a
+     * roller on a symmetry line): it replaces the tangential contact
+     * condition, the node sticks by construction (slips, without
+     * friction), and lambda_t = 0, the support taking the tangential
+     * reaction. */
+    bool          held_tangentially = false;
     ContactStatus status;
     /** Sign of the slip direction (slip nodes). */
     int slip_sign;

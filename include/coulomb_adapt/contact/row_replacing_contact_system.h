@@ -23,7 +23,12 @@ namespace coulomb_adapt
    *   stick node:  tangent row t . (D u^1 - M u^2)_j = the weighted slip of
    *                           the previous load step,
    *   slip node:   tangent row (t - mu s n) . (K^1 u^1)_j = (...) . f^1_j
-   *                           (lambda_t = mu s lambda_n).
+   *                           (lambda_t = mu s lambda_n),
+   *   roller node: the fixed component's row stays K^1's (its Dirichlet
+   *                           condition); the free component's row is the
+   *                           normal row (active) or its traction row
+   *                           (open: lambda_n = 0), whatever the set says
+   *                           tangentially.
    *
    * The normal condition goes into the row of the displacement component
    * most aligned with n, so that it has a large diagonal entry.
@@ -60,6 +65,7 @@ namespace coulomb_adapt
     const ElasticBody       *slave        = nullptr;
     const ElasticBody       *master       = nullptr;
     const SlaveCondensation *condensation = nullptr;
+    const MortarInterface   *mortar       = nullptr;
     /** The gap rows are scaled like the rows of K^1 they replace: by
      * body 1's Young's modulus. */
     double                         row_scale = 1;
