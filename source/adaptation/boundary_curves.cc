@@ -119,8 +119,8 @@ namespace coulomb_adapt
 
 
 
-    // Point supports: on the boundary a curve ends there, inside the body
-    // the point is embedded; either way it stays a node.
+    // An interior line's ends must be vertices of the boundary: the new
+    // mesh gets a line of nodes between them, and a curve ends at each.
     InteriorFeatures
     interior_features(
       const Triangulation<2>                     &geometry,
@@ -149,6 +149,8 @@ namespace coulomb_adapt
             }
           features.line_ends.push_back(ends);
         }
+      // Point supports: on the boundary a curve ends there, inside the body
+      // the point is embedded; either way it stays a node.
       for (const auto &p : support_points)
         {
           const unsigned int v =
@@ -182,6 +184,8 @@ namespace coulomb_adapt
 
 
 
+    // The outer boundary is the loop of the largest area (shoelace
+    // formula); the others are holes.
     LoopCurves
     loop_curves(const Triangulation<2>       &geometry,
                 const std::string            &body_name,
