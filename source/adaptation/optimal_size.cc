@@ -141,6 +141,130 @@ namespace coulomb_adapt
                             bodies[0]->dof_handler().get_communicator());
       return cells;
     }
+
+
+
+    // The error model of theory.md section 4 over the cells: r_E for the
+    // multiplier exp(L), and the error and cell count it predicts (sums
+    // over all ranks).
+    //
+    // r_E is bounded above, and below if lower_bound. The multiplier is
+    // found without the lower bound: cells that want to shrink more than
+    // min_ratio allows are capped afterwards (the next cycle refines them
+    // again) rather than compensated by refining every other cell more,
+    // which overshot the cell count of the first cycle several times over.
+    //
+    // The lower bound is r_E >= min_ratio where q_E = p, and
+    // min_ratio^{3/2} at singular points, where the error falls more
+    // slowly with h. With min_ratio there too, the singular cells, which
+    // hold most of the error of a coarse mesh, could reduce it by only
+    // min_ratio^{1/2} per cycle, and a small epsilon_0 would take three or
+    // four cycles for them alone. Bounding the error reduction instead
+    // (r_E^{q_E} >= min_ratio^p, so min_ratio^2 for q = 1/2) lets the
+    // asymptotic model plan from a coarse mesh far beyond where it holds,
+    // and it over-refines the corners. benchmarks/adaptive_run measures
+    // the choice: at most two steps, final meshes somewhat larger than
+    // those of the slower loop.
+    class SizeRatioModel
+    {
+    public:
+      SizeRatioModel(const std::vector<CellData> &cells,
+                     const MPI_Comm               comm,
+                     const unsigned int           degree,
+                     const double                 min_ratio,
+                     const double                 max_ratio)
+        : cells(cells)
+        , comm(comm)
+        , degree(degree)
+        , min_ratio(min_ratio)
+        , max_ratio(max_ratio)
+      {}
+
+      double
+      lowest_ratio(const CellData &c) const
+      {
+        return lowest_size_ratio(min_ratio, c.rate < degree);
+      }
+
+      double
+      ratio(const CellData &c, const double L, const bool lower_bound) const
+      {
+        if (c.epsilon_squared <= 0)
+          return max_ratio;
+        const double log_r =
+          (std::log(dimension / (2 * c.rate * c.epsilon_squared)) - L) /
+          (2 * c.rate + dimension);
+        return std::clamp(std::exp(std::clamp(log_r, -300., 300.)),
+                          lower_bound ? lowest_ratio(c) : 0.,
+                          max_ratio);
+      }
+
+      // Decreases as L grows.
+      double
+      predicted_error_squared(const double L, const bool lower_bound) const
+      {
+        double sum = 0;
+        for (const auto &c : cells)
+          sum +=
+            std::pow(ratio(c, L, lower_bound), 2 * c.rate) * c.epsilon_squared;
+        return Utilities::MPI::sum(sum, comm);
+      }
+
+      // Grows with L, as the error falls.
+      double
+      predicted_n_cells(const double L) const
+      {
+        double sum = 0;
+        for (const auto &c : cells)
+          sum += std::pow(ratio(c, L, true), -dimension);
+        return Utilities::MPI::sum(sum, comm);
+      }
+
+      const std::vector<CellData> &cells;
+      const MPI_Comm               comm;
+      const unsigned int           degree;
+      const double                 min_ratio, max_ratio;
+    };
+
+
+
+    // The multiplier of the target error: bisect on L.
+    double
+    multiplier_for_error(const SizeRatioModel &model, const double target_error)
+    {
+      const double target2 = target_error * target_error;
+      double       L_low = -1400, L_high = 1400;
+      for (unsigned int k = 0; k < 200 && L_high - L_low > 1e-12; ++k)
+        {
+          const double L = 0.5 * (L_low + L_high);
+          if (model.predicted_error_squared(L, false) > target2)
+            L_low = L;
+          else
+            L_high = L;
+        }
+      return L_high;
+    }
+
+
+
+    // The multiplier of the largest mesh of at most @p max_n_cells cells,
+    // below @p L (bisection).
+    double
+    multiplier_for_cell_count(const SizeRatioModel &model,
+                              double                L,
+                              const double          max_n_cells)
+    {
+      double L_fewer = -1400;
+      for (unsigned int k = 0; k < 200 && L - L_fewer > 1e-12; ++k)
+        {
+          const double L_middle = 0.5 * (L_fewer + L);
+          if (model.predicted_n_cells(L_middle) > max_n_cells)
+            L = L_middle;
+          else
+            L_fewer = L_middle;
+        }
+      return L_fewer;
+    }
   } // namespace
 
 
@@ -180,96 +304,28 @@ namespace coulomb_adapt
 
     const std::vector<CellData> cells = owned_cell_data(
       bodies, estimate, singular_points, degree, singular_rate, result);
-
-    // r_E for the multiplier exp(L), bounded above, and below if
-    // lower_bound. The multiplier is found without the lower bound: cells
-    // that want to shrink more than min_ratio allows are capped afterwards
-    // (the next cycle refines them again) rather than compensated by
-    // refining every other cell more, which overshot the cell count of the
-    // first cycle several times over (blocks, 4.6 % -> 1 %: 19,806 DoFs
-    // instead of 8,548).
-    //
-    // The lower bound is r_E >= min_ratio where q_E = p, and
-    // min_ratio^{3/2} at singular points, where the error falls more
-    // slowly with h. With min_ratio there too, the singular cells, which
-    // hold most of the error of a coarse mesh, could reduce it by only
-    // min_ratio^{1/2} per cycle, and a small epsilon_0 would take three or
-    // four cycles for them alone. Bounding the error reduction instead
-    // (r_E^{q_E} >= min_ratio^p, so min_ratio^2 for q = 1/2) lets the
-    // asymptotic model plan from a coarse mesh far beyond where it holds,
-    // and it over-refines the corners. benchmarks/adaptive_run measures
-    // the choice: at most two steps, final meshes somewhat larger than
-    // those of the slower loop.
-    auto lowest_ratio = [&](const CellData &c) {
-      return lowest_size_ratio(min_ratio, c.rate < degree);
-    };
-    auto ratio =
-      [&](const CellData &c, const double L, const bool lower_bound) {
-        if (c.epsilon_squared <= 0)
-          return max_ratio;
-        const double log_r =
-          (std::log(dimension / (2 * c.rate * c.epsilon_squared)) - L) /
-          (2 * c.rate + dimension);
-        return std::clamp(std::exp(std::clamp(log_r, -300., 300.)),
-                          lower_bound ? lowest_ratio(c) : 0.,
-                          max_ratio);
-      };
-    auto predicted_error_squared = [&](const double L, const bool lower_bound) {
-      double sum = 0;
-      for (const auto &c : cells)
-        sum +=
-          std::pow(ratio(c, L, lower_bound), 2 * c.rate) * c.epsilon_squared;
-      return Utilities::MPI::sum(sum, comm);
-    };
-
-    // The predicted error decreases as L grows; bisect on L.
-    const double target2 = target_error * target_error;
-    double       L_low = -1400, L_high = 1400;
-    for (unsigned int k = 0; k < 200 && L_high - L_low > 1e-12; ++k)
-      {
-        const double L = 0.5 * (L_low + L_high);
-        if (predicted_error_squared(L, false) > target2)
-          L_low = L;
-        else
-          L_high = L;
-      }
-
-    // The cell count, which grows with L, as the error falls.
-    auto predicted_n_cells = [&](const double L) {
-      double sum = 0;
-      for (const auto &c : cells)
-        sum += std::pow(ratio(c, L, true), -dimension);
-      return Utilities::MPI::sum(sum, comm);
-    };
-    double L = L_high;
-    if (max_n_cells > 0 && predicted_n_cells(L) > max_n_cells)
+    const SizeRatioModel model(cells, comm, degree, min_ratio, max_ratio);
+    double               L = multiplier_for_error(model, target_error);
+    if (max_n_cells > 0 && model.predicted_n_cells(L) > max_n_cells)
       {
         result.limited_by_max_n_cells = true;
-        double L_fewer                = -1400;
-        for (unsigned int k = 0; k < 200 && L - L_fewer > 1e-12; ++k)
-          {
-            const double L_middle = 0.5 * (L_fewer + L);
-            if (predicted_n_cells(L_middle) > max_n_cells)
-              L = L_middle;
-            else
-              L_fewer = L_middle;
-          }
-        L = L_fewer;
+        L = multiplier_for_cell_count(model, L, max_n_cells);
       }
 
     double n_cells = 0;
     for (const auto &c : cells)
       {
-        const double r                = ratio(c, L, true);
+        const double r                = model.ratio(c, L, true);
         result.ratio[c.body](c.index) = r;
         n_cells += std::pow(r, -dimension);
-        result.n_at_min_ratio += (r <= lowest_ratio(c) * (1 + 1e-12));
+        result.n_at_min_ratio += (r <= model.lowest_ratio(c) * (1 + 1e-12));
         result.n_at_max_ratio += (r >= max_ratio * (1 - 1e-12));
       }
     result.predicted_n_cells = Utilities::MPI::sum(n_cells, comm);
-    result.predicted_epsilon = std::sqrt(predicted_error_squared(L, true));
-    result.n_at_min_ratio    = Utilities::MPI::sum(result.n_at_min_ratio, comm);
-    result.n_at_max_ratio    = Utilities::MPI::sum(result.n_at_max_ratio, comm);
+    result.predicted_epsilon =
+      std::sqrt(model.predicted_error_squared(L, true));
+    result.n_at_min_ratio = Utilities::MPI::sum(result.n_at_min_ratio, comm);
+    result.n_at_max_ratio = Utilities::MPI::sum(result.n_at_max_ratio, comm);
     return result;
   }
 } // namespace coulomb_adapt

@@ -9,6 +9,82 @@
 
 namespace coulomb_adapt
 {
+  namespace
+  {
+    // The decision @p decide(b, i) for each owned active cell i of body b;
+    // 0 (keep) on the others.
+    RefinementDecisions
+    decide_per_cell(
+      const std::array<const ElasticBody *, 2>                         &bodies,
+      const std::function<int(const unsigned int, const unsigned int)> &decide)
+    {
+      RefinementDecisions decisions;
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          const auto &tria = bodies[b]->triangulation();
+          decisions[b].assign(tria.n_active_cells(), 0);
+          for (const auto &cell : tria.active_cell_iterators())
+            if (cell->is_locally_owned())
+              decisions[b][cell->active_cell_index()] =
+                decide(b, cell->active_cell_index());
+        }
+      return decisions;
+    }
+
+
+
+    // epsilon_E^2 of every cell of both bodies, on every rank, sorted
+    // decreasingly: the thresholds are then the same everywhere.
+    std::vector<double>
+    sorted_contributions(const std::array<const ElasticBody *, 2> &bodies,
+                         const ErrorEstimate                      &estimate)
+    {
+      const MPI_Comm      comm = bodies[0]->dof_handler().get_communicator();
+      std::vector<double> local;
+      for (unsigned int b = 0; b < 2; ++b)
+        for (const auto &cell :
+             bodies[b]->triangulation().active_cell_iterators())
+          if (cell->is_locally_owned())
+            local.push_back(
+              estimate.contribution_squared[b](cell->active_cell_index()));
+      std::vector<double> all;
+      for (const auto &part : Utilities::MPI::all_gather(comm, local))
+        all.insert(all.end(), part.begin(), part.end());
+      std::sort(all.begin(), all.end(), std::greater<double>());
+      return all;
+    }
+
+
+
+    // GridRefinement's 'optimize': the number M of cells to refine that
+    // minimises the predicted error times the cell count,
+    // (N + 3 M)^q (total - (1 - 4^-q) sum of the M largest).
+    std::size_t
+    optimal_refine_count(const std::vector<double> &all,
+                         const double               total,
+                         const unsigned int         degree)
+    {
+      const std::size_t N         = all.size();
+      const double      q         = degree;
+      const double      reduction = 1 - std::pow(4., -q);
+      double            best      = std::pow(double(N), q) * total;
+      double            refined   = 0;
+      std::size_t       n_refine  = 0;
+      for (std::size_t M = 1; M <= N; ++M)
+        {
+          refined += all[M - 1];
+          const double J =
+            std::pow(double(N + 3 * M), q) * (total - reduction * refined);
+          if (J < best)
+            {
+              best     = J;
+              n_refine = M;
+            }
+        }
+      return n_refine;
+    }
+  } // namespace
+
   RefinementDecisions
   decisions_from_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
                              const ErrorEstimate                      &estimate,
@@ -63,20 +139,10 @@ namespace coulomb_adapt
         r_refine = high * (1 + 1e-8);
       }
 
-    RefinementDecisions decisions;
-    for (unsigned int b = 0; b < 2; ++b)
-      {
-        const auto &tria = bodies[b]->triangulation();
-        decisions[b].assign(tria.n_active_cells(), 0);
-        for (const auto &cell : tria.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              const unsigned int i = cell->active_cell_index();
-              const double       r = ratios.ratio[b](i);
-              decisions[b][i]      = levels(r, r_refine);
-            }
-      }
-    return decisions;
+    return decide_per_cell(bodies,
+                           [&](const unsigned int b, const unsigned int i) {
+                             return levels(ratios.ratio[b](i), r_refine);
+                           });
   }
 
 
@@ -89,22 +155,9 @@ namespace coulomb_adapt
                            const double       coarsen_fraction,
                            const unsigned int degree)
   {
-    const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
-    // epsilon_E^2 of every cell of both bodies, on every rank, sorted
-    // decreasingly: the thresholds are then the same everywhere.
-    std::vector<double> local;
-    for (unsigned int b = 0; b < 2; ++b)
-      for (const auto &cell :
-           bodies[b]->triangulation().active_cell_iterators())
-        if (cell->is_locally_owned())
-          local.push_back(
-            estimate.contribution_squared[b](cell->active_cell_index()));
-    std::vector<double> all;
-    for (const auto &part : Utilities::MPI::all_gather(comm, local))
-      all.insert(all.end(), part.begin(), part.end());
-    std::sort(all.begin(), all.end(), std::greater<double>());
-    const std::size_t N     = all.size();
-    const double      total = std::accumulate(all.begin(), all.end(), 0.);
+    const std::vector<double> all = sorted_contributions(bodies, estimate);
+    const std::size_t         N   = all.size();
+    const double total            = std::accumulate(all.begin(), all.end(), 0.);
 
     // Refine the first n_refine cells, coarsen the last n_coarsen.
     std::size_t n_refine = 0, n_coarsen = 0;
@@ -125,23 +178,7 @@ namespace coulomb_adapt
                              static_cast<std::size_t>(coarsen_fraction * N));
       }
     else if (criterion == RefinementCriterion::optimize)
-      {
-        const double q         = degree;
-        const double reduction = 1 - std::pow(4., -q);
-        double       best      = std::pow(double(N), q) * total;
-        double       refined   = 0;
-        for (std::size_t M = 1; M <= N; ++M)
-          {
-            refined += all[M - 1];
-            const double J =
-              std::pow(double(N + 3 * M), q) * (total - reduction * refined);
-            if (J < best)
-              {
-                best     = J;
-                n_refine = M;
-              }
-          }
-      }
+      n_refine = optimal_refine_count(all, total, degree);
     else
       AssertThrow(false,
                   ExcMessage("refinement criterion '" + option_name(criterion) +
@@ -154,22 +191,10 @@ namespace coulomb_adapt
     const double coarsen_threshold =
       n_coarsen > 0 ? all[N - n_coarsen] * (1 + 1e-10) : -1;
 
-    RefinementDecisions decisions;
-    for (unsigned int b = 0; b < 2; ++b)
-      {
-        const auto &tria = bodies[b]->triangulation();
-        decisions[b].assign(tria.n_active_cells(), 0);
-        for (const auto &cell : tria.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              const unsigned int i = cell->active_cell_index();
-              const double       e = estimate.contribution_squared[b](i);
-              if (e >= refine_threshold)
-                decisions[b][i] = 1;
-              else if (e <= coarsen_threshold)
-                decisions[b][i] = -1;
-            }
-      }
-    return decisions;
+    return decide_per_cell(
+      bodies, [&](const unsigned int b, const unsigned int i) {
+        const double e = estimate.contribution_squared[b](i);
+        return e >= refine_threshold ? 1 : e <= coarsen_threshold ? -1 : 0;
+      });
   }
 } // namespace coulomb_adapt

@@ -8,11 +8,11 @@
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/core/units.h>
 #include <coulomb_adapt/indicator/exact_error.h>
+#include <coulomb_adapt/output/file_writer.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 
 #include <cmath>
 #include <filesystem>
-#include <regex>
 
 namespace coulomb_adapt
 {
@@ -486,36 +486,6 @@ namespace coulomb_adapt
 
 
 
-  // A run into the directory of an earlier, longer one would leave that
-  // run's later cycles beside this run's summary.json, as if they were
-  // its own. The program's own per-cycle files (and the .pvd lists) go
-  // before the first cycle; other files stay.
-  void
-  TwoBodyProblem::remove_files_of_earlier_run() const
-  {
-    unsigned int n_removed = 0;
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      {
-        const std::regex own_file(
-          "(body-[12]|contact)(_[0-9]{3}(\\.[0-9]+)?\\.(vtu|pvtu|csv)|\\.pvd)"
-          "(\\.tmp)?");
-        std::error_code error;
-        for (const auto &entry :
-             std::filesystem::directory_iterator(parameters.output.directory,
-                                                 error))
-          if (entry.is_regular_file(error) &&
-              std::regex_match(entry.path().filename().string(), own_file))
-            n_removed += std::filesystem::remove(entry.path(), error);
-      }
-    n_removed = Utilities::MPI::broadcast(mpi_communicator, n_removed, 0);
-    if (n_removed > 0)
-      pcout << "  removed " << n_removed
-            << " output files of an earlier run from '"
-            << parameters.output.directory << "'" << std::endl;
-  }
-
-
-
   // The bodies on the scene's meshes, their output writers and the
   // contact driver; before any solve, whether the exact error has
   // something to compare with.
@@ -564,7 +534,9 @@ namespace coulomb_adapt
           << " MPI rank(s), " << MultithreadInfo::n_threads()
           << " thread(s) per rank, results in '" << parameters.output.directory
           << "'" << std::endl;
-    remove_files_of_earlier_run();
+    remove_output_of_earlier_run(mpi_communicator,
+                                 parameters.output.directory,
+                                 pcout);
     make_bodies();
     const LoadStressScale loads = load_stress_scale(*scene, bodies);
     AssertThrow(!parameters.error_indicator.compute_exact_error ||

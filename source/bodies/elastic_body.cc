@@ -184,23 +184,101 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // The stiffness 2 mu eps(u):eps(v) + lambda div u div v and the body
+    // force of one cell; the lower triangle is summed, then mirrored.
+    // @p strain and @p divergence are scratch space (one entry per DoF).
+    void
+    add_cell_terms(const FEValues<2>                  &fe_values,
+                   const double                        lambda,
+                   const double                        mu,
+                   const BodyDescription              &description,
+                   std::vector<SymmetricTensor<2, 2>> &strain,
+                   std::vector<double>                &divergence,
+                   FullMatrix<double>                 &cell_matrix,
+                   Vector<double>                     &cell_rhs)
+    {
+      const FEValuesExtractors::Vector displacement_view(0);
+      const auto                      &fv = fe_values[displacement_view];
+      const unsigned int               dofs_per_cell = cell_rhs.size();
+      for (const unsigned int q : fe_values.quadrature_point_indices())
+        {
+          const double JxW = fe_values.JxW(q);
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              strain[i]     = fv.symmetric_gradient(i, q);
+              divergence[i] = trace(strain[i]);
+            }
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            for (unsigned int j = 0; j <= i; ++j)
+              cell_matrix(i, j) += (2. * mu * (strain[i] * strain[j]) +
+                                    lambda * divergence[i] * divergence[j]) *
+                                   JxW;
+          if (description.body_force)
+            {
+              const Tensor<1, 2> f =
+                description.body_force(fe_values.quadrature_point(q));
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                cell_rhs(i) += fv.value(i, q) * f * JxW;
+            }
+        }
+      for (unsigned int i = 0; i < dofs_per_cell; ++i)
+        for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
+          cell_matrix(i, j) = cell_matrix(j, i);
+    }
+
+
+
+    // The tractions on the cell's boundary faces that carry one.
+    void
+    add_traction_terms(
+      const DoFHandler<2>::active_cell_iterator                    &cell,
+      const std::map<types::boundary_id, const TractionFunction *> &traction_on,
+      FEFaceValues<2> &fe_face_values,
+      Vector<double>  &cell_rhs)
+    {
+      const FEValuesExtractors::Vector displacement_view(0);
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          {
+            const auto t = traction_on.find(face->boundary_id());
+            if (t == traction_on.end())
+              continue;
+            fe_face_values.reinit(cell, face);
+            const auto &ffv = fe_face_values[displacement_view];
+            for (const unsigned int q :
+                 fe_face_values.quadrature_point_indices())
+              {
+                const Tensor<1, 2> traction =
+                  (*t->second)(fe_face_values.quadrature_point(q),
+                               fe_face_values.normal_vector(q));
+                for (unsigned int i = 0; i < cell_rhs.size(); ++i)
+                  cell_rhs(i) +=
+                    ffv.value(i, q) * traction * fe_face_values.JxW(q);
+              }
+          }
+    }
+  } // namespace
+
+
+
   void
   ElasticBody::assemble_system()
   {
     matrix = 0;
     rhs    = 0;
 
-    FEValues<2>                      fe_values(*mapping_,
+    FEValues<2>     fe_values(*mapping_,
                           *fe,
                           *quadrature,
                           update_values | update_gradients |
                             update_quadrature_points | update_JxW_values);
-    FEFaceValues<2>                  fe_face_values(*mapping_,
+    FEFaceValues<2> fe_face_values(*mapping_,
                                    *fe,
                                    *face_quadrature,
                                    update_values | update_quadrature_points |
                                      update_normal_vectors | update_JxW_values);
-    const FEValuesExtractors::Vector displacement_view(0);
 
     const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
     FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
@@ -208,9 +286,6 @@ namespace coulomb_adapt
     std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
     std::vector<SymmetricTensor<2, 2>>   strain(dofs_per_cell);
     std::vector<double>                  divergence(dofs_per_cell);
-
-    const double lambda = elastic_material.lambda();
-    const double mu     = elastic_material.mu();
 
     std::map<types::boundary_id, const TractionFunction *> traction_on;
     for (const auto &t : body_description.tractions)
@@ -222,54 +297,15 @@ namespace coulomb_adapt
           cell_matrix = 0;
           cell_rhs    = 0;
           fe_values.reinit(cell);
-          const auto &fv = fe_values[displacement_view];
-
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const double JxW = fe_values.JxW(q);
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                {
-                  strain[i]     = fv.symmetric_gradient(i, q);
-                  divergence[i] = trace(strain[i]);
-                }
-              for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                for (unsigned int j = 0; j <= i; ++j)
-                  cell_matrix(i, j) +=
-                    (2. * mu * (strain[i] * strain[j]) +
-                     lambda * divergence[i] * divergence[j]) *
-                    JxW;
-              if (body_description.body_force)
-                {
-                  const Tensor<1, 2> f =
-                    body_description.body_force(fe_values.quadrature_point(q));
-                  for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                    cell_rhs(i) += fv.value(i, q) * f * JxW;
-                }
-            }
-          for (unsigned int i = 0; i < dofs_per_cell; ++i)
-            for (unsigned int j = i + 1; j < dofs_per_cell; ++j)
-              cell_matrix(i, j) = cell_matrix(j, i);
-
-          for (const auto &face : cell->face_iterators())
-            if (face->at_boundary())
-              {
-                const auto t = traction_on.find(face->boundary_id());
-                if (t == traction_on.end())
-                  continue;
-                fe_face_values.reinit(cell, face);
-                const auto &ffv = fe_face_values[displacement_view];
-                for (const unsigned int q :
-                     fe_face_values.quadrature_point_indices())
-                  {
-                    const Tensor<1, 2> traction =
-                      (*t->second)(fe_face_values.quadrature_point(q),
-                                   fe_face_values.normal_vector(q));
-                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
-                      cell_rhs(i) +=
-                        ffv.value(i, q) * traction * fe_face_values.JxW(q);
-                  }
-              }
-
+          add_cell_terms(fe_values,
+                         elastic_material.lambda(),
+                         elastic_material.mu(),
+                         body_description,
+                         strain,
+                         divergence,
+                         cell_matrix,
+                         cell_rhs);
+          add_traction_terms(cell, traction_on, fe_face_values, cell_rhs);
           cell->get_dof_indices(local_dof_indices);
           constraints_.distribute_local_to_global(
             cell_matrix, cell_rhs, local_dof_indices, matrix, rhs);

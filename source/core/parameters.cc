@@ -244,10 +244,12 @@ namespace coulomb_adapt
 
 
 
-    void
-    Adaptation::declare_parameters(ParameterHandler &prm)
+    namespace
     {
-      prm.enter_subsection("Adaptation");
+      // The cycles: how the mesh changes, how many cycles, and when they
+      // stop (the target and its safety margin, the DoF limit).
+      void
+      declare_cycle_entries(ParameterHandler &prm)
       {
         prm.declare_entry("Strategy",
                           "uniform",
@@ -317,6 +319,15 @@ namespace coulomb_adapt
                           "summary.json's 'limited_by_max_dofs' say so). "
                           "'refine' rounds to whole levels and may land up "
                           "to 4 times above it.");
+      }
+
+
+
+      // Which cells change and by how much: the refinement criterion and
+      // the bounds of the size ratio r_E.
+      void
+      declare_size_entries(ParameterHandler &prm)
+      {
         prm.declare_entry("Refinement criterion",
                           "size ratio",
                           Patterns::Selection(
@@ -358,6 +369,18 @@ namespace coulomb_adapt
                           "points where a clamped or contact boundary "
                           "meets another boundary condition): min(p, this). "
                           "Elsewhere q = p, the polynomial degree.");
+      }
+    } // namespace
+
+
+
+    void
+    Adaptation::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Adaptation");
+      {
+        declare_cycle_entries(prm);
+        declare_size_entries(prm);
         prm.declare_entry("Remeshing algorithm",
                           "frontal-delaunay",
                           Patterns::Selection("frontal-delaunay|delaunay"),

@@ -21,6 +21,88 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // The physical fields of a scaled problem, for HDF5's doubles: copies
+    // times P (the owned entries scaled, then the ghosts imported).
+    struct ScaledFields
+    {
+      TrilinosWrappers::MPI::Vector              solution;
+      std::array<RecoveredStress::VectorType, 3> recovered;
+    };
+
+    ScaledFields
+    scaled_fields(const ElasticBody     &body,
+                  const RecoveredStress *recovered,
+                  const double           load_scale)
+    {
+      const MPI_Comm comm = body.triangulation().get_communicator();
+      ScaledFields   scaled;
+      TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(), comm);
+      owned = body.solution();
+      owned *= load_scale;
+      scaled.solution.reinit(body.locally_owned_dof_set(),
+                             body.locally_relevant_dof_set(),
+                             comm);
+      scaled.solution = owned;
+      if (recovered)
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            scaled.recovered[c] = recovered->component(c);
+            scaled.recovered[c] *= load_scale;
+          }
+      return scaled;
+    }
+
+
+
+    // Per-cell fields that show the mesh: material id and subdomain (the
+    // partition), on the owned cells.
+    std::array<Vector<float>, 2>
+    material_and_subdomain(const Triangulation<2> &tria)
+    {
+      std::array<Vector<float>, 2> fields;
+      for (auto &field : fields)
+        field.reinit(tria.n_active_cells());
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fields[0](cell->active_cell_index()) = cell->material_id();
+            fields[1](cell->active_cell_index()) = cell->subdomain_id();
+          }
+      return fields;
+    }
+
+
+
+    // The indicator's fields, where computed; the smoothed stresses from
+    // @p scaled_recovered where given (a scaled problem in HDF5).
+    void
+    add_error_fields(
+      DataOut<2>                                       &data_out,
+      const BodyErrorFields                            &error_fields,
+      const std::array<RecoveredStress::VectorType, 3> *scaled_recovered)
+    {
+      if (error_fields.indicator)
+        data_out.add_data_vector(*error_fields.indicator, "error_indicator");
+      if (error_fields.density)
+        data_out.add_data_vector(*error_fields.density, "error_density");
+      if (error_fields.recovered)
+        {
+          const std::array<std::string, 3> names = {
+            {"smoothed_stress_xx", "smoothed_stress_yy", "smoothed_stress_xy"}};
+          for (unsigned int c = 0; c < 3; ++c)
+            data_out.add_data_vector(error_fields.recovered->dof_handler(),
+                                     scaled_recovered ?
+                                       (*scaled_recovered)[c] :
+                                       error_fields.recovered->component(c),
+                                     names[c]);
+        }
+    }
+  } // namespace
+
+
+
   void
   BodyOutput::write(const ElasticBody     &body,
                     const unsigned int     cycle,
@@ -28,31 +110,12 @@ namespace coulomb_adapt
                     const double           load_scale)
   {
     const Triangulation<2> &tria = body.triangulation();
-    const MPI_Comm          comm = tria.get_communicator();
-
-    // The physical fields of a scaled problem, in HDF5's doubles: copies
-    // times P (the owned entries scaled, then the ghosts imported).
-    const bool scale = load_scale != 1 && format == OutputFormat::hdf5;
-    TrilinosWrappers::MPI::Vector              scaled_solution;
-    std::array<RecoveredStress::VectorType, 3> scaled_recovered;
-    if (scale)
-      {
-        TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(), comm);
-        owned = body.solution();
-        owned *= load_scale;
-        scaled_solution.reinit(body.locally_owned_dof_set(),
-                               body.locally_relevant_dof_set(),
-                               comm);
-        scaled_solution = owned;
-        if (error_fields.recovered)
-          for (unsigned int c = 0; c < 3; ++c)
-            {
-              scaled_recovered[c] = error_fields.recovered->component(c);
-              scaled_recovered[c] *= load_scale;
-            }
-      }
+    const bool         scale = load_scale != 1 && format == OutputFormat::hdf5;
+    const ScaledFields scaled =
+      scale ? scaled_fields(body, error_fields.recovered, load_scale) :
+              ScaledFields();
     const TrilinosWrappers::MPI::Vector &solution =
-      scale ? scaled_solution : body.solution();
+      scale ? scaled.solution : body.solution();
 
     DataOut<2> data_out;
     data_out.attach_dof_handler(body.dof_handler());
@@ -64,59 +127,54 @@ namespace coulomb_adapt
         2, DataComponentInterpretation::component_is_part_of_vector));
     const StressPostprocessor stresses(body.material());
     data_out.add_data_vector(solution, stresses);
-
-    Vector<float> material_id(tria.n_active_cells());
-    Vector<float> subdomain(tria.n_active_cells());
-    for (const auto &cell : tria.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          material_id(cell->active_cell_index()) = cell->material_id();
-          subdomain(cell->active_cell_index())   = cell->subdomain_id();
-        }
-    if (error_fields.indicator)
-      data_out.add_data_vector(*error_fields.indicator, "error_indicator");
-    if (error_fields.density)
-      data_out.add_data_vector(*error_fields.density, "error_density");
-    if (error_fields.recovered)
-      {
-        const std::array<std::string, 3> names = {
-          {"smoothed_stress_xx", "smoothed_stress_yy", "smoothed_stress_xy"}};
-        for (unsigned int c = 0; c < 3; ++c)
-          data_out.add_data_vector(error_fields.recovered->dof_handler(),
-                                   scale ? scaled_recovered[c] :
-                                           error_fields.recovered->component(c),
-                                   names[c]);
-      }
-    data_out.add_data_vector(material_id, "material_id");
-    data_out.add_data_vector(subdomain, "subdomain");
+    const auto cell_fields = material_and_subdomain(tria);
+    add_error_fields(data_out,
+                     error_fields,
+                     scale ? &scaled.recovered : nullptr);
+    data_out.add_data_vector(cell_fields[0], "material_id");
+    data_out.add_data_vector(cell_fields[1], "subdomain");
 
     data_out.build_patches(body.mapping(),
                            body.dof_handler().get_fe().degree,
                            DataOut<2>::curved_inner_cells);
-
     if (format == OutputFormat::hdf5)
-      {
-        const std::string h5 =
-          base_name + "_" + Utilities::int_to_string(cycle, 3) + ".h5";
-        xdmf_entries.push_back(
-          write_hdf5(comm, data_out, directory, h5, cycle));
-        write_xdmf_file(comm,
-                        directory + "/" + base_name + ".xdmf",
-                        xdmf_entries,
-                        tria.get_reference_cells()[0]);
-        return;
-      }
+      write_hdf5_cycle(data_out, tria, cycle);
+    else
+      write_vtu_cycle(data_out, tria.get_communicator(), cycle);
+  }
 
-    // zlib's fastest level instead of deal.II's default, the best
-    // compression: on these fields the files are hardly larger, and
-    // writing them no longer dominates an adaptive run
-    // (benchmarks/adaptive_run).
+
+
+  void
+  BodyOutput::write_hdf5_cycle(const DataOut<2>       &data_out,
+                               const Triangulation<2> &tria,
+                               const unsigned int      cycle)
+  {
+    const MPI_Comm    comm = tria.get_communicator();
+    const std::string h5 =
+      base_name + "_" + Utilities::int_to_string(cycle, 3) + ".h5";
+    xdmf_entries.push_back(write_hdf5(comm, data_out, directory, h5, cycle));
+    write_xdmf_file(comm,
+                    directory + "/" + base_name + ".xdmf",
+                    xdmf_entries,
+                    tria.get_reference_cells()[0]);
+  }
+
+
+
+  // zlib's fastest level instead of deal.II's default, the best
+  // compression: on these fields the files are hardly larger, and writing
+  // them no longer dominates an adaptive run (benchmarks/adaptive_run).
+  void
+  BodyOutput::write_vtu_cycle(DataOut<2>        &data_out,
+                              const MPI_Comm     comm,
+                              const unsigned int cycle)
+  {
     DataOutBase::VtkFlags vtk_flags;
     vtk_flags.compression_level = DataOutBase::VtkFlags::best_speed;
     data_out.set_flags(vtk_flags);
     const std::string pvtu =
       write_vtu_with_pvtu_record(comm, data_out, directory, base_name, cycle);
-
     pvd_records.emplace_back(cycle, pvtu);
     write_file(comm,
                directory + "/" + base_name + ".pvd",

@@ -10,7 +10,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <regex>
 
 namespace coulomb_adapt
 {
@@ -248,5 +250,32 @@ namespace coulomb_adapt
            << "  </Domain>\n"
            << "</Xdmf>\n";
     });
+  }
+
+
+
+  void
+  remove_output_of_earlier_run(const MPI_Comm                    comm,
+                               const std::string                &directory,
+                               const dealii::ConditionalOStream &log)
+  {
+    unsigned int n_removed = 0;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        const std::regex own_file(
+          "(body-[12]|contact)(_[0-9]{3}(\\.[0-9]+)?\\.(vtu|pvtu|csv)|\\.pvd)"
+          "(\\.tmp)?");
+        std::error_code error;
+        for (const auto &entry :
+             std::filesystem::directory_iterator(directory, error))
+          if (entry.is_regular_file(error) &&
+              std::regex_match(entry.path().filename().string(), own_file))
+            n_removed += std::filesystem::remove(entry.path(), error);
+      }
+    n_removed = Utilities::MPI::broadcast(comm, n_removed, 0);
+    if (n_removed > 0)
+      log << "  removed " << n_removed
+          << " output files of an earlier run from '" << directory << "'"
+          << std::endl;
   }
 } // namespace coulomb_adapt

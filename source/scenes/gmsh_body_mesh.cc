@@ -5,6 +5,7 @@
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 
 #include <map>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -46,6 +47,106 @@ namespace coulomb_adapt
         }
       return 0.5 * a;
     }
+
+
+
+    using LocalIndex = std::map<std::size_t, unsigned int>;
+    using LocalEdge  = std::pair<unsigned int, unsigned int>;
+
+    // The cells of @p elements in @p mesh, their corners numbered in
+    // @p local_index in the order met. gmsh orders corners
+    // counter-clockwise (if the surface's normal points along +z);
+    // deal.II wants counter-clockwise triangles and lexicographically
+    // numbered quadrilaterals.
+    void
+    add_cells(const std::vector<std::vector<std::size_t>> &elements,
+              const std::map<std::size_t, Point<2>>       &all_nodes,
+              const types::material_id                     material_id,
+              const std::string                           &file_name,
+              CoarseMeshData                              &mesh,
+              LocalIndex                                  &local_index)
+    {
+      const unsigned int corners = elements.front().size();
+      for (const auto &element : elements)
+        {
+          if (element.size() != corners)
+            throw ParameterError("gmsh file '" + file_name +
+                                 "': a body mixes triangles and "
+                                 "quadrangles, which is not supported");
+          CellData<2>           cell(corners);
+          std::vector<Point<2>> polygon;
+          for (unsigned int v = 0; v < corners; ++v)
+            {
+              const auto [it, inserted] =
+                local_index.emplace(element[v], mesh.vertices.size());
+              if (inserted)
+                mesh.vertices.push_back(all_nodes.at(element[v]));
+              cell.vertices[v] = it->second;
+              polygon.push_back(mesh.vertices[it->second]);
+            }
+          if (signed_area(polygon) < 0)
+            std::reverse(cell.vertices.begin() + 1, cell.vertices.end());
+          if (corners == 4)
+            std::swap(cell.vertices[2], cell.vertices[3]);
+          cell.material_id = material_id;
+          mesh.cells.push_back(cell);
+        }
+    }
+
+
+
+    // The boundary edges of the body: those of one of its cells only.
+    class BoundaryEdges
+    {
+    public:
+      BoundaryEdges(const std::vector<std::vector<std::size_t>> &elements,
+                    const LocalIndex                            &local_index)
+        : local_index(local_index)
+      {
+        for (const auto &element : elements)
+          for (unsigned int v = 0; v < element.size(); ++v)
+            {
+              const unsigned int a = local_index.at(element[v]);
+              const unsigned int b =
+                local_index.at(element[(v + 1) % element.size()]);
+              ++edge_count[std::minmax(a, b)];
+            }
+      }
+
+      // The edge between the nodes @p a and @p b if it is a boundary edge
+      // of this body.
+      std::optional<LocalEdge>
+      find(const std::size_t a, const std::size_t b) const
+      {
+        const auto i = local_index.find(a);
+        const auto j = local_index.find(b);
+        if (i == local_index.end() || j == local_index.end())
+          return {};
+        const LocalEdge edge  = std::minmax(i->second, j->second);
+        const auto      count = edge_count.find(edge);
+        if (count == edge_count.end() || count->second != 1)
+          return {};
+        return edge;
+      }
+
+    private:
+      const LocalIndex                 &local_index;
+      std::map<LocalEdge, unsigned int> edge_count;
+    };
+
+
+
+    CellData<1>
+    boundary_line(const LocalEdge         &edge,
+                  const types::boundary_id boundary_id,
+                  const types::manifold_id manifold_id)
+    {
+      CellData<1> line;
+      line.vertices    = {edge.first, edge.second};
+      line.boundary_id = boundary_id;
+      line.manifold_id = manifold_id;
+      return line;
+    }
   } // namespace
 
 
@@ -62,89 +163,37 @@ namespace coulomb_adapt
                   const std::map<std::pair<std::size_t, std::size_t>,
                                  types::manifold_id> &curved_edges)
   {
-    CoarseMeshData                  mesh;
-    std::map<std::size_t, unsigned> local_index;
-    const unsigned int              corners = elements.front().size();
-    for (const auto &element : elements)
-      {
-        if (element.size() != corners)
-          throw ParameterError("gmsh file '" + file_name +
-                               "': a body mixes triangles and "
-                               "quadrangles, which is not supported");
-        CellData<2>           cell(corners);
-        std::vector<Point<2>> polygon;
-        for (unsigned int v = 0; v < corners; ++v)
-          {
-            const auto [it, inserted] =
-              local_index.emplace(element[v], mesh.vertices.size());
-            if (inserted)
-              mesh.vertices.push_back(all_nodes.at(element[v]));
-            cell.vertices[v] = it->second;
-            polygon.push_back(mesh.vertices[it->second]);
-          }
-        // gmsh orders corners counter-clockwise (if the surface's normal
-        // points along +z); deal.II wants counter-clockwise triangles
-        // and lexicographically numbered quadrilaterals.
-        if (signed_area(polygon) < 0)
-          std::reverse(cell.vertices.begin() + 1, cell.vertices.end());
-        if (corners == 4)
-          std::swap(cell.vertices[2], cell.vertices[3]);
-        cell.material_id = material_id;
-        mesh.cells.push_back(cell);
-      }
+    CoarseMeshData mesh;
+    LocalIndex     local_index;
+    add_cells(elements, all_nodes, material_id, file_name, mesh, local_index);
 
     // Only lines that are boundary edges of this body become boundary
     // lines: a curve shared by both bodies (the contact interface) is
     // then given to each of them.
-    std::map<std::pair<unsigned, unsigned>, unsigned> edge_count;
-    for (const auto &element : elements)
-      for (unsigned int v = 0; v < corners; ++v)
-        {
-          unsigned a = local_index[element[v]];
-          unsigned b = local_index[element[(v + 1) % corners]];
-          ++edge_count[std::minmax(a, b)];
-        }
-    std::set<std::pair<unsigned, unsigned>> named_edges;
+    const BoundaryEdges boundary_edges(elements, local_index);
+    std::set<LocalEdge> named_edges;
+    auto               &boundary_lines = mesh.boundary_lines.boundary_lines;
     for (const auto &[id, group_lines] : lines)
       for (const auto &line : group_lines)
-        {
-          const auto a = local_index.find(line[0]);
-          const auto b = local_index.find(line[1]);
-          if (a == local_index.end() || b == local_index.end())
-            continue;
-          const auto edge  = std::minmax(a->second, b->second);
-          const auto count = edge_count.find(edge);
-          if (count == edge_count.end() || count->second != 1)
-            continue;
-          CellData<1> boundary_line;
-          boundary_line.vertices    = {edge.first, edge.second};
-          boundary_line.boundary_id = id;
-          const auto curved = curved_edges.find(std::minmax(line[0], line[1]));
-          if (curved != curved_edges.end())
-            boundary_line.manifold_id = curved->second;
-          mesh.boundary_lines.boundary_lines.push_back(boundary_line);
-          named_edges.insert(edge);
-        }
+        if (const auto edge = boundary_edges.find(line[0], line[1]))
+          {
+            const auto curved =
+              curved_edges.find(std::minmax(line[0], line[1]));
+            boundary_lines.push_back(
+              boundary_line(*edge,
+                            id,
+                            curved != curved_edges.end() ?
+                              curved->second :
+                              numbers::flat_manifold_id));
+            named_edges.insert(*edge);
+          }
     // The boundary edges on circles that no group names: free, but curved.
     for (const auto &[tags, manifold_id] : curved_edges)
-      {
-        const auto a = local_index.find(tags.first);
-        const auto b = local_index.find(tags.second);
-        if (a == local_index.end() || b == local_index.end())
-          continue;
-        const auto edge  = std::minmax(a->second, b->second);
-        const auto count = edge_count.find(edge);
-        if (count == edge_count.end() || count->second != 1 ||
-            named_edges.count(edge) > 0)
-          continue;
-        CellData<1> boundary_line;
-        boundary_line.vertices    = {edge.first, edge.second};
-        boundary_line.boundary_id = 0;
-        boundary_line.manifold_id = manifold_id;
-        mesh.boundary_lines.boundary_lines.push_back(boundary_line);
-      }
+      if (const auto edge = boundary_edges.find(tags.first, tags.second))
+        if (named_edges.count(*edge) == 0)
+          boundary_lines.push_back(boundary_line(*edge, 0, manifold_id));
 
-    if (corners == 4)
+    if (elements.front().size() == 4)
       GridTools::consistently_order_cells(mesh.cells);
     return mesh;
   }

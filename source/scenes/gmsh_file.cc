@@ -131,6 +131,46 @@ namespace coulomb_adapt
           Utilities::split_string_list(prm.get(entry)));
         return Tensor<1, 2>({v[0], v[1]});
       }
+
+
+      // The entries of one body: its surfaces and its body force (the
+      // material entries come from declare_body_materials).
+      void
+      declare_body_entries(ParameterHandler &prm, const unsigned int b)
+      {
+        prm.enter_subsection("Body " + std::to_string(b));
+        {
+          prm.declare_entry("Physical surfaces",
+                            "body " + std::to_string(b),
+                            Patterns::List(Patterns::Anything(), 1),
+                            "The physical surfaces that form this body "
+                            "(comma-separated names).");
+          prm.declare_entry("Density",
+                            "0",
+                            Patterns::Double(),
+                            "Mass density (t/mm^3, e.g. 7.85e-9 for "
+                            "steel), >= 0: with 'Gravity' and 'Angular "
+                            "velocity' the body force density x "
+                            "(g + omega^2 (x - axis)) in N/mm^3.");
+          prm.declare_entry("Gravity",
+                            "0, 0",
+                            Patterns::List(Patterns::Double(), 2, 2),
+                            "Acceleration of gravity (x, y) (mm/s^2, "
+                            "e.g. 0, -9810).");
+          prm.declare_entry("Angular velocity",
+                            "0",
+                            Patterns::Double(),
+                            "Angular velocity omega (rad/s) of the body "
+                            "about 'Rotation axis': the centrifugal "
+                            "load of a rotating part.");
+          prm.declare_entry("Rotation axis",
+                            "0, 0",
+                            Patterns::List(Patterns::Double(), 2, 2),
+                            "Point (x, y) (mm) where the rotation axis, "
+                            "perpendicular to the plane, passes.");
+        }
+        prm.leave_subsection();
+      }
     } // namespace
 
 
@@ -192,40 +232,7 @@ namespace coulomb_adapt
                           "'traction' (MPa), with 'dirichlet' clamped.");
         declare_body_materials(prm, 130000., 0.3, 130000., 0.3);
         for (const unsigned int b : {1, 2})
-          {
-            prm.enter_subsection("Body " + std::to_string(b));
-            {
-              prm.declare_entry("Physical surfaces",
-                                "body " + std::to_string(b),
-                                Patterns::List(Patterns::Anything(), 1),
-                                "The physical surfaces that form this body "
-                                "(comma-separated names).");
-              prm.declare_entry("Density",
-                                "0",
-                                Patterns::Double(),
-                                "Mass density (t/mm^3, e.g. 7.85e-9 for "
-                                "steel), >= 0: with 'Gravity' and 'Angular "
-                                "velocity' the body force density x "
-                                "(g + omega^2 (x - axis)) in N/mm^3.");
-              prm.declare_entry("Gravity",
-                                "0, 0",
-                                Patterns::List(Patterns::Double(), 2, 2),
-                                "Acceleration of gravity (x, y) (mm/s^2, "
-                                "e.g. 0, -9810).");
-              prm.declare_entry("Angular velocity",
-                                "0",
-                                Patterns::Double(),
-                                "Angular velocity omega (rad/s) of the body "
-                                "about 'Rotation axis': the centrifugal "
-                                "load of a rotating part.");
-              prm.declare_entry("Rotation axis",
-                                "0, 0",
-                                Patterns::List(Patterns::Double(), 2, 2),
-                                "Point (x, y) (mm) where the rotation axis, "
-                                "perpendicular to the plane, passes.");
-            }
-            prm.leave_subsection();
-          }
+          declare_body_entries(prm, b);
       }
       prm.leave_subsection();
     }
@@ -241,101 +248,11 @@ namespace coulomb_adapt
         materials = parse_body_materials(prm, scene_path);
         GmshGroupUse use;
         for (unsigned int b = 0; b < 2; ++b)
-          {
-            const std::string body = "Body " + std::to_string(b + 1);
-            const std::string path = scene_path + "/" + body;
-            prm.enter_subsection(body);
-            {
-              use.body_surfaces[b] =
-                Utilities::split_string_list(prm.get("Physical surfaces"));
-              use.body_entries[b] = path + "/Physical surfaces";
-              BodyForce &f        = body_forces[b];
-              f.density           = prm.get_double("Density");
-              f.gravity           = get_vector(prm, "Gravity");
-              f.angular_velocity  = prm.get_double("Angular velocity");
-              f.axis              = Point<2>(get_vector(prm, "Rotation axis"));
-              require_parameter(f.density >= 0,
-                                path + "/Density",
-                                f.density,
-                                "a mass density >= 0 (t/mm^3)");
-              if (f.density == 0 &&
-                  (f.gravity.norm() > 0 || f.angular_velocity != 0))
-                throw ParameterError(path + "/Density",
-                                     "0",
-                                     "a density > 0 where 'Gravity' or "
-                                     "'Angular velocity' is given (the body "
-                                     "force is density x acceleration)");
-            }
-            prm.leave_subsection();
-          }
+          parse_body(prm, b, use);
         const auto pair = Utilities::split_string_list(prm.get("Contact pair"));
         use.contact_pair  = {{pair[0], pair[1]}};
         use.contact_entry = scene_path + "/Contact pair";
-
-        // Each group's conditions, from the three entries in turn; a group
-        // keeps the entry that named it first for messages.
-        use.condition_groups.clear();
-        use.clamped_groups.clear();
-        const auto add_group = [&](const std::string &group,
-                                   const std::string &entry) {
-          for (const auto &[name, first_entry] : use.condition_groups)
-            if (name == group)
-              return;
-          use.condition_groups.emplace_back(group, scene_path + "/" + entry);
-        };
-        for (const auto &[group, value] : group_map(prm, "Fixed components"))
-          {
-            conditions[group].fixed = parse_fixed_components(value, group);
-            add_group(group, "Fixed components");
-            use.point_groups_allowed.insert(group);
-          }
-        for (const auto &[group, value] : group_map(prm, "Tractions"))
-          {
-            conditions[group].traction =
-              parse_vector(value, "Tractions", group, "MPa");
-            conditions[group].loaded = true;
-            add_group(group, "Tractions");
-          }
-        for (const auto &[group, value] : group_map(prm, "Normal pressures"))
-          {
-            conditions[group].pressure = parse_number(value,
-                                                      "Normal pressures",
-                                                      group,
-                                                      "a pressure p (MPa)");
-            conditions[group].loaded   = true;
-            add_group(group, "Normal pressures");
-          }
-
-        if (conditions.empty())
-          {
-            // The old syntax: the fixed groups of GmshGroupUse's defaults.
-            use.condition_groups            = GmshGroupUse().condition_groups;
-            conditions["dirichlet"].fixed   = {{0., 0.}};
-            conditions["traction"].traction = get_vector(prm, "Traction");
-            conditions["traction"].loaded   = true;
-          }
-        else if (prm.get("Traction") != "0, -10")
-          throw ParameterError(scene_path + "/Traction",
-                               prm.get("Traction"),
-                               "the default: the old 'Traction' entry is not "
-                               "used with 'Fixed components', 'Tractions' or "
-                               "'Normal pressures' (give the traction in "
-                               "'Tractions = group: tx; ty')");
-        for (const auto &[group, c] : conditions)
-          {
-            if (c.fixed[0] && c.fixed[1] && c.loaded)
-              throw ParameterError(
-                scene_path + "/Fixed components",
-                group + ": x y",
-                "loads only on curves that are not fixed in both components "
-                "(group '" +
-                  group +
-                  "' also has a traction or pressure, which would "
-                  "have no effect)");
-            if (c.fixed[0] && c.fixed[1] && *c.fixed[0] == 0 &&
-                *c.fixed[1] == 0)
-              use.clamped_groups.insert(group);
-          }
+        parse_conditions(prm, use);
 
         const std::string file = prm.get("Mesh file");
         mesh_file              = file;
@@ -354,43 +271,171 @@ namespace coulomb_adapt
         // The program runs on MPI_COMM_WORLD: rank 0 reads the file.
         geometry = read_two_body_gmsh_geometry(
           file, requested_cell_type, size_factor, use, MPI_COMM_WORLD);
-
-        // A point support holds its nodes in place (no prescribed value,
-        // no load: a point has no length to carry one).
-        for (const auto &support : geometry.point_supports)
-          {
-            const GroupConditions &c = conditions[support.group];
-            if (c.loaded)
-              throw ParameterError(
-                "gmsh file '" + file + "': '" + support.group +
-                "' is a physical point, not a physical curve: tractions and "
-                "normal pressures act on boundary curves");
-            for (unsigned int k = 0; k < 2; ++k)
-              if (c.fixed[k] && *c.fixed[k] != 0)
-                throw ParameterError(
-                  scene_path + "/Fixed components",
-                  support.group + ": ...",
-                  "zero displacement ('x', 'y' or 'x y') on physical points "
-                  "('" +
-                    support.group +
-                    "' is one); prescribed values on curves only");
-          }
-
-        // Groups that share lines must agree on what they prescribe.
-        for (const auto &[id, groups] : geometry.groups_of_boundary_id)
-          for (unsigned int c = 0; c < 2; ++c)
-            for (const auto &g : groups)
-              for (const auto &h : groups)
-                if (conditions[g].fixed[c] && conditions[h].fixed[c] &&
-                    *conditions[g].fixed[c] != *conditions[h].fixed[c])
-                  throw ParameterError(
-                    "gmsh file '" + file + "': groups '" + g + "' and '" + h +
-                    "' (" + scene_path +
-                    "/Fixed components) share curves and prescribe "
-                    "different " +
-                    (c == 0 ? "x" : "y") + " displacements there");
+        check_point_supports();
+        check_shared_groups();
       }
       prm.leave_subsection();
+    }
+
+
+
+    // Body @p b's surfaces and body force (a density where an
+    // acceleration is given: the force is density x acceleration).
+    void
+    GmshFile::parse_body(ParameterHandler  &prm,
+                         const unsigned int b,
+                         GmshGroupUse      &use)
+    {
+      const std::string body = "Body " + std::to_string(b + 1);
+      const std::string path = scene_path + "/" + body;
+      prm.enter_subsection(body);
+      {
+        use.body_surfaces[b] =
+          Utilities::split_string_list(prm.get("Physical surfaces"));
+        use.body_entries[b] = path + "/Physical surfaces";
+        BodyForce &f        = body_forces[b];
+        f.density           = prm.get_double("Density");
+        f.gravity           = get_vector(prm, "Gravity");
+        f.angular_velocity  = prm.get_double("Angular velocity");
+        f.axis              = Point<2>(get_vector(prm, "Rotation axis"));
+        require_parameter(f.density >= 0,
+                          path + "/Density",
+                          f.density,
+                          "a mass density >= 0 (t/mm^3)");
+        if (f.density == 0 && (f.gravity.norm() > 0 || f.angular_velocity != 0))
+          throw ParameterError(path + "/Density",
+                               "0",
+                               "a density > 0 where 'Gravity' or "
+                               "'Angular velocity' is given (the body "
+                               "force is density x acceleration)");
+      }
+      prm.leave_subsection();
+    }
+
+
+
+    // The conditions of each group, from the three entries (or else the
+    // old syntax), and which groups clamp both components.
+    void
+    GmshFile::parse_conditions(ParameterHandler &prm, GmshGroupUse &use)
+    {
+      parse_condition_entries(prm, use);
+      if (conditions.empty())
+        {
+          // The old syntax: the fixed groups of GmshGroupUse's defaults.
+          use.condition_groups            = GmshGroupUse().condition_groups;
+          conditions["dirichlet"].fixed   = {{0., 0.}};
+          conditions["traction"].traction = get_vector(prm, "Traction");
+          conditions["traction"].loaded   = true;
+        }
+      else if (prm.get("Traction") != "0, -10")
+        throw ParameterError(scene_path + "/Traction",
+                             prm.get("Traction"),
+                             "the default: the old 'Traction' entry is not "
+                             "used with 'Fixed components', 'Tractions' or "
+                             "'Normal pressures' (give the traction in "
+                             "'Tractions = group: tx; ty')");
+      for (const auto &[group, c] : conditions)
+        {
+          if (c.fixed[0] && c.fixed[1] && c.loaded)
+            throw ParameterError(
+              scene_path + "/Fixed components",
+              group + ": x y",
+              "loads only on curves that are not fixed in both components "
+              "(group '" +
+                group +
+                "' also has a traction or pressure, which would "
+                "have no effect)");
+          if (c.fixed[0] && c.fixed[1] && *c.fixed[0] == 0 && *c.fixed[1] == 0)
+            use.clamped_groups.insert(group);
+        }
+    }
+
+
+
+    // Each group's conditions, from the three entries in turn; a group
+    // keeps the entry that named it first for messages.
+    void
+    GmshFile::parse_condition_entries(ParameterHandler &prm, GmshGroupUse &use)
+    {
+      use.condition_groups.clear();
+      use.clamped_groups.clear();
+      const auto add_group = [&](const std::string &group,
+                                 const std::string &entry) {
+        for (const auto &[name, first_entry] : use.condition_groups)
+          if (name == group)
+            return;
+        use.condition_groups.emplace_back(group, scene_path + "/" + entry);
+      };
+      for (const auto &[group, value] : group_map(prm, "Fixed components"))
+        {
+          conditions[group].fixed = parse_fixed_components(value, group);
+          add_group(group, "Fixed components");
+          use.point_groups_allowed.insert(group);
+        }
+      for (const auto &[group, value] : group_map(prm, "Tractions"))
+        {
+          conditions[group].traction =
+            parse_vector(value, "Tractions", group, "MPa");
+          conditions[group].loaded = true;
+          add_group(group, "Tractions");
+        }
+      for (const auto &[group, value] : group_map(prm, "Normal pressures"))
+        {
+          conditions[group].pressure = parse_number(value,
+                                                    "Normal pressures",
+                                                    group,
+                                                    "a pressure p (MPa)");
+          conditions[group].loaded   = true;
+          add_group(group, "Normal pressures");
+        }
+    }
+
+
+
+    // A point support holds its nodes in place (no prescribed value, no
+    // load: a point has no length to carry one).
+    void
+    GmshFile::check_point_supports()
+    {
+      for (const auto &support : geometry.point_supports)
+        {
+          const GroupConditions &c = conditions[support.group];
+          if (c.loaded)
+            throw ParameterError(
+              "gmsh file '" + mesh_file + "': '" + support.group +
+              "' is a physical point, not a physical curve: tractions and "
+              "normal pressures act on boundary curves");
+          for (unsigned int k = 0; k < 2; ++k)
+            if (c.fixed[k] && *c.fixed[k] != 0)
+              throw ParameterError(
+                scene_path + "/Fixed components",
+                support.group + ": ...",
+                "zero displacement ('x', 'y' or 'x y') on physical points "
+                "('" +
+                  support.group +
+                  "' is one); prescribed values on curves only");
+        }
+    }
+
+
+
+    // Groups that share lines must agree on what they prescribe.
+    void
+    GmshFile::check_shared_groups()
+    {
+      for (const auto &[id, groups] : geometry.groups_of_boundary_id)
+        for (unsigned int c = 0; c < 2; ++c)
+          for (const auto &g : groups)
+            for (const auto &h : groups)
+              if (conditions[g].fixed[c] && conditions[h].fixed[c] &&
+                  *conditions[g].fixed[c] != *conditions[h].fixed[c])
+                throw ParameterError(
+                  "gmsh file '" + mesh_file + "': groups '" + g + "' and '" +
+                  h + "' (" + scene_path +
+                  "/Fixed components) share curves and prescribe "
+                  "different " +
+                  (c == 0 ? "x" : "y") + " displacements there");
     }
 
 

@@ -5,9 +5,7 @@
 
 #include <deal.II/grid/tria.h>
 
-#include <deal.II/lac/vector.h>
-
-#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/adaptation/size_field.h>
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 
 #include <array>
@@ -16,28 +14,6 @@
 
 namespace coulomb_adapt
 {
-  /** A triangle of the current mesh with the target element size h* at
-   * its vertices: a piece of the size field handed to gmsh. */
-  struct SizeFieldTriangle
-  {
-    std::array<Point<2>, 3> vertices;
-    std::array<double, 3>   size;
-  };
-
-  /**
-   * The size field h*(x) of a triangle mesh, on rank 0 (empty on the
-   * others, which do not mesh): h*_E = r_E h_E
-   * with h_E = (4 |E| / sqrt 3)^1/2, the edge of the equilateral triangle of
-   * the same area (so that the cell count of the new mesh is sum_E r_E^-2
-   * for any shape), smoothed by taking at each vertex the geometric mean of
-   * h*_E over the cells around it, then scaled so that the smoothed,
-   * piecewise linear field has the cell count sum_E r_E^-2 of the
-   * unsmoothed one. @p ratio holds r_E per active cell (locally owned
-   * entries).
-   */
-  std::vector<SizeFieldTriangle>
-  nodal_size_field(const ElasticBody &body, const Vector<double> &ratio);
-
   /**
    * Mesh the domain of @p geometry (a body's coarse mesh: its boundary,
    * closed curves, the outer one and one per hole, give the geometry)

@@ -67,10 +67,6 @@ namespace coulomb_adapt
      * driver. */
     void
     make_bodies();
-    /** Remove the per-cycle output files of an earlier run from the output
-     * directory (rank 0; the log says how many). */
-    void
-    remove_files_of_earlier_run() const;
     /** The load scale of the run (core/units.h), on the first meshes
      * (set up): P = 1 for ordinary loads; beyond, the loads divided by P
      * if the problem is homogeneous in them (no initial gap), else a

@@ -5,6 +5,8 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <deal.II/numerics/data_out.h>
+
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/core/options.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
@@ -50,6 +52,18 @@ namespace coulomb_adapt
           const double           load_scale   = 1);
 
   private:
+    /** The cycle's `<base>_<cycle>.h5` and the index `<base>.xdmf`. */
+    void
+    write_hdf5_cycle(const DataOut<2>       &data_out,
+                     const Triangulation<2> &tria,
+                     const unsigned int      cycle);
+    /** The cycle's `.pvtu` (+ one `.vtu` per rank) and the index
+     * `<base>.pvd`. */
+    void
+    write_vtu_cycle(DataOut<2>        &data_out,
+                    const MPI_Comm     comm,
+                    const unsigned int cycle);
+
     const std::string                           directory;
     const std::string                           base_name;
     const OutputFormat                          format;

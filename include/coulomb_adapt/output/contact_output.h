@@ -43,6 +43,24 @@ namespace coulomb_adapt
           const std::vector<double>           *field_density = nullptr);
 
   private:
+    /** One row per slave node into @p path (rank 0). */
+    void
+    write_csv(const std::vector<ContactNodeState> &states,
+              const std::vector<double>           &density,
+              const std::string                   &path) const;
+    /** The polyline @p patches as `STEM.h5` and the index contact.xdmf. */
+    void
+    write_hdf5_polyline(const std::vector<DataOutBase::Patch<1, 2>> &patches,
+                        const std::vector<std::string>              &names,
+                        const std::string                           &stem,
+                        const unsigned int                           cycle);
+    /** The polyline @p patches as `STEM.vtu` and the index contact.pvd. */
+    void
+    write_vtu_polyline(const std::vector<DataOutBase::Patch<1, 2>> &patches,
+                       const std::vector<std::string>              &names,
+                       const std::string                           &stem,
+                       const unsigned int                           cycle);
+
     const std::string                           directory;
     const MPI_Comm                              mpi_communicator;
     const OutputFormat                          format;

@@ -1,6 +1,7 @@
 #ifndef coulomb_adapt_output_file_writer_h
 #define coulomb_adapt_output_file_writer_h
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 
@@ -81,6 +82,20 @@ namespace coulomb_adapt
                   const std::string                    &path,
                   const std::vector<dealii::XDMFEntry> &entries,
                   const dealii::ReferenceCell          &cell_type);
+
+  /**
+   * Remove the program's own per-cycle files (`body-1_CCC.vtu`,
+   * `contact_CCC.csv`, ..., their .tmp files and the .pvd lists) from
+   * @p directory on rank 0 of @p comm, and say in @p log (rank 0's) how many. A run
+   * into the directory of an earlier, longer one would otherwise leave
+   * that run's later cycles beside this run's summary.json, as if they
+   * were its own. Other files stay. Collective; call it before the first
+   * cycle.
+   */
+  void
+  remove_output_of_earlier_run(const MPI_Comm                    comm,
+                               const std::string                &directory,
+                               const dealii::ConditionalOStream &log);
 } // namespace coulomb_adapt
 
 #endif

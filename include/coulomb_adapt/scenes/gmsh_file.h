@@ -78,6 +78,22 @@ namespace coulomb_adapt
       };
 
     private:
+      /** Body @p b's surfaces (into @p use) and body force. */
+      void
+      parse_body(ParameterHandler  &prm,
+                 const unsigned int b,
+                 GmshGroupUse      &use);
+      /** The conditions per group and the groups of @p use they name. */
+      void
+      parse_conditions(ParameterHandler &prm, GmshGroupUse &use);
+      void
+      parse_condition_entries(ParameterHandler &prm, GmshGroupUse &use);
+      /** Checks of the conditions against the file's groups, once read. */
+      void
+      check_point_supports();
+      void
+      check_shared_groups();
+
       std::string                            mesh_file;
       TwoBodyGmshMeshes                      geometry;
       std::map<std::string, GroupConditions> conditions;

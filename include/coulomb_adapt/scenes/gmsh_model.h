@@ -10,8 +10,9 @@
 namespace coulomb_adapt
 {
   /**
-   * Queries of the model that gmsh has open (gmsh_reader.cc reads the
-   * bodies and groups of a two-body file with them). Errors name the file
+   * Queries of the model that gmsh has open (gmsh_bodies.cc and
+   * gmsh_two_body_reader.cc read the bodies and groups of a two-body file
+   * with them). Errors name the file
    * @p file_name.
    */
   namespace gmsh_model

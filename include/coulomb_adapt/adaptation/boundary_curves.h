@@ -1,0 +1,82 @@
+#ifndef coulomb_adapt_adaptation_boundary_curves_h
+#define coulomb_adapt_adaptation_boundary_curves_h
+
+#include <deal.II/base/point.h>
+
+#include <deal.II/grid/tria.h>
+
+#include <array>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  using namespace dealii;
+
+  /**
+   * A body's coarse mesh seen as the geometry to remesh: its boundary as
+   * curves, and the points and lines inside it that the new mesh keeps.
+   * Nothing here calls gmsh; gmsh_remesher.cc turns these into gmsh's
+   * geometry.
+   */
+  namespace boundary_geometry
+  {
+    /** One gmsh curve: a run of boundary vertices with one boundary id and
+     * one manifold id. */
+    struct Curve
+    {
+      std::vector<unsigned int> vertices;
+      types::boundary_id        boundary_id;
+      types::manifold_id        manifold_id;
+    };
+
+    /** What the new mesh keeps of the points and lines inside the body:
+     * the boundary vertices where interior lines end (@p line_ends, also
+     * in @p corners), the point supports on the boundary (in @p corners,
+     * where a curve must end) and those inside (@p embedded_points). */
+    struct InteriorFeatures
+    {
+      std::vector<std::array<unsigned int, 2>> line_ends;
+      std::set<unsigned int>                   corners;
+      std::vector<Point<2>>                    embedded_points;
+    };
+
+    /** The features of @p interior_lines (straight segments whose ends are
+     * boundary vertices of @p geometry) and @p support_points; either way a
+     * support stays a node. @p body_name is for messages. */
+    InteriorFeatures
+    interior_features(
+      const Triangulation<2>                     &geometry,
+      const std::string                          &body_name,
+      const std::vector<std::array<Point<2>, 2>> &interior_lines,
+      const std::vector<Point<2>>                &support_points);
+
+    /** The curves of all boundary loops, loop by loop; @p outer is the
+     * loop of the largest area (the outer boundary), the others are
+     * holes. */
+    struct LoopCurves
+    {
+      std::vector<Curve> curves;
+      /** The first curve of each loop, and curves.size() last. */
+      std::vector<unsigned int> first_curve_of_loop;
+      unsigned int              outer = 0;
+
+      unsigned int
+      n_loops() const;
+
+      unsigned int
+      loop_of_curve(const unsigned int c) const;
+    };
+
+    /** The boundary of @p geometry as curves: maximal runs of boundary
+     * faces with the same boundary id and manifold id that are straight
+     * (flat manifold) or lie on one manifold, ending also at @p corners. */
+    LoopCurves
+    loop_curves(const Triangulation<2>       &geometry,
+                const std::string            &body_name,
+                const std::set<unsigned int> &corners);
+  } // namespace boundary_geometry
+} // namespace coulomb_adapt
+
+#endif
