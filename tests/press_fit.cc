@@ -39,6 +39,7 @@
 #include <coulomb_adapt/scenes/gmsh_file.h>
 
 #include "contact_test_utilities.h"
+#include "lame_press_fit.h"
 
 using namespace coulomb_adapt;
 
@@ -49,14 +50,9 @@ main(int argc, char *argv[])
   auto                             out = testing::root_output();
 
   const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const double      E = 200000, nu = 0.3, b = 10, c = 20, delta = 0.001;
-  const double      a = b - delta;
-  const double      lame =
-    E * delta * (c * c - b * b) / (2 * b * c * c * (1 - nu * nu));
-  const double reference =
-    E * delta /
-    ((1 + nu) *
-     (a * ((1 - 2 * nu) * a * a + c * c) / (c * c - a * a) + (1 - 2 * nu) * b));
+  const testing::PressFit press_fit;
+  const double            lame      = press_fit.pressure_for_equal_radii();
+  const double            reference = press_fit.pressure();
   out << "Lame's pressure (theory.md, a = b) = " << std::setprecision(6) << lame
       << " MPa, for this geometry p = " << reference << " MPa" << std::endl;
 
@@ -131,7 +127,7 @@ main(int argc, char *argv[])
           << n_nodes << " slave nodes, " << n_covered << " facing the shaft, "
           << n_active << " in contact" << std::endl
           << "  initial overlap / delta = " << std::setprecision(4)
-          << overlap / delta << ", clearance = " << clearance << " mm"
+          << overlap / press_fit.delta << ", clearance = " << clearance << " mm"
           << std::endl
           << "  pressure / p in [" << std::setprecision(5) << lowest / reference
           << ", " << highest / reference << "], largest deviation "
@@ -150,7 +146,8 @@ main(int argc, char *argv[])
           << ")" << std::endl;
       AssertThrow(n_covered == n_nodes && n_active == n_nodes,
                   ExcMessage("not every node of the bore is in contact"));
-      AssertThrow(std::abs(overlap / delta - 1) < 1e-3 && clearance == 0,
+      AssertThrow(std::abs(overlap / press_fit.delta - 1) < 1e-3 &&
+                    clearance == 0,
                   ExcMessage("initial overlap " + std::to_string(overlap) +
                              ", clearance " + std::to_string(clearance)));
       AssertThrow(deviation < test.tolerance &&

@@ -35,6 +35,7 @@
 // The whole cross-section (tests/press_fit, P2, factor 1) has 0.074 %.
 
 #include "contact_test_utilities.h"
+#include "lame_press_fit.h"
 
 using namespace coulomb_adapt;
 
@@ -45,12 +46,7 @@ main(int argc, char *argv[])
   auto                             out = testing::root_output();
 
   const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const double      E = 200000, nu = 0.3, b = 10, c = 20, delta = 0.001;
-  const double      a = b - delta;
-  const double      reference =
-    E * delta /
-    ((1 + nu) *
-     (a * ((1 - 2 * nu) * a * a + c * c) / (c * c - a * a) + (1 - 2 * nu) * b));
+  const double      reference = testing::PressFit().pressure();
   out << "Lame's pressure for this geometry p = " << std::setprecision(6)
       << reference << " MPa" << std::endl;
 
