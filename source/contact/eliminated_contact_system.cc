@@ -11,6 +11,207 @@
 
 namespace coulomb_adapt
 {
+  namespace
+  {
+    // The rows of Z and Z~ that differ from the identity: an eliminated
+    // component is a combination of other DoFs, with no entry of its own.
+    // Per column the entries of Z and Z~, and the row's entry of u_g.
+    struct EliminatedRow
+    {
+      std::map<types::global_dof_index, std::array<double, 2>> entries;
+      double                                                   shift = 0;
+    };
+    using EliminatedRows = std::map<types::global_dof_index, EliminatedRow>;
+
+    // What decides the system: (active, stick, slip sign) and (weighted
+    // gap, weighted slip) of each node, compared with the last call's.
+    std::pair<std::vector<std::array<int, 3>>,
+              std::vector<std::array<double, 2>>>
+    node_states_and_data(const std::vector<SlaveNodeConditions> &nodes)
+    {
+      std::vector<std::array<int, 3>>    states;
+      std::vector<std::array<double, 2>> data;
+      for (const SlaveNodeConditions &node : nodes)
+        {
+          states.push_back({{node.active,
+                             node.stick,
+                             node.active && !node.stick ? node.slip_sign : 0}});
+          data.push_back({{node.weighted_gap, node.weighted_slip}});
+        }
+      return {std::move(states), std::move(data)};
+    }
+
+    // A roller: the normal condition eliminates the free component, the
+    // fixed one is known (its value goes into the shift), and the test
+    // space is orthogonal to the traction lambda_n n, as at a
+    // frictionless node: Z~ = Z.
+    void
+    add_roller_row(const SlaveNodeConditions &node,
+                   EliminatedRows            &eliminated,
+                   bool                      &symmetric)
+    {
+      const Tensor<1, 2> &n   = node.normal;
+      const double        D   = node.weight;
+      const unsigned int  o   = node.fixed_component;
+      const unsigned int  c   = 1 - o;
+      EliminatedRow      &row = eliminated[node.dofs[c]];
+      for (const auto &m : node.couplings)
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            const double z         = m.value / D * n[d] / n[c];
+            row.entries[m.dofs[d]] = {{z, m.constrained[d] ? 0. : z}};
+            symmetric              = symmetric && !m.constrained[d];
+            if (m.constrained[d])
+              row.shift += z * m.fixed_value[d];
+          }
+      row.shift += (node.weighted_gap / D - n[o] * node.fixed_value) / n[c];
+    }
+
+    // Stick: both components eliminated,
+    // u^1_j = (g~ n + s~ t) / D + sum_l M_jl / D u^2_l.
+    void
+    add_stick_rows(const SlaveNodeConditions &node,
+                   EliminatedRows            &eliminated,
+                   bool                      &symmetric)
+    {
+      const Tensor<1, 2> &n = node.normal;
+      const Tensor<1, 2> &t = node.tangent;
+      const double        D = node.weight;
+      for (unsigned int c = 0; c < 2; ++c)
+        {
+          EliminatedRow &row = eliminated[node.dofs[c]];
+          for (const auto &m : node.couplings)
+            {
+              const double z         = m.value / D;
+              row.entries[m.dofs[c]] = {{z, m.constrained[c] ? 0. : z}};
+              symmetric              = symmetric && !m.constrained[c];
+              // (A constrained master DoF is zero in the solve.)
+              if (m.constrained[c])
+                row.shift += z * m.fixed_value[c];
+            }
+          row.shift +=
+            (node.weighted_gap * n[c] + node.weighted_slip * t[c]) / D;
+        }
+    }
+
+    // Slip: the normal condition eliminates component c, the test space
+    // is orthogonal to the traction direction w = n + mu s t. c is chosen
+    // so that both n_c and w_c are far from zero: one of the two
+    // components always qualifies, whatever mu.
+    void
+    add_slip_row(const SlaveNodeConditions &node,
+                 EliminatedRows            &eliminated,
+                 bool                      &symmetric)
+    {
+      const Tensor<1, 2> &n = node.normal;
+      const Tensor<1, 2> &t = node.tangent;
+      const double        D = node.weight;
+      const Tensor<1, 2> w = n + node.friction_coefficient * node.slip_sign * t;
+      const auto         quality = [&](const unsigned int c) {
+        return std::min(std::abs(n[c]), std::abs(w[c]) / w.norm());
+      };
+      const unsigned int c      = quality(0) >= quality(1) ? 0 : 1;
+      const unsigned int o      = 1 - c;
+      EliminatedRow     &row    = eliminated[node.dofs[c]];
+      row.entries[node.dofs[o]] = {{-n[o] / n[c], -w[o] / w[c]}};
+      for (const auto &m : node.couplings)
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            const double z         = m.value / D;
+            row.entries[m.dofs[d]] = {
+              {z * n[d] / n[c], m.constrained[d] ? 0. : z * w[d] / w[c]}};
+            symmetric = symmetric && !m.constrained[d];
+            if (m.constrained[d])
+              row.shift += z * n[d] / n[c] * m.fixed_value[d];
+          }
+      row.shift += node.weighted_gap / (D * n[c]);
+      symmetric = symmetric && node.friction_coefficient == 0;
+    }
+
+    // The eliminated rows of the active nodes this rank owns; @p symmetric
+    // becomes false where Z~ differs from Z (on this rank).
+    EliminatedRows
+    eliminated_rows(const std::vector<SlaveNodeConditions> &nodes,
+                    bool                                   &symmetric)
+    {
+      EliminatedRows eliminated;
+      for (const SlaveNodeConditions &node : nodes)
+        {
+          if (!node.active)
+            continue;
+          if (node.fixed_component >= 0)
+            add_roller_row(node, eliminated, symmetric);
+          else if (node.stick)
+            add_stick_rows(node, eliminated, symmetric);
+          else
+            add_slip_row(node, eliminated, symmetric);
+        }
+      return eliminated;
+    }
+
+    // An eliminated component has no unknown of its own, but Z keeps a
+    // negligible entry on its diagonal: it puts the component's row and
+    // column into the product's pattern, where the row is then replaced by
+    // K's diagonal entry in place. Without it the product has no such row,
+    // and a filled Epetra matrix takes no new entries: the product had to
+    // be copied into a new pattern, half of the assembly at 1e6 DoFs. (An
+    // explicit zero does not survive Trilinos' transposed product.) Its
+    // traces elsewhere are placeholder times K, 1e-100 of K's entries,
+    // and the right hand side's entry is set to zero.
+    constexpr double placeholder = 1e-100;
+
+    // The pattern of Z (and Z~): the diagonal and the eliminated rows.
+    DynamicSparsityPattern
+    elimination_pattern(const IndexSet &owned, const EliminatedRows &eliminated)
+    {
+      DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
+      for (const auto i : owned)
+        {
+          dsp.add(i, i);
+          const auto row = eliminated.find(i);
+          if (row != eliminated.end())
+            for (const auto &[column, value] : row->second.entries)
+              dsp.add(i, column);
+        }
+      return dsp;
+    }
+
+    // The entries of Z, Z~ (unless symmetric) and u_g on this rank's rows:
+    // the identity where nothing is eliminated.
+    void
+    set_elimination_entries(const IndexSet                 &owned,
+                            const EliminatedRows           &eliminated,
+                            const bool                      symmetric,
+                            TrilinosWrappers::SparseMatrix &Z,
+                            TrilinosWrappers::SparseMatrix &Z_test,
+                            TrilinosWrappers::MPI::Vector  &shift)
+    {
+      for (const auto i : owned)
+        {
+          const auto row = eliminated.find(i);
+          if (row == eliminated.end())
+            {
+              Z.set(i, i, 1.);
+              if (!symmetric)
+                Z_test.set(i, i, 1.);
+              continue;
+            }
+          Z.set(i, i, placeholder);
+          if (!symmetric)
+            Z_test.set(i, i, placeholder);
+          for (const auto &[column, value] : row->second.entries)
+            {
+              Z.set(i, column, value[0]);
+              if (!symmetric)
+                Z_test.set(i, column, value[1]);
+            }
+          shift(i) = row->second.shift;
+        }
+    }
+  } // namespace
+
+
+
   void
   EliminatedContactSystem::reinit(const MortarInterface &,
                                   const ElasticBody       &slave,
@@ -83,24 +284,9 @@ namespace coulomb_adapt
   EliminatedContactSystem::assemble(
     const std::vector<SlaveNodeConditions> &nodes)
   {
-    // The rows of Z and Z~ that differ from the identity: an eliminated
-    // component is a combination of other DoFs, with no entry of its own.
-    struct Row
-    {
-      std::map<types::global_dof_index, std::array<double, 2>> entries;
-      double                                                   shift = 0;
-    };
     // The same sets and data as the last call (a repeated solve of
     // converged sets, ContactSolver::solve): the system is built already.
-    std::vector<std::array<int, 3>>    states;
-    std::vector<std::array<double, 2>> data;
-    for (const SlaveNodeConditions &node : nodes)
-      {
-        states.push_back({{node.active,
-                           node.stick,
-                           node.active && !node.stick ? node.slip_sign : 0}});
-        data.push_back({{node.weighted_gap, node.weighted_slip}});
-      }
+    auto [states, data] = node_states_and_data(nodes);
     const bool unchanged =
       reduced && states == node_states && data == node_data;
     if (Utilities::MPI::min(unchanged ? 1 : 0, communicator) == 1)
@@ -108,105 +294,11 @@ namespace coulomb_adapt
     node_states = std::move(states);
     node_data   = std::move(data);
 
-    std::map<types::global_dof_index, Row> eliminated;
-    symmetric = true;
-
-    for (const SlaveNodeConditions &node : nodes)
-      {
-        if (!node.active)
-          continue;
-        const Tensor<1, 2> &n = node.normal;
-        const Tensor<1, 2> &t = node.tangent;
-        const double        D = node.weight;
-        // A roller: the normal condition eliminates the free component,
-        // the fixed one is known (its value goes into the shift), and the
-        // test space is orthogonal to the traction lambda_n n, as at a
-        // frictionless node: Z~ = Z.
-        if (node.fixed_component >= 0)
-          {
-            const unsigned int o   = node.fixed_component;
-            const unsigned int c   = 1 - o;
-            Row               &row = eliminated[node.dofs[c]];
-            for (const auto &m : node.couplings)
-              for (unsigned int d = 0; d < 2; ++d)
-                {
-                  const double z         = m.value / D * n[d] / n[c];
-                  row.entries[m.dofs[d]] = {{z, m.constrained[d] ? 0. : z}};
-                  symmetric              = symmetric && !m.constrained[d];
-                  if (m.constrained[d])
-                    row.shift += z * m.fixed_value[d];
-                }
-            row.shift +=
-              (node.weighted_gap / D - n[o] * node.fixed_value) / n[c];
-            continue;
-          }
-        if (node.stick)
-          {
-            // u^1_j = (g~ n + s~ t) / D + sum_l M_jl / D u^2_l.
-            for (unsigned int c = 0; c < 2; ++c)
-              {
-                Row &row = eliminated[node.dofs[c]];
-                for (const auto &m : node.couplings)
-                  {
-                    const double z         = m.value / D;
-                    row.entries[m.dofs[c]] = {{z, m.constrained[c] ? 0. : z}};
-                    symmetric              = symmetric && !m.constrained[c];
-                    // (A constrained master DoF is zero in the solve.)
-                    if (m.constrained[c])
-                      row.shift += z * m.fixed_value[c];
-                  }
-                row.shift +=
-                  (node.weighted_gap * n[c] + node.weighted_slip * t[c]) / D;
-              }
-            continue;
-          }
-        // Slip: the normal condition eliminates component c, the test
-        // space is orthogonal to the traction direction w = n + mu s t.
-        // c is chosen so that both n_c and w_c are far from zero: one of
-        // the two components always qualifies, whatever mu.
-        const Tensor<1, 2> w =
-          n + node.friction_coefficient * node.slip_sign * t;
-        const auto quality = [&](const unsigned int c) {
-          return std::min(std::abs(n[c]), std::abs(w[c]) / w.norm());
-        };
-        const unsigned int c      = quality(0) >= quality(1) ? 0 : 1;
-        const unsigned int o      = 1 - c;
-        Row               &row    = eliminated[node.dofs[c]];
-        row.entries[node.dofs[o]] = {{-n[o] / n[c], -w[o] / w[c]}};
-        for (const auto &m : node.couplings)
-          for (unsigned int d = 0; d < 2; ++d)
-            {
-              const double z         = m.value / D;
-              row.entries[m.dofs[d]] = {
-                {z * n[d] / n[c], m.constrained[d] ? 0. : z * w[d] / w[c]}};
-              symmetric = symmetric && !m.constrained[d];
-              if (m.constrained[d])
-                row.shift += z * n[d] / n[c] * m.fixed_value[d];
-            }
-        row.shift += node.weighted_gap / (D * n[c]);
-        symmetric = symmetric && node.friction_coefficient == 0;
-      }
+    symmetric                       = true;
+    const EliminatedRows eliminated = eliminated_rows(nodes, symmetric);
     symmetric = Utilities::MPI::min(symmetric ? 1 : 0, communicator) == 1;
 
-    // An eliminated component has no unknown of its own, but Z keeps a
-    // negligible entry on its diagonal: it puts the component's row and
-    // column into the product's pattern, where the row is then replaced by
-    // K's diagonal entry in place. Without it the product has no such row,
-    // and a filled Epetra matrix takes no new entries: the product had to
-    // be copied into a new pattern, half of the assembly at 1e6 DoFs. (An
-    // explicit zero does not survive Trilinos' transposed product.) Its
-    // traces elsewhere are placeholder times K, 1e-100 of K's entries,
-    // and the right hand side's entry is set to zero.
-    constexpr double       placeholder = 1e-100;
-    DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
-    for (const auto i : owned)
-      {
-        dsp.add(i, i);
-        const auto row = eliminated.find(i);
-        if (row != eliminated.end())
-          for (const auto &[column, value] : row->second.entries)
-            dsp.add(i, column);
-      }
+    const DynamicSparsityPattern dsp = elimination_pattern(owned, eliminated);
     // A symmetric system has Z~ = Z: built once.
     TrilinosWrappers::SparseMatrix        Z_test_storage;
     const TrilinosWrappers::SparseMatrix &Z_test =
@@ -215,27 +307,8 @@ namespace coulomb_adapt
     if (!symmetric)
       Z_test_storage.reinit(owned, owned, dsp, communicator);
     shift.reinit(owned, communicator);
-    for (const auto i : owned)
-      {
-        const auto row = eliminated.find(i);
-        if (row == eliminated.end())
-          {
-            Z.set(i, i, 1.);
-            if (!symmetric)
-              Z_test_storage.set(i, i, 1.);
-            continue;
-          }
-        Z.set(i, i, placeholder);
-        if (!symmetric)
-          Z_test_storage.set(i, i, placeholder);
-        for (const auto &[column, value] : row->second.entries)
-          {
-            Z.set(i, column, value[0]);
-            if (!symmetric)
-              Z_test_storage.set(i, column, value[1]);
-          }
-        shift(i) = row->second.shift;
-      }
+    set_elimination_entries(
+      owned, eliminated, symmetric, Z, Z_test_storage, shift);
     Z.compress(VectorOperation::insert);
     if (!symmetric)
       Z_test_storage.compress(VectorOperation::insert);

@@ -9,6 +9,10 @@
 #include <algorithm>
 #include <cmath>
 
+// The second half of the mortar interface: the integrals of D, M and g~
+// on the segments that mortar_contact_boundary.cc collects, and what is
+// measured with them (overlap quadrature, nodal gaps).
+
 namespace coulomb_adapt
 {
   namespace
@@ -31,17 +35,6 @@ namespace coulomb_adapt
       const double       det = -cd[0] * n[1] + cd[1] * n[0];
       const double       eta = (-r[0] * n[1] + r[1] * n[0]) / det;
       return intersect_along(y, p, n, eta);
-    }
-
-    SegmentCurve
-    segment_curve(const std::vector<MortarInterface::Node> &nodes,
-                  const MortarInterface::Segment           &segment,
-                  const unsigned int                        degree)
-    {
-      SegmentCurve curve{{}, degree};
-      for (const unsigned int n : segment.nodes)
-        curve.points.push_back(nodes[n].position);
-      return curve;
     }
 
     // A Gauss rule fine enough for the length element |x'(xi)| of a curved
@@ -90,156 +83,6 @@ namespace coulomb_adapt
       return A;
     }
   } // namespace
-
-
-
-  unsigned int
-  MortarInterface::collect_contact_boundary(const ElasticBody    &body,
-                                            std::vector<Node>    &nodes,
-                                            std::vector<Segment> &segments)
-  {
-    const DoFHandler<2> &dof_handler = body.dof_handler();
-    const unsigned int   degree      = dof_handler.get_fe().degree;
-    AssertThrow(degree <= 2,
-                ExcMessage("The mortar contact interface supports degrees 1 "
-                           "and 2."));
-    const unsigned int       n_face_nodes = degree + 1;
-    const types::boundary_id contact_id =
-      body.description().contact_boundary_id;
-
-    // Per local contact face: for each node (x, y, dof_x, dof_y), then the
-    // outward normal of the face's chord and the cell's id (4 integers,
-    // exact in doubles).
-    std::vector<double> local;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const auto &face : cell->face_iterators())
-          if (face->at_boundary() && face->boundary_id() == contact_id)
-            {
-              const Tensor<1, 2> edge = face->vertex(1) - face->vertex(0);
-              Tensor<1, 2>       normal({edge[1], -edge[0]});
-              normal /= normal.norm();
-              if ((face->center() - cell->center()) * normal < 0)
-                normal = -normal;
-              for (unsigned int v = 0; v < 2; ++v)
-                local.insert(local.end(),
-                             {face->vertex(v)[0],
-                              face->vertex(v)[1],
-                              double(face->vertex_dof_index(v, 0)),
-                              double(face->vertex_dof_index(v, 1))});
-              if (degree == 2)
-                {
-                  // The edge node, on the boundary's manifold (where the
-                  // element's mapping puts it).
-                  const Point<2> middle = face->center(true);
-                  local.insert(local.end(),
-                               {middle[0],
-                                middle[1],
-                                double(face->dof_index(0)),
-                                double(face->dof_index(1))});
-                }
-              local.push_back(normal[0]);
-              local.push_back(normal[1]);
-              for (const unsigned int id : cell->id().to_binary<2>())
-                local.push_back(id);
-            }
-    const auto gathered = Utilities::MPI::all_gather(
-      dof_handler.get_triangulation().get_communicator(), local);
-
-    // Nodes are identified by their x DoF, and numbered in lexicographic
-    // order of their positions, so that the numbering does not depend on
-    // the number of ranks.
-    const unsigned int                      record = 4 * n_face_nodes + 6;
-    std::map<types::global_dof_index, Node> unique_nodes;
-    std::vector<std::vector<types::global_dof_index>> segment_dofs;
-    std::vector<Tensor<1, 2>>                         segment_normals;
-    std::vector<CellId>                               segment_cells;
-    for (const auto &values : gathered)
-      for (std::size_t i = 0; i < values.size(); i += record)
-        {
-          std::vector<types::global_dof_index> face_nodes;
-          for (unsigned int v = 0; v < n_face_nodes; ++v)
-            {
-              Node node;
-              node.position =
-                Point<2>(values[i + 4 * v], values[i + 4 * v + 1]);
-              node.dofs = {
-                {static_cast<types::global_dof_index>(values[i + 4 * v + 2]),
-                 static_cast<types::global_dof_index>(values[i + 4 * v + 3])}};
-              face_nodes.push_back(node.dofs[0]);
-              unique_nodes.emplace(node.dofs[0], node);
-            }
-          segment_dofs.push_back(face_nodes);
-          const std::size_t n = i + 4 * n_face_nodes;
-          segment_normals.emplace_back(
-            Tensor<1, 2>({values[n], values[n + 1]}));
-          CellId::binary_type id;
-          for (unsigned int k = 0; k < 4; ++k)
-            id[k] = static_cast<unsigned int>(values[n + 2 + k]);
-          segment_cells.emplace_back(id);
-        }
-
-    nodes.clear();
-    for (const auto &[dof, node] : unique_nodes)
-      nodes.push_back(node);
-    std::sort(nodes.begin(), nodes.end(), [](const Node &a, const Node &b) {
-      return a.position[0] < b.position[0] ||
-             (a.position[0] == b.position[0] && a.position[1] < b.position[1]);
-    });
-    std::map<types::global_dof_index, unsigned int> index_of;
-    for (unsigned int n = 0; n < nodes.size(); ++n)
-      index_of[nodes[n].dofs[0]] = n;
-
-    segments.clear();
-    for (unsigned int s = 0; s < segment_dofs.size(); ++s)
-      {
-        Segment segment;
-        for (const auto dof : segment_dofs[s])
-          segment.nodes.push_back(index_of[dof]);
-        segment.normal = segment_normals[s];
-        segment.cell   = segment_cells[s];
-        if (degree == 2)
-          {
-            // A middle node off the chord's midpoint (on a curved
-            // manifold) makes the face a parabola.
-            const Point<2> &a = nodes[segment.nodes[0]].position,
-                           &b = nodes[segment.nodes[1]].position,
-                           &m = nodes[segment.nodes[2]].position;
-            segment.curved =
-              m.distance(a + 0.5 * (b - a)) > 1e-10 * a.distance(b);
-          }
-        segments.push_back(segment);
-      }
-    // Segments in the order of their first node, for reproducible sums.
-    std::sort(segments.begin(),
-              segments.end(),
-              [](const Segment &a, const Segment &b) {
-                return std::min(a.nodes[0], a.nodes[1]) <
-                       std::min(b.nodes[0], b.nodes[1]);
-              });
-
-    // Nodal normals: the average of the adjacent segments' normals (on a
-    // curved segment its curve's normal at the node).
-    for (auto &node : nodes)
-      node.normal = Tensor<1, 2>();
-    for (const auto &segment : segments)
-      for (unsigned int i = 0; i < segment.nodes.size(); ++i)
-        if (segment.curved)
-          {
-            const SegmentCurve curve = segment_curve(nodes, segment, degree);
-            nodes[segment.nodes[i]].normal +=
-              curve.normal(i == 2 ? 0.5 : double(i), segment.normal);
-          }
-        else
-          nodes[segment.nodes[i]].normal += segment.normal;
-    for (auto &node : nodes)
-      {
-        node.normal /= node.normal.norm();
-        node.tangent = Tensor<1, 2>({-node.normal[1], node.normal[0]});
-      }
-    return degree;
-  }
-
 
 
   void

@@ -9,6 +9,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/segment_curve.h>
 
 #include <array>
 #include <map>
@@ -225,6 +226,16 @@ namespace coulomb_adapt
      * the segment's own mass matrix with its length element. */
     std::vector<FullMatrix<double>> curved_dual_coefficients;
   };
+
+  namespace mortar
+  {
+    /** The curve of a segment of either side through its nodes in @p nodes
+     * (ends, then the middle node), for elements of degree @p degree. */
+    SegmentCurve
+    segment_curve(const std::vector<MortarInterface::Node> &nodes,
+                  const MortarInterface::Segment           &segment,
+                  const unsigned int                        degree);
+  } // namespace mortar
 } // namespace coulomb_adapt
 
 #endif
