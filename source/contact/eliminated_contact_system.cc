@@ -41,6 +41,23 @@ namespace coulomb_adapt
       return {std::move(states), std::move(data)};
     }
 
+    // One master DoF's term in an eliminated row: its value in Z, its value
+    // in the test space Z~ (0 for a DoF with Dirichlet data, which stays
+    // zero in the solve: its fixed value goes into the row's shift).
+    void
+    add_coupling(EliminatedRow                       &row,
+                 const SlaveNodeConditions::Coupling &m,
+                 const unsigned int                   d,
+                 const double                         value,
+                 const double                         test_value,
+                 bool                                &symmetric)
+    {
+      row.entries[m.dofs[d]] = {{value, m.constrained[d] ? 0. : test_value}};
+      symmetric              = symmetric && !m.constrained[d];
+      if (m.constrained[d])
+        row.shift += value * m.fixed_value[d];
+    }
+
     // A roller: the normal condition eliminates the free component, the
     // fixed one is known (its value goes into the shift), and the test
     // space is orthogonal to the traction lambda_n n, as at a
@@ -58,11 +75,8 @@ namespace coulomb_adapt
       for (const auto &m : node.couplings)
         for (unsigned int d = 0; d < 2; ++d)
           {
-            const double z         = m.value / D * n[d] / n[c];
-            row.entries[m.dofs[d]] = {{z, m.constrained[d] ? 0. : z}};
-            symmetric              = symmetric && !m.constrained[d];
-            if (m.constrained[d])
-              row.shift += z * m.fixed_value[d];
+            const double z = m.value / D * n[d] / n[c];
+            add_coupling(row, m, d, z, z, symmetric);
           }
       row.shift += (node.weighted_gap / D - n[o] * node.fixed_value) / n[c];
     }
@@ -82,12 +96,8 @@ namespace coulomb_adapt
           EliminatedRow &row = eliminated[node.dofs[c]];
           for (const auto &m : node.couplings)
             {
-              const double z         = m.value / D;
-              row.entries[m.dofs[c]] = {{z, m.constrained[c] ? 0. : z}};
-              symmetric              = symmetric && !m.constrained[c];
-              // (A constrained master DoF is zero in the solve.)
-              if (m.constrained[c])
-                row.shift += z * m.fixed_value[c];
+              const double z = m.value / D;
+              add_coupling(row, m, c, z, z, symmetric);
             }
           row.shift +=
             (node.weighted_gap * n[c] + node.weighted_slip * t[c]) / D;
@@ -117,12 +127,9 @@ namespace coulomb_adapt
       for (const auto &m : node.couplings)
         for (unsigned int d = 0; d < 2; ++d)
           {
-            const double z         = m.value / D;
-            row.entries[m.dofs[d]] = {
-              {z * n[d] / n[c], m.constrained[d] ? 0. : z * w[d] / w[c]}};
-            symmetric = symmetric && !m.constrained[d];
-            if (m.constrained[d])
-              row.shift += z * n[d] / n[c] * m.fixed_value[d];
+            const double z = m.value / D;
+            add_coupling(
+              row, m, d, z * n[d] / n[c], z * w[d] / w[c], symmetric);
           }
       row.shift += node.weighted_gap / (D * n[c]);
       symmetric = symmetric && node.friction_coefficient == 0;
