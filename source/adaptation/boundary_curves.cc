@@ -184,8 +184,77 @@ namespace coulomb_adapt
 
 
 
-    // The outer boundary is the loop of the largest area (shoelace
-    // formula); the others are holes.
+    namespace
+    {
+      // Whether @p x lies inside the closed polygon @p polygon (crossing
+      // number of a ray in +x direction).
+      bool
+      inside(const std::vector<Point<2>> &polygon, const Point<2> &x)
+      {
+        bool               result = false;
+        const unsigned int n      = polygon.size();
+        for (unsigned int i = 0, j = n - 1; i < n; j = i++)
+          {
+            const Point<2> &a = polygon[i], &b = polygon[j];
+            if ((a[1] > x[1]) != (b[1] > x[1]) &&
+                x[0] < a[0] + (x[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]))
+              result = !result;
+          }
+        return result;
+      }
+
+
+
+      // The loops grouped into parts (see LoopCurves). Loops do not cross,
+      // so one vertex of a loop tells whether it lies inside another.
+      std::vector<std::vector<unsigned int>>
+      connected_parts(const std::vector<std::vector<Point<2>>> &polygons)
+      {
+        const unsigned int        n = polygons.size();
+        std::vector<unsigned int> depth(n, 0);
+        std::vector<std::vector<bool>> contains(n, std::vector<bool>(n, false));
+        for (unsigned int l = 0; l < n; ++l)
+          for (unsigned int m = 0; m < n; ++m)
+            if (m != l && inside(polygons[m], polygons[l][0]))
+              {
+                contains[m][l] = true;
+                ++depth[l];
+              }
+        std::vector<std::vector<unsigned int>> parts;
+        std::vector<unsigned int>              part_of_outer(n, 0);
+        for (unsigned int l = 0; l < n; ++l)
+          if (depth[l] % 2 == 0)
+            {
+              part_of_outer[l] = parts.size();
+              parts.push_back({l});
+            }
+        for (unsigned int l = 0; l < n; ++l)
+          if (depth[l] % 2 == 1)
+            for (unsigned int m = 0; m < n; ++m)
+              if (contains[m][l] && depth[m] + 1 == depth[l])
+                parts[part_of_outer[m]].push_back(l);
+        return parts;
+      }
+    } // namespace
+
+
+
+    unsigned int
+    LoopCurves::part_containing(const Point<2> &x) const
+    {
+      for (unsigned int p = 0; p < parts.size(); ++p)
+        if (inside(loop_polygons[parts[p][0]], x) &&
+            std::none_of(parts[p].begin() + 1,
+                         parts[p].end(),
+                         [&](const unsigned int hole) {
+                           return inside(loop_polygons[hole], x);
+                         }))
+          return p;
+      return numbers::invalid_unsigned_int;
+    }
+
+
+
     LoopCurves
     loop_curves(const Triangulation<2>       &geometry,
                 const std::string            &body_name,
@@ -194,25 +263,19 @@ namespace coulomb_adapt
       const auto &vertices = geometry.get_vertices();
       const auto  loops    = boundary_loops(geometry, body_name);
       LoopCurves  result;
-      double      largest_area = -1;
-      for (unsigned int l = 0; l < loops.size(); ++l)
+      for (const auto &loop : loops)
         {
-          double area = 0;
-          for (const auto &f : loops[l])
-            area += vertices[f.a][0] * vertices[f.b][1] -
-                    vertices[f.b][0] * vertices[f.a][1];
-          if (std::abs(area) > largest_area)
-            {
-              largest_area = std::abs(area);
-              result.outer = l;
-            }
           result.first_curve_of_loop.push_back(result.curves.size());
-          const auto curves = boundary_curves(geometry, loops[l], corners);
+          const auto curves = boundary_curves(geometry, loop, corners);
           result.curves.insert(result.curves.end(),
                                curves.begin(),
                                curves.end());
+          result.loop_polygons.emplace_back();
+          for (const auto &f : loop)
+            result.loop_polygons.back().push_back(vertices[f.a]);
         }
       result.first_curve_of_loop.push_back(result.curves.size());
+      result.parts = connected_parts(result.loop_polygons);
       return result;
     }
   } // namespace boundary_geometry

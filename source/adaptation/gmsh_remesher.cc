@@ -103,11 +103,12 @@ namespace coulomb_adapt
 
 
 
-    // The body's geometry in gmsh: its plane surface, bounded by the
-    // curves' loops, with the interior lines and points embedded.
+    // The body's geometry in gmsh: one plane surface per connected part,
+    // bounded by the part's loops, with the interior lines and points
+    // embedded in the part that holds them.
     struct GmshGeometry
     {
-      int                         surface;
+      std::vector<int>            surfaces;
       std::map<int, unsigned int> curve_index; // gmsh curve -> curves[]
     };
 
@@ -137,24 +138,40 @@ namespace coulomb_adapt
               result.curve_index[t] = c;
             }
         }
-      std::vector<int> loop_list = {
-        gmsh::model::geo::addCurveLoop(loop_tags[boundary.outer])};
-      for (unsigned int l = 0; l < boundary.n_loops(); ++l)
-        if (l != boundary.outer)
-          loop_list.push_back(gmsh::model::geo::addCurveLoop(loop_tags[l]));
-      result.surface = gmsh::model::geo::addPlaneSurface(loop_list);
-      std::vector<int> point_tags;
+      for (const auto &part : boundary.parts)
+        {
+          std::vector<int> loop_list;
+          for (const unsigned int l : part)
+            loop_list.push_back(gmsh::model::geo::addCurveLoop(loop_tags[l]));
+          result.surfaces.push_back(
+            gmsh::model::geo::addPlaneSurface(loop_list));
+        }
+      // Each embedded point and interior line goes to the surface of the
+      // part that holds it (a line's midpoint: its ends are on the
+      // boundary).
+      const auto surface_of = [&](const Point<2> &x) {
+        const unsigned int part = boundary.part_containing(x);
+        AssertThrow(part != numbers::invalid_unsigned_int,
+                    ExcMessage("remeshing " + body_name +
+                               ": a point support or symmetry line at (" +
+                               std::to_string(x[0]) + ", " +
+                               std::to_string(x[1]) +
+                               ") lies outside the body"));
+        return result.surfaces[part];
+      };
+      std::map<int, std::vector<int>> point_tags, interior_tags;
       for (const auto &p : features.embedded_points)
-        point_tags.push_back(gmsh::model::geo::addPoint(p[0], p[1], 0));
-      std::vector<int> interior_tags;
+        point_tags[surface_of(p)].push_back(
+          gmsh::model::geo::addPoint(p[0], p[1], 0));
+      const auto &vertices = geometry.get_vertices();
       for (const auto &ends : features.line_ends)
-        interior_tags.push_back(
-          gmsh::model::geo::addLine(point(ends[0]), point(ends[1])));
+        interior_tags[surface_of(0.5 * (vertices[ends[0]] + vertices[ends[1]]))]
+          .push_back(gmsh::model::geo::addLine(point(ends[0]), point(ends[1])));
       gmsh::model::geo::synchronize();
-      if (!interior_tags.empty())
-        gmsh::model::mesh::embed(1, interior_tags, 2, result.surface);
-      if (!point_tags.empty())
-        gmsh::model::mesh::embed(0, point_tags, 2, result.surface);
+      for (const auto &[surface, tags] : interior_tags)
+        gmsh::model::mesh::embed(1, tags, 2, surface);
+      for (const auto &[surface, tags] : point_tags)
+        gmsh::model::mesh::embed(0, tags, 2, surface);
       return result;
     }
 
@@ -325,8 +342,9 @@ namespace coulomb_adapt
       gmsh::model::mesh::generate(2);
 
       MeshFromGmsh from_gmsh;
-      from_gmsh.add_triangles(gmsh_geometry.surface,
-                              geometry.begin_active()->material_id());
+      for (const int surface : gmsh_geometry.surfaces)
+        from_gmsh.add_triangles(surface,
+                                geometry.begin_active()->material_id());
       // Lines by curve, each curve's in gmsh's order, then the curve's
       // boundary and manifold ids.
       std::map<unsigned int, std::vector<int>> tags_of_curve;

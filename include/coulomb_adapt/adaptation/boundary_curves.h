@@ -52,21 +52,32 @@ namespace coulomb_adapt
       const std::vector<std::array<Point<2>, 2>> &interior_lines,
       const std::vector<Point<2>>                &support_points);
 
-    /** The curves of all boundary loops, loop by loop; @p outer is the
-     * loop of the largest area (the outer boundary), the others are
-     * holes. */
+    /** The curves of all boundary loops, loop by loop, and the loops
+     * grouped into the body's connected parts: each part is an outer loop
+     * followed by the loops of its holes. A loop inside an even number of
+     * other loops is an outer loop (a body may have several parts, and a
+     * part may sit in another part's hole); a loop inside an odd number is
+     * a hole of the innermost loop around it. */
     struct LoopCurves
     {
       std::vector<Curve> curves;
       /** The first curve of each loop, and curves.size() last. */
       std::vector<unsigned int> first_curve_of_loop;
-      unsigned int              outer = 0;
+      /** Per part: its outer loop, then its holes. */
+      std::vector<std::vector<unsigned int>> parts;
+      /** Each loop's vertices in the order of its walk. */
+      std::vector<std::vector<Point<2>>> loop_polygons;
 
       unsigned int
       n_loops() const;
 
       unsigned int
       loop_of_curve(const unsigned int c) const;
+
+      /** The part whose region (inside its outer loop, outside its holes)
+       * holds @p x, or numbers::invalid_unsigned_int. */
+      unsigned int
+      part_containing(const Point<2> &x) const;
     };
 
     /** The boundary of @p geometry as curves: maximal runs of boundary

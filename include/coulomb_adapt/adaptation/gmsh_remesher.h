@@ -16,7 +16,8 @@ namespace coulomb_adapt
 {
   /**
    * Mesh the domain of @p geometry (a body's coarse mesh: its boundary,
-   * closed curves, the outer one and one per hole, give the geometry)
+   * closed curves, the outer one and one per hole of each connected part,
+   * give the geometry; a body may be made of several parts)
    * with gmsh's triangles of size
    * @p size_field (a PostView background field, linear in each triangle).
    * The boundary is rebuilt as gmsh curves: maximal runs of boundary faces
