@@ -450,13 +450,6 @@ namespace coulomb_adapt
       for (const auto &support : geometry.point_supports)
         {
           const GroupConditions &c = conditions[support.group];
-          if (c.rotation)
-            throw ParameterError(
-              scene_path + "/Prescribed rotations",
-              support.group + ": ...",
-              "physical curves ('" + support.group +
-                "' is a physical point: a rotation turns a curve about "
-                "the centre; hold a point with 'Fixed components')");
           if (c.loaded)
             throw ParameterError(
               "gmsh file '" + mesh_file + "': '" + support.group +
