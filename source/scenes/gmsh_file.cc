@@ -251,8 +251,8 @@ namespace coulomb_adapt
                           "0, -10",
                           Patterns::List(Patterns::Double(), 2, 2),
                           "Old syntax, used only if 'Fixed components', "
-                          "'Tractions' and 'Normal pressures' are all "
-                          "empty: uniform traction (x, y) on the curves "
+                          "'Prescribed rotations', 'Tractions' and 'Normal "
+                          "pressures' are all empty: uniform traction (x, y) on the curves "
                           "'traction' (MPa), with 'dirichlet' clamped.");
         declare_body_materials(prm, 130000., 0.3, 130000., 0.3);
         for (const unsigned int b : {1, 2})
@@ -358,8 +358,9 @@ namespace coulomb_adapt
         throw ParameterError(scene_path + "/Traction",
                              prm.get("Traction"),
                              "the default: the old 'Traction' entry is not "
-                             "used with 'Fixed components', 'Tractions' or "
-                             "'Normal pressures' (give the traction in "
+                             "used with 'Fixed components', 'Prescribed "
+                             "rotations', 'Tractions' or 'Normal "
+                             "pressures' (give the traction in "
                              "'Tractions = group: tx; ty')");
       for (const auto &[group, c] : conditions)
         {

@@ -19,9 +19,10 @@ namespace coulomb_adapt
      * group), and per body its surfaces, material and body force (gravity,
      * centrifugal). doc/scenes.md describes the entries.
      *
-     * Without any of `Fixed components`, `Tractions`, `Normal pressures`
-     * the old fixed groups apply: `dirichlet` clamped, the uniform
-     * `Traction` on `traction`, contact on `contact`.
+     * Without any of `Fixed components`, `Prescribed rotations`,
+     * `Tractions`, `Normal pressures` the old fixed groups apply:
+     * `dirichlet` clamped, the uniform `Traction` on `traction`, contact
+     * on `contact`.
      */
     class GmshFile : public Scene
     {
