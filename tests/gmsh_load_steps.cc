@@ -41,18 +41,18 @@ main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const std::string prm  = root + "/prm/blocks_gmsh.prm";
-  const std::string geo  = root + "/prm/meshes/blocks_structured.geo";
+  const std::string  root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
+  const std::string  prm  = root + "/prm/blocks_gmsh.prm";
+  const std::string  geo  = root + "/prm/meshes/blocks_structured.geo";
   const unsigned int n_steps = 4;
 
   out << "1. traction (0, -10) MPa on the top in " << n_steps << " load steps"
       << std::endl;
   {
-    auto p = testing::solve_contact_setup(
-      {{"Scene/Gmsh/Mesh file", geo},
-       {"Scene/Gmsh/Load steps", std::to_string(n_steps)}},
-      prm);
+    auto p = testing::solve_contact_setup({{"Scene/Gmsh/Mesh file", geo},
+                                           {"Scene/Gmsh/Load steps",
+                                            std::to_string(n_steps)}},
+                                          prm);
     AssertThrow(p->scene->n_load_steps() == n_steps,
                 ExcMessage("the scene's load steps are not 'Load steps'"));
     solve_load_path(*p, [&](const unsigned int step, const auto &report) {

@@ -57,11 +57,11 @@ namespace
     const auto          &fe   = dofs.get_fe();
     const IndexSet       supported =
       DoFTools::extract_boundary_dofs(dofs, ComponentMask(), {boundary_id});
-    FEValues<2> fe_values(body.mapping(),
+    FEValues<2>                          fe_values(body.mapping(),
                           fe,
                           body.cell_quadrature(),
                           update_gradients | update_JxW_values);
-    FEValues<2> support_values(body.mapping(),
+    FEValues<2>                          support_values(body.mapping(),
                                fe,
                                Quadrature<2>(fe.get_unit_support_points()),
                                update_quadrature_points);
@@ -81,7 +81,7 @@ namespace
             {
               if (!supported.is_element(indices[i]))
                 continue;
-              const Point<2> x = support_values.quadrature_point(i);
+              const Point<2>     x = support_values.quadrature_point(i);
               const unsigned int component =
                 fe.system_to_component_index(i).first;
               const double w = component == 0 ? -x[1] : x[0];
@@ -117,15 +117,16 @@ main(int argc, char *argv[])
 
   const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
   const testing::HeldPressFit fit;
-  const double                p        = fit.pressure();
-  const double                mu       = 0.3;
-  const double                theta    = 4e-4;
-  const double                T_slip   = fit.full_slip_torque(mu);
-  const unsigned int          n_steps  = 4;
-  out << std::setprecision(6) << "Lame's pressure, annuli held at a0 and c: p = "
-      << p << " MPa; full-slip torque mu p 2 pi a^2 = " << T_slip
-      << " N mm/mm; stick torque at the final rotation " << theta << " rad: "
-      << fit.stick_torque(theta) << " N mm/mm" << std::endl;
+  const double                p       = fit.pressure();
+  const double                mu      = 0.3;
+  const double                theta   = 4e-4;
+  const double                T_slip  = fit.full_slip_torque(mu);
+  const unsigned int          n_steps = 4;
+  out << std::setprecision(6)
+      << "Lame's pressure, annuli held at a0 and c: p = " << p
+      << " MPa; full-slip torque mu p 2 pi a^2 = " << T_slip
+      << " N mm/mm; stick torque at the final rotation " << theta
+      << " rad: " << fit.stick_torque(theta) << " N mm/mm" << std::endl;
 
   auto problem = testing::solve_contact_setup(
     {{"Scene/Gmsh/Mesh file", root + "/prm/meshes/press_fit_torque.geo"},
@@ -170,9 +171,9 @@ main(int argc, char *argv[])
       const double a              = fit.b - fit.delta;
       const double drive_balance =
         std::abs(M_drive - M_contact * fit.b / a) / M_contact;
-      const bool   all_stick      = n_stick == states.size();
-      const bool   all_slip       = n_slip == states.size();
-      const double rotation       = theta * step / n_steps;
+      const bool   all_stick = n_stick == states.size();
+      const bool   all_slip  = n_slip == states.size();
+      const double rotation  = theta * step / n_steps;
       const double exact =
         all_stick ? fit.stick_torque(rotation) : fit.full_slip_torque(mu);
       const double torque_deviation = M_contact / exact - 1;
@@ -186,14 +187,13 @@ main(int argc, char *argv[])
                 "NO")
           << std::endl
           << "  pressure: largest deviation from p " << std::setprecision(2)
-          << 100 * deviation << " % (within 0.2 %: "
-          << (deviation < 2e-3 ? "yes" : "no") << "), mean "
-          << std::scientific << std::setprecision(1) << mean_deviation
-          << std::defaultfloat << std::endl
-          << "  contact moment on the hub " << std::setprecision(5)
-          << M_contact << " N mm/mm, "
-          << (all_stick ? "stick torque" : "mu p 2 pi a^2") << " "
-          << exact << ": deviation " << std::scientific
+          << 100 * deviation
+          << " % (within 0.2 %: " << (deviation < 2e-3 ? "yes" : "no")
+          << "), mean " << std::scientific << std::setprecision(1)
+          << mean_deviation << std::defaultfloat << std::endl
+          << "  contact moment on the hub " << std::setprecision(5) << M_contact
+          << " N mm/mm, " << (all_stick ? "stick torque" : "mu p 2 pi a^2")
+          << " " << exact << ": deviation " << std::scientific
           << std::setprecision(1) << torque_deviation << std::defaultfloat
           << std::endl
           << "  moments balance: hub clamp "
@@ -206,7 +206,7 @@ main(int argc, char *argv[])
       if (all_slip)
         out << "  mu sum |x_j| D_jj p_j: the contact moment to "
             << (std::abs(M_contact / slip_moment - 1) < 1e-8 ? "1e-8" :
-                                                                 "MORE than 1e-8")
+                                                               "MORE than 1e-8")
             << std::endl;
 
       AssertThrow(all_stick || all_slip,
