@@ -257,6 +257,8 @@ namespace coulomb_adapt
     record["stick_nodes"]          = report.n_stick;
     record["slip_nodes"]           = report.n_slip;
     record["contact_force"]        = {force[0], force[1]};
+    record["max_contact_pressure"] = max_pressure;
+    record["frictionless"]         = report.frictionless;
     record["contact_moment"] =
       physical(report.contact_moment, 1, "contact_moment");
     if (outcome.n_load_steps > 1)
@@ -271,8 +273,6 @@ namespace coulomb_adapt
         pcout << std::endl;
         record["contact_moment_per_load_step"] = moments;
       }
-    record["max_contact_pressure"] = max_pressure;
-    record["frictionless"]         = report.frictionless;
     if (report.slave_rotation_free)
       record["body_1_rotation_free"] = true;
     record["residual_history"]         = report.residual_history;

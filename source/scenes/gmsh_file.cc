@@ -252,8 +252,9 @@ namespace coulomb_adapt
                           Patterns::List(Patterns::Double(), 2, 2),
                           "Old syntax, used only if 'Fixed components', "
                           "'Prescribed rotations', 'Tractions' and 'Normal "
-                          "pressures' are all empty: uniform traction (x, y) on the curves "
-                          "'traction' (MPa), with 'dirichlet' clamped.");
+                          "pressures' are all empty: uniform traction "
+                          "(x, y) on the curves 'traction' (MPa), with "
+                          "'dirichlet' clamped.");
         declare_body_materials(prm, 130000., 0.3, 130000., 0.3);
         for (const unsigned int b : {1, 2})
           declare_body_entries(prm, b);
@@ -609,8 +610,7 @@ namespace coulomb_adapt
                             (x[1] - rotation_centre[1]);
                    },
                    [this, angle = *rotation](const Point<2> &x) {
-                     return load_fraction * angle *
-                            (x[0] - rotation_centre[0]);
+                     return load_fraction * angle * (x[0] - rotation_centre[0]);
                    }})});
           else if (fixed[0] || fixed[1])
             {
@@ -622,15 +622,14 @@ namespace coulomb_adapt
               if (values[0] == 0 && values[1] == 0)
                 displacement = std::make_shared<Functions::ZeroFunction<2>>(2);
               else
-                displacement =
-                  std::make_shared<FunctionFromFunctionObjects<2>>(
-                    std::vector<std::function<double(const Point<2> &)>>{
-                      [this, v = values[0]](const Point<2> &) {
-                        return load_fraction * v;
-                      },
-                      [this, v = values[1]](const Point<2> &) {
-                        return load_fraction * v;
-                      }});
+                displacement = std::make_shared<FunctionFromFunctionObjects<2>>(
+                  std::vector<std::function<double(const Point<2> &)>>{
+                    [this, v = values[0]](const Point<2> &) {
+                      return load_fraction * v;
+                    },
+                    [this, v = values[1]](const Point<2> &) {
+                      return load_fraction * v;
+                    }});
               d.dirichlet.push_back({id, ComponentMask(mask), displacement});
             }
           if (loaded)
@@ -666,8 +665,8 @@ namespace coulomb_adapt
       if (f.density > 0 && (f.gravity.norm() > 0 || f.angular_velocity != 0))
         d.body_force = [this, f](const Point<2> &x) {
           return load_fraction * f.density *
-                 (f.gravity + f.angular_velocity *
-                                            f.angular_velocity * (x - f.axis));
+                 (f.gravity +
+                  f.angular_velocity * f.angular_velocity * (x - f.axis));
         };
       return d;
     }
