@@ -3,6 +3,8 @@
 #ifndef coulomb_adapt_tests_lame_press_fit_h
 #define coulomb_adapt_tests_lame_press_fit_h
 
+#include <deal.II/base/numbers.h>
+
 namespace coulomb_adapt
 {
   namespace testing
@@ -31,6 +33,66 @@ namespace coulomb_adapt
                ((1 + nu) *
                 (a * ((1 - 2 * nu) * a * a + c * c) / (c * c - a * a) +
                  (1 - 2 * nu) * b));
+      }
+    };
+
+    /** The press fit of prm/press_fit_torque.prm: a hollow shaft (bore
+     * radius a0, outer radius b) in a hub of bore a = b - delta and outer
+     * radius c, the shaft's bore and the hub's outer circle held radially
+     * (u_r = 0 there), plane strain. The radial (Lame) and the tangential
+     * (torsion) problems of the annuli are uncoupled. */
+    struct HeldPressFit
+    {
+      double E = 200000, nu = 0.3, a0 = 5, b = 10, c = 20, delta = 0.001;
+
+      double
+      shear_modulus() const
+      {
+        return E / (2 * (1 + nu));
+      }
+
+      /** u = A r + B / r in each annulus, B = -A r_held^2 at its held
+       * radius, sigma_r = 2 (lambda + G) A - 2 G B / r^2 = -p at the
+       * interface; the radial displacements meet: u_shaft(b) - u_hub(a) =
+       * a - b = -delta. */
+      double
+      pressure() const
+      {
+        const double a      = b - delta;
+        const double G      = shear_modulus();
+        const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+        // u at the interface per unit pressure, for an annulus held at
+        // r_held and loaded at r.
+        const auto compliance = [&](const double r, const double r_held) {
+          return -(r - r_held * r_held / r) /
+                 (2 * (lambda + G) + 2 * G * r_held * r_held / (r * r));
+        };
+        return delta / (compliance(a, c) - compliance(b, a0));
+      }
+
+      /** The torque (per unit thickness) that the interface transmits when
+       * all of it slips: mu p times the bore's length 2 pi a times the
+       * lever arm a (the slave side, the hub's bore, carries the
+       * tractions). */
+      double
+      full_slip_torque(const double mu) const
+      {
+        const double a = b - delta;
+        return mu * pressure() * 2 * dealii::numbers::PI * a * a;
+      }
+
+      /** The torque while the whole interface sticks at a rotation theta
+       * of the shaft's bore: u_theta = r phi(r) with
+       * phi' = T / (2 pi G r^3) in each annulus, phi = 0 at c, phi = theta
+       * at a0, and u_theta of the hub at a equal to the shaft's at b (the
+       * mortar's normal projection). */
+      double
+      stick_torque(const double theta) const
+      {
+        const double a = b - delta;
+        return 4 * dealii::numbers::PI * shear_modulus() * b * theta /
+               (a * (1 / (a * a) - 1 / (c * c)) +
+                b * (1 / (a0 * a0) - 1 / (b * b)));
       }
     };
   } // namespace testing

@@ -284,6 +284,8 @@ namespace coulomb_adapt
         total_newton_iterations += outcome.report.newton_iterations;
         outcome.newton_iterations_per_load_step.push_back(
           outcome.report.newton_iterations);
+        outcome.contact_moment_per_load_step.push_back(
+          outcome.report.contact_moment);
         if (step == 1 && n_steps > 1)
           first_load_step_states = outcome.solver->node_states();
       }

@@ -430,8 +430,12 @@ namespace coulomb_adapt
       }
     for (const auto &s : states)
       {
-        report.contact_force -= s.weight * (s.pressure * s.normal +
-                                            s.tangential_traction * s.tangent);
+        const Tensor<1, 2> force =
+          -s.weight *
+          (s.pressure * s.normal + s.tangential_traction * s.tangent);
+        report.contact_force += force;
+        report.contact_moment +=
+          s.position[0] * force[1] - s.position[1] * force[0];
         report.max_contact_pressure =
           std::max(report.max_contact_pressure, s.pressure);
       }

@@ -259,6 +259,20 @@ namespace coulomb_adapt
     record["contact_force"]        = {force[0], force[1]};
     record["max_contact_pressure"] = max_pressure;
     record["frictionless"]         = report.frictionless;
+    record["contact_moment"] =
+      physical(report.contact_moment, 1, "contact_moment");
+    if (outcome.n_load_steps > 1)
+      {
+        std::vector<double> moments;
+        for (const double m : outcome.contact_moment_per_load_step)
+          moments.push_back(physical(m, 1, "contact_moment_per_load_step"));
+        pcout << "  contact: moment of the contact tractions on body 1 "
+                 "about the origin per load step (N mm/mm):";
+        for (const double m : moments)
+          pcout << " " << m;
+        pcout << std::endl;
+        record["contact_moment_per_load_step"] = moments;
+      }
     if (report.slave_rotation_free)
       record["body_1_rotation_free"] = true;
     record["residual_history"]         = report.residual_history;

@@ -202,6 +202,30 @@ namespace coulomb_adapt
                           "('y=-0.1', mm), e.g. 'base: x y, axis: x, top: "
                           "y=-0.05'. Rollers and symmetry lines fix one "
                           "component.");
+        prm.declare_entry("Prescribed rotations",
+                          "",
+                          Patterns::Map(Patterns::Anything(),
+                                        Patterns::Anything()),
+                          "Rigid rotations per physical curve: 'group: "
+                          "angle' (rad, counterclockwise) about 'Rotation "
+                          "centre', e.g. 'shaft bore: 1e-4'. Both "
+                          "components are prescribed, linearised (small "
+                          "strain): u = angle (-(y - c_y), x - c_x).");
+        prm.declare_entry("Rotation centre",
+                          "0, 0",
+                          Patterns::List(Patterns::Double(), 2, 2),
+                          "The point (x, y) (mm) about which the "
+                          "'Prescribed rotations' turn.");
+        prm.declare_entry("Load steps",
+                          "1",
+                          Patterns::Integer(1, 1000),
+                          "Number of quasi-static load steps: step k of n "
+                          "applies k/n of every prescribed displacement "
+                          "and rotation, traction, normal pressure and body "
+                          "force, carrying the stick/slip history from step "
+                          "to step; the initial overlap of the file's "
+                          "geometry is there from step 1. 1: the static "
+                          "problem.");
         prm.declare_entry("Tractions",
                           "",
                           Patterns::Map(Patterns::Anything(),
@@ -227,9 +251,10 @@ namespace coulomb_adapt
                           "0, -10",
                           Patterns::List(Patterns::Double(), 2, 2),
                           "Old syntax, used only if 'Fixed components', "
-                          "'Tractions' and 'Normal pressures' are all "
-                          "empty: uniform traction (x, y) on the curves "
-                          "'traction' (MPa), with 'dirichlet' clamped.");
+                          "'Prescribed rotations', 'Tractions' and 'Normal "
+                          "pressures' are all empty: uniform traction "
+                          "(x, y) on the curves 'traction' (MPa), with "
+                          "'dirichlet' clamped.");
         declare_body_materials(prm, 130000., 0.3, 130000., 0.3);
         for (const unsigned int b : {1, 2})
           declare_body_entries(prm, b);
@@ -253,6 +278,8 @@ namespace coulomb_adapt
         use.contact_pair  = {{pair[0], pair[1]}};
         use.contact_entry = scene_path + "/Contact pair";
         parse_conditions(prm, use);
+        rotation_centre = Point<2>(get_vector(prm, "Rotation centre"));
+        n_steps         = prm.get_integer("Load steps");
 
         const std::string file = prm.get("Mesh file");
         mesh_file              = file;
@@ -332,11 +359,21 @@ namespace coulomb_adapt
         throw ParameterError(scene_path + "/Traction",
                              prm.get("Traction"),
                              "the default: the old 'Traction' entry is not "
-                             "used with 'Fixed components', 'Tractions' or "
-                             "'Normal pressures' (give the traction in "
+                             "used with 'Fixed components', 'Prescribed "
+                             "rotations', 'Tractions' or 'Normal "
+                             "pressures' (give the traction in "
                              "'Tractions = group: tx; ty')");
       for (const auto &[group, c] : conditions)
         {
+          if (c.rotation && c.loaded)
+            throw ParameterError(
+              scene_path + "/Prescribed rotations",
+              group + ": ...",
+              "loads only on curves whose displacement is not prescribed "
+              "(group '" +
+                group +
+                "' also has a traction or pressure, which would "
+                "have no effect)");
           if (c.fixed[0] && c.fixed[1] && c.loaded)
             throw ParameterError(
               scene_path + "/Fixed components",
@@ -372,6 +409,20 @@ namespace coulomb_adapt
           conditions[group].fixed = parse_fixed_components(value, group);
           add_group(group, "Fixed components");
           use.point_groups_allowed.insert(group);
+        }
+      for (const auto &[group, value] : group_map(prm, "Prescribed rotations"))
+        {
+          if (conditions.count(group) > 0)
+            throw ParameterError(
+              scene_path + "/Prescribed rotations",
+              group + ": " + value,
+              "groups without 'Fixed components' (group '" + group +
+                "' has both; a rotation prescribes both components)");
+          conditions[group].rotation = parse_number(value,
+                                                    "Prescribed rotations",
+                                                    group,
+                                                    "an angle (rad)");
+          add_group(group, "Prescribed rotations");
         }
       for (const auto &[group, value] : group_map(prm, "Tractions"))
         {
@@ -420,10 +471,24 @@ namespace coulomb_adapt
 
 
 
-    // Groups that share lines must agree on what they prescribe.
+    // Groups that share lines must agree on what they prescribe; a
+    // rotation prescribes both components, so it shares curves with no
+    // other condition or load.
     void
     GmshFile::check_shared_groups()
     {
+      for (const auto &[id, groups] : geometry.groups_of_boundary_id)
+        for (const auto &g : groups)
+          for (const auto &h : groups)
+            if (g != h && conditions[g].rotation &&
+                (conditions[h].rotation || conditions[h].fixed[0] ||
+                 conditions[h].fixed[1] || conditions[h].loaded))
+              throw ParameterError(
+                "gmsh file '" + mesh_file + "': groups '" + g + "' (" +
+                scene_path + "/Prescribed rotations) and '" + h +
+                "' share curves; a prescribed rotation fixes both "
+                "components, so no other displacement condition or load "
+                "may act there");
       for (const auto &[id, groups] : geometry.groups_of_boundary_id)
         for (unsigned int c = 0; c < 2; ++c)
           for (const auto &g : groups)
@@ -444,6 +509,7 @@ namespace coulomb_adapt
     GmshFile::load_entries() const
     {
       return {"Scene/Gmsh/Fixed components",
+              "Scene/Gmsh/Prescribed rotations",
               "Scene/Gmsh/Tractions",
               "Scene/Gmsh/Normal pressures",
               "Scene/Gmsh/Traction",
@@ -464,6 +530,22 @@ namespace coulomb_adapt
     GmshFile::mesh_source() const
     {
       return "gmsh file '" + mesh_file + "': ";
+    }
+
+
+
+    unsigned int
+    GmshFile::n_load_steps() const
+    {
+      return n_steps;
+    }
+
+
+
+    void
+    GmshFile::set_load_step(const unsigned int step) const
+    {
+      load_fraction = double(step) / n_steps;
     }
 
 
@@ -498,12 +580,15 @@ namespace coulomb_adapt
           // The groups' conditions combined (the constructor checked that
           // they agree).
           std::array<std::optional<double>, 2> fixed;
+          std::optional<double>                rotation;
           Tensor<1, 2>                         traction;
           double                               pressure = 0;
           bool                                 loaded   = false;
           for (const auto &g : groups)
             {
               const GroupConditions &c = conditions.at(g);
+              if (c.rotation)
+                rotation = c.rotation;
               for (unsigned int k = 0; k < 2; ++k)
                 if (c.fixed[k])
                   fixed[k] = c.fixed[k];
@@ -511,7 +596,23 @@ namespace coulomb_adapt
               pressure += c.pressure;
               loaded = loaded || c.loaded;
             }
-          if (fixed[0] || fixed[1])
+          // The linearised rigid rotation: the small-strain problem's
+          // rigid motion (R(angle) x - x would strain the body by
+          // (cos(angle) - 1) in the linearised strain).
+          if (rotation)
+            d.dirichlet.push_back(
+              {id,
+               ComponentMask(2, true),
+               std::make_shared<FunctionFromFunctionObjects<2>>(
+                 std::vector<std::function<double(const Point<2> &)>>{
+                   [this, angle = *rotation](const Point<2> &x) {
+                     return -load_fraction * angle *
+                            (x[1] - rotation_centre[1]);
+                   },
+                   [this, angle = *rotation](const Point<2> &x) {
+                     return load_fraction * angle * (x[0] - rotation_centre[0]);
+                   }})});
+          else if (fixed[0] || fixed[1])
             {
               const std::vector<bool>   mask   = {fixed[0].has_value(),
                                                   fixed[1].has_value()};
@@ -521,15 +622,22 @@ namespace coulomb_adapt
               if (values[0] == 0 && values[1] == 0)
                 displacement = std::make_shared<Functions::ZeroFunction<2>>(2);
               else
-                displacement =
-                  std::make_shared<Functions::ConstantFunction<2>>(values);
+                displacement = std::make_shared<FunctionFromFunctionObjects<2>>(
+                  std::vector<std::function<double(const Point<2> &)>>{
+                    [this, v = values[0]](const Point<2> &) {
+                      return load_fraction * v;
+                    },
+                    [this, v = values[1]](const Point<2> &) {
+                      return load_fraction * v;
+                    }});
               d.dirichlet.push_back({id, ComponentMask(mask), displacement});
             }
           if (loaded)
             d.tractions.push_back(
               {id,
-               [traction, pressure](const Point<2> &, const Tensor<1, 2> &n) {
-                 return traction - pressure * n;
+               [this, traction, pressure](const Point<2> &,
+                                          const Tensor<1, 2> &n) {
+                 return load_fraction * (traction - pressure * n);
                }});
         }
 
@@ -555,9 +663,10 @@ namespace coulomb_adapt
 
       const BodyForce &f = body_forces[body];
       if (f.density > 0 && (f.gravity.norm() > 0 || f.angular_velocity != 0))
-        d.body_force = [f](const Point<2> &x) {
-          return f.density * (f.gravity + f.angular_velocity *
-                                            f.angular_velocity * (x - f.axis));
+        d.body_force = [this, f](const Point<2> &x) {
+          return load_fraction * f.density *
+                 (f.gravity +
+                  f.angular_velocity * f.angular_velocity * (x - f.axis));
         };
       return d;
     }

@@ -26,6 +26,7 @@ Physical Surface("upper") = {2};
 Physical Surface("lower") = {1};
 Physical Surface("both squares") = {1, 2};
 Physical Curve("base") = {1};
+Physical Curve("base again") = {1};
 Physical Curve("upper top") = {13};
 Physical Curve("upper bottom") = {11};
 Physical Curve("upper bottom again") = {11};

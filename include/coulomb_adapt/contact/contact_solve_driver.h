@@ -48,6 +48,9 @@ namespace coulomb_adapt
     unsigned int n_load_steps                        = 1;
     /** Newton steps of the converged start in each load step. */
     std::vector<unsigned int> newton_iterations_per_load_step;
+    /** The contact moment (ContactSolverReport) at the end of each load
+     * step. */
+    std::vector<double> contact_moment_per_load_step;
     /** Largest overlap and largest clearance of the initial gap (mm). */
     double             initial_overlap   = 0;
     double             initial_clearance = 0;

@@ -29,7 +29,11 @@ namespace coulomb_adapt
     bool         converged         = false;
     unsigned int n_active = 0, n_stick = 0, n_slip = 0;
     /** Force of body 2 on body 1, sum of D_jj R_j (N/mm). */
-    Tensor<1, 2>        contact_force;
+    Tensor<1, 2> contact_force;
+    /** Moment of the same tractions about the origin, counterclockwise,
+     * sum of x_j x D_jj R_j at the slave nodes' positions (N mm/mm): the
+     * torque a joint transmits by contact. */
+    double              contact_moment       = 0;
     double              max_contact_pressure = 0;
     std::vector<double> residual_history;
     /** Round-off floor of the multipliers at the last Newton step

@@ -19,9 +19,10 @@ namespace coulomb_adapt
      * group), and per body its surfaces, material and body force (gravity,
      * centrifugal). doc/scenes.md describes the entries.
      *
-     * Without any of `Fixed components`, `Tractions`, `Normal pressures`
-     * the old fixed groups apply: `dirichlet` clamped, the uniform
-     * `Traction` on `traction`, contact on `contact`.
+     * Without any of `Fixed components`, `Prescribed rotations`,
+     * `Tractions`, `Normal pressures` the old fixed groups apply:
+     * `dirichlet` clamped, the uniform `Traction` on `traction`, contact
+     * on `contact`.
      */
     class GmshFile : public Scene
     {
@@ -50,11 +51,24 @@ namespace coulomb_adapt
       std::string
       mesh_source() const override;
 
+      /** `Load steps`: 1 is the static problem. */
+      unsigned int
+      n_load_steps() const override;
+
+      /** Step @p step of n carries the fraction step/n of every
+       * prescribed value and load (the initial overlap is geometry: all
+       * of it from step 1). */
+      void
+      set_load_step(const unsigned int step) const override;
+
       /** What applies on the curves of one physical group. */
       struct GroupConditions
       {
         /** Prescribed displacement (mm) of x and y, where fixed. */
         std::array<std::optional<double>, 2> fixed;
+        /** Prescribed rigid rotation (rad) about the rotation centre,
+         * linearised: u = angle (-(y - c_y), x - c_x), both components. */
+        std::optional<double> rotation;
         /** Traction vector (MPa). */
         Tensor<1, 2> traction;
         /** Normal pressure (MPa): the traction -p n. */
@@ -99,6 +113,12 @@ namespace coulomb_adapt
       std::map<std::string, GroupConditions> conditions;
       std::array<MaterialConstants, 2>       materials;
       std::array<BodyForce, 2>               body_forces;
+      /** The centre of the prescribed rotations (mm). */
+      Point<2>     rotation_centre;
+      unsigned int n_steps = 1;
+      /** The fraction of the prescribed values and loads in the current
+       * load step (set_load_step). */
+      mutable double load_fraction = 1;
     };
   } // namespace scenes
 } // namespace coulomb_adapt
