@@ -174,7 +174,7 @@ check_symmetry_line(const std::string &scene_name,
                                          field,
                                          body.name(),
                                          MPI_COMM_WORLD,
-                                         "frontal-delaunay",
+                                         RemeshingAlgorithm::frontal_delaunay,
                                          lines));
       body.setup_system();
       out << ", after remeshing: " << (held_sideways() ? "yes" : "no");

@@ -428,12 +428,13 @@ namespace coulomb_adapt
                    const std::vector<SizeFieldTriangle>       &size_field,
                    const std::string                          &body_name,
                    const MPI_Comm                              comm,
-                   const std::string                          &algorithm,
+                   const RemeshingAlgorithm                    algorithm,
                    const std::vector<std::array<Point<2>, 2>> &interior_lines,
                    const std::vector<Point<2>>                &support_points)
   {
     // gmsh's Mesh.Algorithm numbers.
-    const int algorithm_number = algorithm == "delaunay" ? 5 : 6;
+    const int algorithm_number =
+      algorithm == RemeshingAlgorithm::delaunay ? 5 : 6;
     // One rank meshes (gmsh is serial), every rank gets the mesh.
     std::vector<double> data;
     std::string         error;

@@ -87,4 +87,16 @@ namespace coulomb_adapt
       {RefinementCriterion::optimize, "optimize"}};
     return names;
   }
+
+
+
+  template <>
+  const OptionNames<RemeshingAlgorithm> &
+  option_names<RemeshingAlgorithm>()
+  {
+    static const OptionNames<RemeshingAlgorithm> names = {
+      {RemeshingAlgorithm::frontal_delaunay, "frontal-delaunay"},
+      {RemeshingAlgorithm::delaunay, "delaunay"}};
+    return names;
+  }
 } // namespace coulomb_adapt

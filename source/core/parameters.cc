@@ -383,7 +383,8 @@ namespace coulomb_adapt
         declare_size_entries(prm);
         prm.declare_entry("Remeshing algorithm",
                           "frontal-delaunay",
-                          Patterns::Selection("frontal-delaunay|delaunay"),
+                          Patterns::Selection(
+                            option_pattern<RemeshingAlgorithm>()),
                           "gmsh's 2D algorithm for 'Strategy = remesh': "
                           "frontal-delaunay (gmsh's default, better shaped "
                           "triangles) or delaunay (about half the meshing "
@@ -430,7 +431,8 @@ namespace coulomb_adapt
         max_size_ratio      = prm.get_double("Maximum size ratio");
         singular_rate       = prm.get_double("Singular convergence rate");
         warm_start          = prm.get_bool("Warm start");
-        remeshing_algorithm = prm.get("Remeshing algorithm");
+        remeshing_algorithm =
+          parse_option<RemeshingAlgorithm>(prm.get("Remeshing algorithm"));
         require_parameter(refine_fraction + coarsen_fraction <= 1,
                           path + "Refine fraction",
                           refine_fraction,

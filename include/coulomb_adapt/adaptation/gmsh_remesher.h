@@ -6,6 +6,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <coulomb_adapt/adaptation/size_field.h>
+#include <coulomb_adapt/core/options.h>
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 
 #include <array>
@@ -25,7 +26,7 @@ namespace coulomb_adapt
    * manifold) or lie on one SphericalManifold (circle arcs); boundary ids
    * and manifold ids are carried over. Rank 0 of @p comm meshes, every
    * rank receives the mesh. @p body_name is for messages; @p algorithm is
-   * gmsh's 2D algorithm, "frontal-delaunay" or "delaunay".
+   * gmsh's 2D algorithm.
    * @p interior_lines are straight segments through the body whose end
    * points are vertices of @p geometry's boundary (symmetry lines that
    * point constraints hold): the new mesh has a line of nodes on each.
@@ -37,7 +38,7 @@ namespace coulomb_adapt
                    const std::vector<SizeFieldTriangle>       &size_field,
                    const std::string                          &body_name,
                    const MPI_Comm                              comm,
-                   const std::string                          &algorithm,
+                   const RemeshingAlgorithm                    algorithm,
                    const std::vector<std::array<Point<2>, 2>> &interior_lines,
                    const std::vector<Point<2>> &support_points = {});
 } // namespace coulomb_adapt

@@ -66,6 +66,14 @@ namespace coulomb_adapt
     optimize
   };
 
+  /** `Adaptation/Remeshing algorithm`: gmsh's 2D meshing algorithm for
+   * `Strategy = remesh`. */
+  enum class RemeshingAlgorithm
+  {
+    frontal_delaunay,
+    delaunay
+  };
+
   /**
    * The names an option's values have in the parameter file, in the order
    * of its Selection pattern. An option is parsed once into its enum; the
@@ -140,6 +148,9 @@ namespace coulomb_adapt
   template <>
   const OptionNames<RefinementCriterion> &
   option_names<RefinementCriterion>();
+  template <>
+  const OptionNames<RemeshingAlgorithm> &
+  option_names<RemeshingAlgorithm>();
 } // namespace coulomb_adapt
 
 #endif

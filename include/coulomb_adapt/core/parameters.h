@@ -151,8 +151,9 @@ namespace coulomb_adapt
       double singular_rate;
       /** Start Newton from the previous cycle's contact sets. */
       bool warm_start;
-      /** gmsh's 2D algorithm for remesh: "frontal-delaunay", "delaunay". */
-      std::string remeshing_algorithm;
+      /** gmsh's 2D algorithm for remesh. */
+      RemeshingAlgorithm remeshing_algorithm =
+        RemeshingAlgorithm::frontal_delaunay;
 
       static void
       declare_parameters(ParameterHandler &prm);
