@@ -149,6 +149,85 @@ namespace coulomb_adapt
 
 
 
+    // The projection v <- v - Z G^-1 Z^T v onto the complement of the
+    // free modes Z (G = Z^T Z their Gram matrix): no free-mode component
+    // left in v.
+    class FreeModeRemoval
+    {
+    public:
+      explicit FreeModeRemoval(
+        const std::vector<TrilinosWrappers::MPI::Vector> &modes)
+        : modes(modes)
+        , inverse(modes.size(), modes.size())
+      {
+        const unsigned int n = modes.size();
+        FullMatrix<double> gram(n, n);
+        for (unsigned int a = 0; a < n; ++a)
+          for (unsigned int b = 0; b < n; ++b)
+            gram(a, b) = modes[a] * modes[b];
+        if (n > 0)
+          inverse.invert(gram);
+      }
+
+      void
+      operator()(TrilinosWrappers::MPI::Vector &v) const
+      {
+        const unsigned int  n = modes.size();
+        std::vector<double> projections(n);
+        for (unsigned int a = 0; a < n; ++a)
+          projections[a] = modes[a] * v;
+        for (unsigned int a = 0; a < n; ++a)
+          {
+            double coefficient = 0;
+            for (unsigned int b = 0; b < n; ++b)
+              coefficient += inverse(a, b) * projections[b];
+            v.add(-coefficient, modes[a]);
+          }
+      }
+
+    private:
+      const std::vector<TrilinosWrappers::MPI::Vector> &modes;
+      FullMatrix<double>                                inverse;
+    };
+
+
+
+    // Solve K increment = residual with the free rigid modes @p modes
+    // pinned at DoFs that fix them. The pinned rows keep the size of K's
+    // diagonal, which AMG's smoother expects.
+    void
+    solve_pinned(const ElasticBody                                &body,
+                 const std::vector<TrilinosWrappers::MPI::Vector> &modes,
+                 TrilinosWrappers::MPI::Vector                    &residual,
+                 TrilinosWrappers::MPI::Vector                    &increment,
+                 const parameters::LinearSolver &solver_parameters)
+    {
+      const MPI_Comm comm     = body.triangulation().get_communicator();
+      const auto    &owned    = body.locally_owned_dof_set();
+      const auto    &K        = body.system_matrix();
+      const auto     pinned   = pinning_dofs(modes, comm);
+      double         diagonal = 0;
+      for (const auto i : pinned)
+        if (owned.is_element(i))
+          diagonal = std::max(diagonal, K.diag_element(i));
+      diagonal = Utilities::MPI::max(diagonal, comm);
+      TrilinosWrappers::SparseMatrix pinned_matrix;
+      pinned_matrix.copy_from(K);
+      pinned_matrix.clear_rows(pinned, diagonal);
+      for (const auto i : pinned)
+        if (owned.is_element(i))
+          residual(i) = 0;
+      residual.compress(VectorOperation::insert);
+      solve_linear_system(pinned_matrix,
+                          increment,
+                          residual,
+                          body.rigid_body_modes(),
+                          solver_parameters,
+                          false);
+    }
+
+
+
     // Solve K u = f for a body, pinning its free rigid modes if it has
     // any; the result satisfies the body's constraints and, for a floating
     // body, u - u_reference is orthogonal to the free modes.
@@ -166,32 +245,11 @@ namespace coulomb_adapt
       const TrilinosWrappers::MPI::Vector &u_reference,
       const parameters::LinearSolver      &solver_parameters)
     {
-      const MPI_Comm comm  = body.triangulation().get_communicator();
-      const auto    &owned = body.locally_owned_dof_set();
-      const auto     modes = free_rigid_modes(body);
-      const auto    &K     = body.system_matrix();
-
-      // Gram matrix of the free modes and its inverse.
-      const unsigned int n = modes.size();
-      FullMatrix<double> gram(n, n), inverse(n, n);
-      for (unsigned int a = 0; a < n; ++a)
-        for (unsigned int b = 0; b < n; ++b)
-          gram(a, b) = modes[a] * modes[b];
-      if (n > 0)
-        inverse.invert(gram);
-      // v <- v - Z G^-1 Z^T v: no free-mode component left in v.
-      auto remove_modes = [&](TrilinosWrappers::MPI::Vector &v) {
-        std::vector<double> projections(n);
-        for (unsigned int a = 0; a < n; ++a)
-          projections[a] = modes[a] * v;
-        for (unsigned int a = 0; a < n; ++a)
-          {
-            double coefficient = 0;
-            for (unsigned int b = 0; b < n; ++b)
-              coefficient += inverse(a, b) * projections[b];
-            v.add(-coefficient, modes[a]);
-          }
-      };
+      const MPI_Comm        comm  = body.triangulation().get_communicator();
+      const auto           &owned = body.locally_owned_dof_set();
+      const auto            modes = free_rigid_modes(body);
+      const auto           &K     = body.system_matrix();
+      const FreeModeRemoval remove_modes(modes);
 
       // The increment's load f - K u_reference, zero in constrained rows
       // (the constraints are imposed on u below). For a floating body, the
@@ -209,33 +267,11 @@ namespace coulomb_adapt
       remove_modes(residual);
 
       TrilinosWrappers::MPI::Vector increment(owned, comm);
-      if (n == 0)
+      if (modes.empty())
         solve_linear_system(
           K, increment, residual, body.rigid_body_modes(), solver_parameters);
       else
-        {
-          // The pinned rows keep the size of K's diagonal, which AMG's
-          // smoother expects.
-          const auto pinned   = pinning_dofs(modes, comm);
-          double     diagonal = 0;
-          for (const auto i : pinned)
-            if (owned.is_element(i))
-              diagonal = std::max(diagonal, K.diag_element(i));
-          diagonal = Utilities::MPI::max(diagonal, comm);
-          TrilinosWrappers::SparseMatrix pinned_matrix;
-          pinned_matrix.copy_from(K);
-          pinned_matrix.clear_rows(pinned, diagonal);
-          for (const auto i : pinned)
-            if (owned.is_element(i))
-              residual(i) = 0;
-          residual.compress(VectorOperation::insert);
-          solve_linear_system(pinned_matrix,
-                              increment,
-                              residual,
-                              body.rigid_body_modes(),
-                              solver_parameters,
-                              false);
-        }
+        solve_pinned(body, modes, residual, increment, solver_parameters);
       // No free-mode component in u - u_reference. Removed before the
       // constraints are distributed: the free modes vanish at constrained
       // DoFs, so removed afterwards a mode's hanging-node entries would
