@@ -340,6 +340,201 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // R_c: the nodal reactions projected onto the Coulomb cone, into
+    // corrected.fields with the FE gaps and slips; the number of projected
+    // nodes and the relative change. Changes at the level of the
+    // condensation's round-off are not corrections. Returns the largest
+    // nodal reaction.
+    double
+    project_reactions(const MortarInterface               &mortar,
+                      const std::vector<ContactNodeState> &states,
+                      const double                         mu,
+                      CorrectedContactSolution            &corrected)
+    {
+      const auto &nodes = mortar.slave_nodes();
+      const auto &D     = mortar.slave_weights();
+
+      double largest = 0;
+      for (const auto &s : states)
+        largest = std::max(
+          {largest, std::abs(s.pressure), std::abs(s.tangential_traction)});
+      std::vector<Tensor<1, 2>> change(states.size());
+      double                    change_norm = 0, norm = 0;
+      for (unsigned int j = 0; j < states.size(); ++j)
+        {
+          const auto &s = states[j];
+          const auto  projected =
+            project_onto_coulomb_cone(s.pressure, s.tangential_traction, mu);
+          const double dn = projected[0] - s.pressure;
+          const double dt = projected[1] - s.tangential_traction;
+          if (std::abs(dn) + std::abs(dt) > 1e-10 * largest)
+            {
+              ++corrected.n_projected_nodes;
+              change[j] = dn * nodes[j].normal + dt * nodes[j].tangent;
+            }
+          corrected.fields[j].pressure            = projected[0];
+          corrected.fields[j].tangential_traction = projected[1];
+          corrected.fields[j].gap                 = s.gap;
+          // The incremental law's slip: W_t of this load step.
+          corrected.fields[j].slip = s.slip_increment;
+          change_norm += D[j] * change[j].norm_square();
+          norm += D[j] * (s.pressure * s.pressure +
+                          s.tangential_traction * s.tangential_traction);
+        }
+      corrected.relative_change = norm > 0 ? std::sqrt(change_norm / norm) : 0.;
+      return largest;
+    }
+
+
+
+    // The contact loads of the corrected problem, f^1 - D lambda_c on body
+    // 1 and f^2 + M^T lambda_c on body 2 (the FE solution satisfies the
+    // same equations with lambda_h), are the bodies' loads plus nodal
+    // forces at the DoFs a body owns and does not constrain.
+    void
+    add_nodal_force(const ElasticBody                            &body,
+                    TrilinosWrappers::MPI::Vector                &load,
+                    const std::array<types::global_dof_index, 2> &dofs,
+                    const Tensor<1, 2>                           &force)
+    {
+      for (unsigned int c = 0; c < 2; ++c)
+        if (body.locally_owned_dof_set().is_element(dofs[c]) &&
+            !body.constraints().is_constrained(dofs[c]))
+          load(dofs[c]) += force[c];
+    }
+
+
+
+    // -D_jj lambda_j at slave node j, M_jl lambda_j at master node l.
+    void
+    add_mortar_contact_loads(
+      const ElasticBody                            &slave,
+      const ElasticBody                            &master,
+      const MortarInterface                        &mortar,
+      const std::vector<ContactNodeFields>         &fields,
+      std::array<TrilinosWrappers::MPI::Vector, 2> &loads)
+    {
+      const auto &nodes        = mortar.slave_nodes();
+      const auto &D            = mortar.slave_weights();
+      const auto &master_nodes = mortar.master_nodes();
+      const auto &M            = mortar.master_coupling();
+      for (unsigned int j = 0; j < fields.size(); ++j)
+        {
+          const Tensor<1, 2> lambda =
+            fields[j].pressure * nodes[j].normal +
+            fields[j].tangential_traction * nodes[j].tangent;
+          add_nodal_force(slave, loads[0], nodes[j].dofs, -D[j] * lambda);
+          for (const auto &[l, m] : M[j])
+            add_nodal_force(master, loads[1], master_nodes[l].dofs, m * lambda);
+        }
+    }
+
+
+
+    // int R phi_k on the slave side, -int R phi^2_l on the master side:
+    // the same traction field, integrated where the bodies face each other
+    // (R vanishes elsewhere, since a node with a nonzero reaction has its
+    // whole support covered).
+    void
+    add_consistent_contact_loads(
+      const ElasticBody                            &slave,
+      const ElasticBody                            &master,
+      const MortarInterface                        &mortar,
+      const std::vector<ContactNodeFields>         &fields,
+      std::array<TrilinosWrappers::MPI::Vector, 2> &loads)
+    {
+      const auto &nodes        = mortar.slave_nodes();
+      const auto &master_nodes = mortar.master_nodes();
+      const auto  points       = mortar.overlap_quadrature(
+        contact_traction_points_per_overlap(mortar.slave_element_degree()));
+      const auto  R               = contact_traction_at(mortar, fields, points);
+      const auto &slave_segments  = mortar.slave_segment_list();
+      const auto &master_segments = mortar.master_segment_list();
+      for (unsigned int q = 0; q < points.size(); ++q)
+        {
+          const auto &overlap = mortar.overlaps()[points[q].overlap];
+          const auto &s_nodes = slave_segments[overlap.slave_segment].nodes;
+          const auto &m_nodes = master_segments[overlap.master_segment].nodes;
+          const auto  phi_s   = mortar.slave_shape_values(points[q].xi);
+          const auto  phi_m   = mortar.master_shape_values(points[q].eta);
+          for (unsigned int k = 0; k < s_nodes.size(); ++k)
+            add_nodal_force(slave,
+                            loads[0],
+                            nodes[s_nodes[k]].dofs,
+                            phi_s[k] * points[q].weight * R[q]);
+          for (unsigned int k = 0; k < m_nodes.size(); ++k)
+            add_nodal_force(master,
+                            loads[1],
+                            master_nodes[m_nodes[k]].dofs,
+                            -phi_m[k] * points[q].weight * R[q]);
+        }
+    }
+
+
+
+    // The displacements of both bodies under the corrected contact loads,
+    // and W_c from them, measured as the solver measures its iterates.
+    void
+    solve_corrected_problem(const ElasticBody                   &slave,
+                            const ElasticBody                   &master,
+                            const MortarInterface               &mortar,
+                            const std::vector<ContactNodeState> &states,
+                            const parameters::LinearSolver &solver_parameters,
+                            const ContactLoadForm           load_form,
+                            CorrectedContactSolution       &corrected)
+    {
+      const std::array<const ElasticBody *, 2>     bodies = {{&slave, &master}};
+      std::array<TrilinosWrappers::MPI::Vector, 2> loads  = {
+         {slave.system_rhs(), master.system_rhs()}};
+      if (load_form == ContactLoadForm::mortar)
+        add_mortar_contact_loads(
+          slave, master, mortar, corrected.fields, loads);
+      else
+        add_consistent_contact_loads(
+          slave, master, mortar, corrected.fields, loads);
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          loads[b].compress(VectorOperation::add);
+          const TrilinosWrappers::MPI::Vector solution =
+            solve_under_prescribed_tractions(*bodies[b],
+                                             loads[b],
+                                             bodies[b]->solution(),
+                                             solver_parameters);
+          corrected.corrected_displacement[b] = solution;
+        }
+
+      const auto gaps =
+        mortar.nodal_gaps(corrected.displacement(0), corrected.displacement(1));
+      for (unsigned int j = 0; j < mortar.slave_nodes().size(); ++j)
+        if (mortar.is_covered(j))
+          {
+            corrected.fields[j].gap = gaps[j].gap;
+            corrected.fields[j].slip =
+              gaps[j].slip - (states[j].slip - states[j].slip_increment);
+          }
+    }
+
+
+
+    // Penetration at the level of round-off of the displacements is none.
+    double
+    max_penetration(const std::vector<ContactNodeFields> &fields)
+    {
+      double scale = 0;
+      for (const auto &f : fields)
+        scale = std::max({scale, std::abs(f.gap), std::abs(f.slip)});
+      double penetration = 0;
+      for (const auto &f : fields)
+        if (-f.gap > 1e-10 * scale)
+          penetration = std::max(penetration, -f.gap);
+      return penetration;
+    }
+  } // namespace
+
+
+
   CorrectedContactSolution
   correct_contact_solution(const ElasticBody                   &slave,
                            const ElasticBody                   &master,
@@ -349,140 +544,21 @@ namespace coulomb_adapt
                            const parameters::LinearSolver &solver_parameters,
                            const ContactLoadForm           load_form)
   {
-    const auto &nodes = mortar.slave_nodes();
-    const auto &D     = mortar.slave_weights();
-
     CorrectedContactSolution corrected;
     corrected.fields.resize(states.size());
     corrected.fe_displacement = {{&slave.solution(), &master.solution()}};
 
-    // R_c: the nodal reactions projected onto the Coulomb cone. Changes at
-    // the level of the condensation's round-off are not corrections.
-    double largest = 0;
-    for (const auto &s : states)
-      largest = std::max(
-        {largest, std::abs(s.pressure), std::abs(s.tangential_traction)});
-    std::vector<Tensor<1, 2>> change(states.size());
-    double                    change_norm = 0, norm = 0;
-    for (unsigned int j = 0; j < states.size(); ++j)
-      {
-        const auto &s = states[j];
-        const auto  projected =
-          project_onto_coulomb_cone(s.pressure, s.tangential_traction, mu);
-        const double dn = projected[0] - s.pressure;
-        const double dt = projected[1] - s.tangential_traction;
-        if (std::abs(dn) + std::abs(dt) > 1e-10 * largest)
-          {
-            ++corrected.n_projected_nodes;
-            change[j] = dn * nodes[j].normal + dt * nodes[j].tangent;
-          }
-        corrected.fields[j].pressure            = projected[0];
-        corrected.fields[j].tangential_traction = projected[1];
-        corrected.fields[j].gap                 = s.gap;
-        // The incremental law's slip: W_t of this load step.
-        corrected.fields[j].slip = s.slip_increment;
-        change_norm += D[j] * change[j].norm_square();
-        norm += D[j] * (s.pressure * s.pressure +
-                        s.tangential_traction * s.tangential_traction);
-      }
-    corrected.relative_change = norm > 0 ? std::sqrt(change_norm / norm) : 0.;
-    corrected.skipped         = (corrected.n_projected_nodes == 0);
+    const double largest = project_reactions(mortar, states, mu, corrected);
+    corrected.skipped    = (corrected.n_projected_nodes == 0);
     // The consistent load differs from the mortar load the FE solution
     // balances whenever there is any contact traction at all.
     if (load_form == ContactLoadForm::consistent)
       corrected.skipped = (largest == 0);
 
     if (!corrected.skipped)
-      {
-        // The contact loads of the corrected problem: f^1 - D lambda_c on
-        // body 1, f^2 + M^T lambda_c on body 2 (the FE solution satisfies
-        // the same equations with lambda_h).
-        const std::array<const ElasticBody *, 2> bodies = {{&slave, &master}};
-        std::array<TrilinosWrappers::MPI::Vector, 2> loads = {
-          {slave.system_rhs(), master.system_rhs()}};
-        const auto &master_nodes = mortar.master_nodes();
-        const auto &M            = mortar.master_coupling();
-        auto        add_load = [&](const unsigned int                            b,
-                            const std::array<types::global_dof_index, 2> &dofs,
-                            const Tensor<1, 2> &force) {
-          for (unsigned int c = 0; c < 2; ++c)
-            if (bodies[b]->locally_owned_dof_set().is_element(dofs[c]) &&
-                !bodies[b]->constraints().is_constrained(dofs[c]))
-              loads[b](dofs[c]) += force[c];
-        };
-        if (load_form == ContactLoadForm::mortar)
-          for (unsigned int j = 0; j < states.size(); ++j)
-            {
-              const Tensor<1, 2> lambda =
-                corrected.fields[j].pressure * nodes[j].normal +
-                corrected.fields[j].tangential_traction * nodes[j].tangent;
-              add_load(0, nodes[j].dofs, -D[j] * lambda);
-              for (const auto &[l, m] : M[j])
-                add_load(1, master_nodes[l].dofs, m * lambda);
-            }
-        else
-          {
-            // int R phi_k on the slave side, -int R phi^2_l on the master
-            // side: the same traction field, integrated where the bodies
-            // face each other (R vanishes elsewhere, since a node with a
-            // nonzero reaction has its whole support covered).
-            const auto points =
-              mortar.overlap_quadrature(contact_traction_points_per_overlap(
-                mortar.slave_element_degree()));
-            const auto R =
-              contact_traction_at(mortar, corrected.fields, points);
-            const auto &slave_segments  = mortar.slave_segment_list();
-            const auto &master_segments = mortar.master_segment_list();
-            for (unsigned int q = 0; q < points.size(); ++q)
-              {
-                const auto &overlap = mortar.overlaps()[points[q].overlap];
-                const auto &s_nodes =
-                  slave_segments[overlap.slave_segment].nodes;
-                const auto &m_nodes =
-                  master_segments[overlap.master_segment].nodes;
-                const auto phi_s = mortar.slave_shape_values(points[q].xi);
-                const auto phi_m = mortar.master_shape_values(points[q].eta);
-                for (unsigned int k = 0; k < s_nodes.size(); ++k)
-                  add_load(0,
-                           nodes[s_nodes[k]].dofs,
-                           phi_s[k] * points[q].weight * R[q]);
-                for (unsigned int k = 0; k < m_nodes.size(); ++k)
-                  add_load(1,
-                           master_nodes[m_nodes[k]].dofs,
-                           -phi_m[k] * points[q].weight * R[q]);
-              }
-          }
-        for (unsigned int b = 0; b < 2; ++b)
-          {
-            loads[b].compress(VectorOperation::add);
-            const TrilinosWrappers::MPI::Vector solution =
-              solve_under_prescribed_tractions(*bodies[b],
-                                               loads[b],
-                                               bodies[b]->solution(),
-                                               solver_parameters);
-            corrected.corrected_displacement[b] = solution;
-          }
-
-        // W_c from the corrected displacements, measured as the solver
-        // measures its iterates.
-        const auto gaps = mortar.nodal_gaps(corrected.displacement(0),
-                                            corrected.displacement(1));
-        for (unsigned int j = 0; j < nodes.size(); ++j)
-          if (mortar.is_covered(j))
-            {
-              corrected.fields[j].gap = gaps[j].gap;
-              corrected.fields[j].slip =
-                gaps[j].slip - (states[j].slip - states[j].slip_increment);
-            }
-      }
-
-    // Penetration at the level of round-off of the displacements is none.
-    double scale = 0;
-    for (const auto &f : corrected.fields)
-      scale = std::max({scale, std::abs(f.gap), std::abs(f.slip)});
-    for (const auto &f : corrected.fields)
-      if (-f.gap > 1e-10 * scale)
-        corrected.max_penetration = std::max(corrected.max_penetration, -f.gap);
+      solve_corrected_problem(
+        slave, master, mortar, states, solver_parameters, load_form, corrected);
+    corrected.max_penetration = max_penetration(corrected.fields);
     return corrected;
   }
 } // namespace coulomb_adapt
