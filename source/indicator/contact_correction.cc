@@ -389,88 +389,89 @@ namespace coulomb_adapt
 
 
 
-    // The contact loads of the corrected problem, f^1 - D lambda_c on body
-    // 1 and f^2 + M^T lambda_c on body 2 (the FE solution satisfies the
-    // same equations with lambda_h), are the bodies' loads plus nodal
-    // forces at the DoFs a body owns and does not constrain.
-    void
-    add_nodal_force(const ElasticBody                            &body,
-                    TrilinosWrappers::MPI::Vector                &load,
-                    const std::array<types::global_dof_index, 2> &dofs,
-                    const Tensor<1, 2>                           &force)
+    // The contact loads of the corrected problem: f^1 - D lambda_c on body
+    // 1, f^2 + M^T lambda_c on body 2 (the FE solution satisfies the same
+    // equations with lambda_h), in the mortar or the consistent form.
+    class CorrectedLoads
     {
-      for (unsigned int c = 0; c < 2; ++c)
-        if (body.locally_owned_dof_set().is_element(dofs[c]) &&
-            !body.constraints().is_constrained(dofs[c]))
-          load(dofs[c]) += force[c];
-    }
+    public:
+      CorrectedLoads(const ElasticBody     &slave,
+                     const ElasticBody     &master,
+                     const MortarInterface &mortar)
+        : bodies{{&slave, &master}}
+        , loads{{slave.system_rhs(), master.system_rhs()}}
+        , mortar(mortar)
+      {}
 
+      // -D_jj lambda_j at slave node j, M_jl lambda_j at master node l.
+      void
+      add_mortar_form(const std::vector<ContactNodeFields> &fields)
+      {
+        const auto &nodes        = mortar.slave_nodes();
+        const auto &D            = mortar.slave_weights();
+        const auto &master_nodes = mortar.master_nodes();
+        const auto &M            = mortar.master_coupling();
+        for (unsigned int j = 0; j < fields.size(); ++j)
+          {
+            const Tensor<1, 2> lambda =
+              fields[j].pressure * nodes[j].normal +
+              fields[j].tangential_traction * nodes[j].tangent;
+            add(0, nodes[j].dofs, -D[j] * lambda);
+            for (const auto &[l, m] : M[j])
+              add(1, master_nodes[l].dofs, m * lambda);
+          }
+      }
 
+      // int R phi_k on the slave side, -int R phi^2_l on the master side:
+      // the same traction field, integrated where the bodies face each
+      // other (R vanishes elsewhere, since a node with a nonzero reaction
+      // has its whole support covered).
+      void
+      add_consistent_form(const std::vector<ContactNodeFields> &fields)
+      {
+        const auto &nodes        = mortar.slave_nodes();
+        const auto &master_nodes = mortar.master_nodes();
+        const auto  points       = mortar.overlap_quadrature(
+          contact_traction_points_per_overlap(mortar.slave_element_degree()));
+        const auto  R = contact_traction_at(mortar, fields, points);
+        const auto &slave_segments  = mortar.slave_segment_list();
+        const auto &master_segments = mortar.master_segment_list();
+        for (unsigned int q = 0; q < points.size(); ++q)
+          {
+            const auto &overlap = mortar.overlaps()[points[q].overlap];
+            const auto &s_nodes = slave_segments[overlap.slave_segment].nodes;
+            const auto &m_nodes = master_segments[overlap.master_segment].nodes;
+            const auto  phi_s   = mortar.slave_shape_values(points[q].xi);
+            const auto  phi_m   = mortar.master_shape_values(points[q].eta);
+            for (unsigned int k = 0; k < s_nodes.size(); ++k)
+              add(0,
+                  nodes[s_nodes[k]].dofs,
+                  phi_s[k] * points[q].weight * R[q]);
+            for (unsigned int k = 0; k < m_nodes.size(); ++k)
+              add(1,
+                  master_nodes[m_nodes[k]].dofs,
+                  -phi_m[k] * points[q].weight * R[q]);
+          }
+      }
 
-    // -D_jj lambda_j at slave node j, M_jl lambda_j at master node l.
-    void
-    add_mortar_contact_loads(
-      const ElasticBody                            &slave,
-      const ElasticBody                            &master,
-      const MortarInterface                        &mortar,
-      const std::vector<ContactNodeFields>         &fields,
-      std::array<TrilinosWrappers::MPI::Vector, 2> &loads)
-    {
-      const auto &nodes        = mortar.slave_nodes();
-      const auto &D            = mortar.slave_weights();
-      const auto &master_nodes = mortar.master_nodes();
-      const auto &M            = mortar.master_coupling();
-      for (unsigned int j = 0; j < fields.size(); ++j)
-        {
-          const Tensor<1, 2> lambda =
-            fields[j].pressure * nodes[j].normal +
-            fields[j].tangential_traction * nodes[j].tangent;
-          add_nodal_force(slave, loads[0], nodes[j].dofs, -D[j] * lambda);
-          for (const auto &[l, m] : M[j])
-            add_nodal_force(master, loads[1], master_nodes[l].dofs, m * lambda);
-        }
-    }
+      const std::array<const ElasticBody *, 2>     bodies;
+      std::array<TrilinosWrappers::MPI::Vector, 2> loads;
 
+    private:
+      // A nodal force, at the DoFs body @p b owns and does not constrain.
+      void
+      add(const unsigned int                            b,
+          const std::array<types::global_dof_index, 2> &dofs,
+          const Tensor<1, 2>                           &force)
+      {
+        for (unsigned int c = 0; c < 2; ++c)
+          if (bodies[b]->locally_owned_dof_set().is_element(dofs[c]) &&
+              !bodies[b]->constraints().is_constrained(dofs[c]))
+            loads[b](dofs[c]) += force[c];
+      }
 
-
-    // int R phi_k on the slave side, -int R phi^2_l on the master side:
-    // the same traction field, integrated where the bodies face each other
-    // (R vanishes elsewhere, since a node with a nonzero reaction has its
-    // whole support covered).
-    void
-    add_consistent_contact_loads(
-      const ElasticBody                            &slave,
-      const ElasticBody                            &master,
-      const MortarInterface                        &mortar,
-      const std::vector<ContactNodeFields>         &fields,
-      std::array<TrilinosWrappers::MPI::Vector, 2> &loads)
-    {
-      const auto &nodes        = mortar.slave_nodes();
-      const auto &master_nodes = mortar.master_nodes();
-      const auto  points       = mortar.overlap_quadrature(
-        contact_traction_points_per_overlap(mortar.slave_element_degree()));
-      const auto  R               = contact_traction_at(mortar, fields, points);
-      const auto &slave_segments  = mortar.slave_segment_list();
-      const auto &master_segments = mortar.master_segment_list();
-      for (unsigned int q = 0; q < points.size(); ++q)
-        {
-          const auto &overlap = mortar.overlaps()[points[q].overlap];
-          const auto &s_nodes = slave_segments[overlap.slave_segment].nodes;
-          const auto &m_nodes = master_segments[overlap.master_segment].nodes;
-          const auto  phi_s   = mortar.slave_shape_values(points[q].xi);
-          const auto  phi_m   = mortar.master_shape_values(points[q].eta);
-          for (unsigned int k = 0; k < s_nodes.size(); ++k)
-            add_nodal_force(slave,
-                            loads[0],
-                            nodes[s_nodes[k]].dofs,
-                            phi_s[k] * points[q].weight * R[q]);
-          for (unsigned int k = 0; k < m_nodes.size(); ++k)
-            add_nodal_force(master,
-                            loads[1],
-                            master_nodes[m_nodes[k]].dofs,
-                            -phi_m[k] * points[q].weight * R[q]);
-        }
-    }
+      const MortarInterface &mortar;
+    };
 
 
 
@@ -485,22 +486,20 @@ namespace coulomb_adapt
                             const ContactLoadForm           load_form,
                             CorrectedContactSolution       &corrected)
     {
-      const std::array<const ElasticBody *, 2>     bodies = {{&slave, &master}};
-      std::array<TrilinosWrappers::MPI::Vector, 2> loads  = {
-         {slave.system_rhs(), master.system_rhs()}};
+      CorrectedLoads corrected_loads(slave, master, mortar);
       if (load_form == ContactLoadForm::mortar)
-        add_mortar_contact_loads(
-          slave, master, mortar, corrected.fields, loads);
+        corrected_loads.add_mortar_form(corrected.fields);
       else
-        add_consistent_contact_loads(
-          slave, master, mortar, corrected.fields, loads);
+        corrected_loads.add_consistent_form(corrected.fields);
       for (unsigned int b = 0; b < 2; ++b)
         {
-          loads[b].compress(VectorOperation::add);
+          const ElasticBody             &body = *corrected_loads.bodies[b];
+          TrilinosWrappers::MPI::Vector &load = corrected_loads.loads[b];
+          load.compress(VectorOperation::add);
           const TrilinosWrappers::MPI::Vector solution =
-            solve_under_prescribed_tractions(*bodies[b],
-                                             loads[b],
-                                             bodies[b]->solution(),
+            solve_under_prescribed_tractions(body,
+                                             load,
+                                             body.solution(),
                                              solver_parameters);
           corrected.corrected_displacement[b] = solution;
         }
