@@ -33,13 +33,9 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const std::string file = root + "/prm/blocks_gmsh.prm";
-  const auto        whole =
-    testing::solve_contact({{"Scene/Gmsh/Mesh file",
-                             root + "/prm/meshes/blocks_structured.geo"},
-                            {"Mesh/Global refinements", "1"}},
-                           file);
+  const auto  whole = testing::solve_example("blocks_gmsh.prm",
+                                            "blocks_structured.geo",
+                                            {{"Mesh/Global refinements", "1"}});
   const auto &w     = whole->solver->node_states();
   double      p_max = 0, u_max = 0, centre_traction = 0;
   for (const auto &s : w)
@@ -69,11 +65,12 @@ main(int argc, char *argv[])
     {
       const double tolerance = solver == "direct" ? 1e-9 : 1e-7;
       const auto   half      = testing::solve_contact(
-        {{"Scene/Gmsh/Mesh file", root + "/tests/data/blocks_half.geo"},
+        {{"Scene/Gmsh/Mesh file",
+                 testing::repository_root() + "/tests/data/blocks_half.geo"},
                 {"Scene/Gmsh/Fixed components", "base: x y, symmetry line: x"},
                 {"Mesh/Global refinements", "1"},
                 {"Linear solver/Type", solver}},
-        file);
+        testing::example_file("blocks_gmsh.prm"));
       const auto  &h        = half->solver->node_states();
       double       traction = 0, kinematics = 0, roller_traction = 0;
       unsigned int n_same = 0, n_rollers = 0;

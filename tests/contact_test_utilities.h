@@ -73,6 +73,20 @@ namespace coulomb_adapt
       return p;
     }
 
+    /** solve_contact on the example parameter file prm/@p parameter_file
+     * with the gmsh mesh prm/meshes/@p mesh_file (example_file), and
+     * @p settings. */
+    inline std::unique_ptr<SolvedContactProblem>
+    solve_example(const std::string &parameter_file,
+                  const std::string &mesh_file,
+                  const Settings    &settings = {})
+    {
+      Settings all = {
+        {"Scene/Gmsh/Mesh file", example_file("meshes/" + mesh_file)}};
+      all.insert(all.end(), settings.begin(), settings.end());
+      return solve_contact(all, example_file(parameter_file));
+    }
+
     /** max over the bodies of |a - b| / |a|, over the locally owned
      * entries (solution vectors have ghost entries). */
     inline double

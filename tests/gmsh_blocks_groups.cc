@@ -29,8 +29,6 @@ using namespace coulomb_adapt;
 
 namespace
 {
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-
   // The largest difference between two solutions, relative to the size of
   // each compared quantity.
   double
@@ -162,16 +160,14 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  auto                             out        = testing::root_output();
-  const std::string                groups_prm = root + "/prm/blocks_gmsh.prm";
+  auto                             out = testing::root_output();
+  const std::string groups_prm = testing::example_file("blocks_gmsh.prm");
 
   out << "1. quadrilaterals, prm/blocks_gmsh.prm against Scene/Name = blocks"
       << std::endl;
   {
     const auto gmsh =
-      testing::solve_contact({{"Scene/Gmsh/Mesh file",
-                               root + "/prm/meshes/blocks_structured.geo"}},
-                             groups_prm);
+      testing::solve_example("blocks_gmsh.prm", "blocks_structured.geo");
     const auto builtin =
       testing::solve_contact({{"Scene/Name", "blocks"}}, groups_prm);
     const double d = difference(*builtin, *gmsh, out);
@@ -203,7 +199,7 @@ main(int argc, char *argv[])
   out << "3. old syntax against the per-group entries, prm/meshes/blocks.geo"
       << std::endl;
   {
-    const std::string geo = root + "/prm/meshes/blocks.geo";
+    const std::string geo = testing::example_file("meshes/blocks.geo");
     const auto        old = testing::solve_contact({{"Scene/Name", "gmsh"},
                                                     {"Scene/Gmsh/Mesh file", geo},
                                                     {"Mesh/Cell type", "triangle"}});

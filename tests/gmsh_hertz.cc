@@ -45,11 +45,10 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const double      R = 100, P = 1000, E = 130000, nu = 0.3;
-  const double      E_star = E / (2 * (1 - nu * nu));
-  const double      a      = std::sqrt(4 * P * R / (numbers::PI * E_star));
-  const double      p0     = 2 * P / (numbers::PI * a);
+  const double R = 100, P = 1000, E = 130000, nu = 0.3;
+  const double E_star = E / (2 * (1 - nu * nu));
+  const double a      = std::sqrt(4 * P * R / (numbers::PI * E_star));
+  const double p0     = 2 * P / (numbers::PI * a);
   out << "Hertz: a = " << std::setprecision(5) << a << " mm, p0 = " << p0
       << " MPa" << std::endl;
 
@@ -60,10 +59,11 @@ main(int argc, char *argv[])
                                  {"Mesh/Cell type", "triangle"},
                                  {"Finite elements/Polynomial degree", degree},
                                  {"Contact/Friction coefficient", "0"}}));
-      const auto gmsh = evaluate(*testing::solve_contact(
-        {{"Scene/Gmsh/Mesh file", root + "/prm/meshes/hertz.geo"},
-         {"Finite elements/Polynomial degree", degree}},
-        root + "/prm/hertz_gmsh.prm"));
+      const auto gmsh =
+        evaluate(*testing::solve_example("hertz_gmsh.prm",
+                                         "hertz.geo",
+                                         {{"Finite elements/Polynomial degree",
+                                           degree}}));
 
       std::array<double, 2> peak_error, width_error;
       for (unsigned int k = 0; k < 2; ++k)

@@ -24,16 +24,13 @@ main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const std::string prm  = root + "/prm/blocks_gmsh.prm";
-  const std::string geo  = root + "/prm/meshes/blocks_structured.geo";
-  const double      rho = 7.85e-9, area = 100 * 100;
+  const double                     rho = 7.85e-9, area = 100 * 100;
 
-  const auto solve =
-    [&](std::vector<std::pair<std::string, std::string>> settings) {
-      settings.emplace_back("Scene/Gmsh/Mesh file", geo);
-      return testing::solve_contact(settings, prm);
-    };
+  const auto solve = [](const testing::Settings &settings) {
+    return testing::solve_example("blocks_gmsh.prm",
+                                  "blocks_structured.geo",
+                                  settings);
+  };
   const auto check =
     [&](const std::string &what, const double error, const double tolerance) {
       out << "  " << what << " (within " << tolerance

@@ -49,7 +49,6 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
   const testing::PressFit press_fit;
   const double            lame      = press_fit.pressure_for_equal_radii();
   const double            reference = press_fit.pressure();
@@ -61,7 +60,7 @@ main(int argc, char *argv[])
     std::string mesh, degree, size_factor;
     double      tolerance, face_tolerance, mean_tolerance;
   };
-  const std::string fit = root + "/prm/meshes/press_fit.geo";
+  const std::string fit = testing::example_file("meshes/press_fit.geo");
   const std::string offset =
     std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/press_fit_offset_nodes.geo";
   for (const Case &test : {Case{fit, "1", "0.5", 0.006, 0.004, 3e-4},
@@ -72,7 +71,7 @@ main(int argc, char *argv[])
         {{"Scene/Gmsh/Mesh file", test.mesh},
          {"Scene/Gmsh/Mesh size factor", test.size_factor},
          {"Finite elements/Polynomial degree", test.degree}},
-        root + "/prm/press_fit.prm");
+        testing::example_file("press_fit.prm"));
 
       // The initial gap as the mortar integrates it, per slave node.
       const MortarInterface &mortar  = problem->solver->mortar_interface();

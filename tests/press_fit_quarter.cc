@@ -45,8 +45,7 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const double      reference = testing::PressFit().pressure();
+  const double reference = testing::PressFit().pressure();
   out << "Lame's pressure for this geometry p = " << std::setprecision(6)
       << reference << " MPa" << std::endl;
 
@@ -67,16 +66,16 @@ main(int argc, char *argv[])
                            Case{"1", "0.5", "0", "amg", 0.01, 3e-4, 1e-8}})
     {
       const bool translated = test.translation_tolerance > 0;
-      const auto problem    = testing::solve_contact(
-        {{"Scene/Gmsh/Mesh file", root + "/prm/meshes/press_fit_quarter.geo"},
-            {"Scene/Gmsh/Mesh size factor", test.size_factor},
+      const auto problem    = testing::solve_example(
+        "press_fit_quarter.prm",
+        "press_fit_quarter.geo",
+        {{"Scene/Gmsh/Mesh size factor", test.size_factor},
             {"Finite elements/Polynomial degree", test.degree},
             {"Contact/Friction coefficient", test.friction},
             {"Linear solver/Type", test.solver},
             {"Scene/Gmsh/Fixed components",
           translated ? "x axis: y=0.01, y axis: x=0.01" :
-                          "x axis: y, y axis: x"}},
-        root + "/prm/press_fit_quarter.prm");
+                          "x axis: y, y axis: x"}});
 
       double       deviation = 0, roller_deviation = 0, roller_traction = 0;
       double       force = 0, length = 0;

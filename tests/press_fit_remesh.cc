@@ -20,15 +20,14 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string root  = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const double      delta = 0.001;
-  testing::ProgramRun run({{"Scene/Gmsh/Mesh file",
-                            root + "/prm/meshes/press_fit.geo"},
-                           {"Adaptation/Strategy", "remesh"},
-                           {"Adaptation/Target error", "0.02"},
-                           {"Adaptation/Number of cycles", "2"},
-                           {"Output/Output directory", "press_fit_remesh_files"}},
-                          root + "/prm/press_fit.prm");
+  const double        delta = 0.001;
+  testing::ProgramRun run(
+    {{"Scene/Gmsh/Mesh file", testing::example_file("meshes/press_fit.geo")},
+     {"Adaptation/Strategy", "remesh"},
+     {"Adaptation/Target error", "0.02"},
+     {"Adaptation/Number of cycles", "2"},
+     {"Output/Output directory", "press_fit_remesh_files"}},
+    testing::example_file("press_fit.prm"));
 
   const auto &cycles = run.summary["cycles"];
   AssertThrow(cycles.size() == 2,

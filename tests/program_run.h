@@ -25,8 +25,6 @@ namespace coulomb_adapt
 {
   namespace testing
   {
-    using Settings = std::vector<std::pair<std::string, std::string>>;
-
     struct ProgramRun
     {
       ParameterHandler                prm;

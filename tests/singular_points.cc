@@ -35,12 +35,11 @@ main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
 
   const auto        built_in = singular_points({{"Scene/Name", "blocks"}}, "");
-  const std::string geo      = root + "/prm/meshes/blocks_structured.geo";
-  const std::string prm      = root + "/prm/blocks_gmsh.prm";
-  const auto gmsh = singular_points({{"Scene/Gmsh/Mesh file", geo}}, prm);
+  const std::string geo = testing::example_file("meshes/blocks_structured.geo");
+  const std::string prm = testing::example_file("blocks_gmsh.prm");
+  const auto gmsh       = singular_points({{"Scene/Gmsh/Mesh file", geo}}, prm);
   const auto moved_base =
     singular_points({{"Scene/Gmsh/Mesh file", geo},
                      {"Scene/Gmsh/Fixed components", "base: x y=0.001"}},

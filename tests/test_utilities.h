@@ -1,5 +1,6 @@
-// Helpers shared by the tests: parameters from a list of overrides, and
-// output from rank 0 only (so that N-rank runs print what 1 rank prints).
+// Helpers shared by the tests: parameters from a list of overrides, the
+// repository's example inputs, and output from rank 0 only (so that
+// N-rank runs print what 1 rank prints).
 #ifndef coulomb_adapt_tests_test_utilities_h
 #define coulomb_adapt_tests_test_utilities_h
 
@@ -20,6 +21,25 @@ namespace coulomb_adapt
 {
   namespace testing
   {
+    /** "Path/Entry" = value pairs, as `-s` options give them. */
+    using Settings = std::vector<std::pair<std::string, std::string>>;
+
+    /** The repository's top directory (COULOMB_ADAPT_TEST_DATA_DIR is its
+     * tests/data). */
+    inline std::string
+    repository_root()
+    {
+      return std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
+    }
+
+    /** A file of the repository's prm/ directory: the example parameter
+     * files and, in meshes/, their meshes, as a user runs them. */
+    inline std::string
+    example_file(const std::string &relative_path)
+    {
+      return repository_root() + "/prm/" + relative_path;
+    }
+
     /** Declare all parameters and apply "Path/Entry" = value pairs the
      * way the program applies `-s` options. */
     inline Parameters

@@ -65,6 +65,138 @@ namespace coulomb_adapt
                  "that meets the surface at a right angle).";
       return "";
     }
+
+
+
+    // Whether a Dirichlet condition fixes @p row, and to which value (zero
+    // if none), appended to @p packed.
+    void
+    pack_dirichlet_data(const AffineConstraints<double> &constraints,
+                        const types::global_dof_index    row,
+                        std::vector<double>             &packed)
+    {
+      const bool fixed = constraints.is_constrained(row);
+      packed.push_back(fixed);
+      packed.push_back(fixed ? constraints.get_inhomogeneity(row) : 0.);
+    }
+
+
+
+    // Rows of K^1 and f^1 at the slave DoFs this rank owns, packed as
+    // [node, component, fixed, fixed value, rhs, n, col_0, value_0, ...],
+    // and the owned slave nodes. @p refused receives the first reason a
+    // covered node's Dirichlet data cannot be accepted.
+    std::vector<double>
+    pack_slave_rows(const MortarInterface     &mortar,
+                    const ElasticBody         &slave,
+                    std::vector<unsigned int> &owned_slave_nodes,
+                    std::string               &refused)
+    {
+      const auto         &nodes   = mortar.slave_nodes();
+      const IndexSet     &owned_1 = slave.locally_owned_dof_set();
+      const auto         &K1      = slave.system_matrix();
+      const auto         &f1      = slave.system_rhs();
+      std::vector<double> packed;
+      for (unsigned int j = 0; j < nodes.size(); ++j)
+        if (owned_1.is_element(nodes[j].dofs[0]))
+          {
+            owned_slave_nodes.push_back(j);
+            // (Nodes beyond the master's edge never touch: they may be
+            // supported, their rows stay those of K^1.)
+            if (mortar.is_covered(j) && refused.empty())
+              refused = refused_dirichlet_data(nodes[j], slave.constraints());
+            for (unsigned int c = 0; c < 2; ++c)
+              {
+                const auto row = nodes[j].dofs[c];
+                packed.push_back(j);
+                packed.push_back(c);
+                pack_dirichlet_data(slave.constraints(), row, packed);
+                packed.push_back(f1(row));
+                packed.push_back(K1.row_length(row));
+                for_each_entry(K1,
+                               row,
+                               [&](const auto column, const double value) {
+                                 packed.push_back(column);
+                                 packed.push_back(value);
+                               });
+              }
+          }
+      return packed;
+    }
+
+
+
+    // The gathered rows of all ranks into the condensation's slave rows
+    // and roller data.
+    void
+    unpack_slave_rows(const std::vector<std::vector<double>> &gathered,
+                      const MortarInterface                  &mortar,
+                      SlaveCondensation                      &condensation)
+    {
+      for (const auto &values : gathered)
+        for (std::size_t i = 0; i < values.size();)
+          {
+            const auto j = static_cast<unsigned int>(values[i]);
+            const auto c = static_cast<unsigned int>(values[i + 1]);
+            if (values[i + 2] != 0 && mortar.is_covered(j))
+              {
+                condensation.fixed_component[j] = c;
+                condensation.fixed_value[j]     = values[i + 3];
+              }
+            SlaveCondensation::SlaveRow &row = condensation.slave_rows[j][c];
+            row.rhs                          = values[i + 4];
+            const auto n_entries = static_cast<std::size_t>(values[i + 5]);
+            i += 6;
+            for (std::size_t e = 0; e < n_entries; ++e, i += 2)
+              {
+                row.columns.push_back(
+                  static_cast<types::global_dof_index>(values[i]));
+                row.values.push_back(values[i + 1]);
+              }
+          }
+    }
+
+
+
+    // The Dirichlet data of the master nodes this rank owns, packed as
+    // [node, fixed_x, value_x, fixed_y, value_y].
+    std::vector<double>
+    pack_master_dirichlet_data(const MortarInterface &mortar,
+                               const ElasticBody     &master)
+    {
+      const auto         &master_nodes = mortar.master_nodes();
+      const IndexSet     &owned_2      = master.locally_owned_dof_set();
+      std::vector<double> master_packed;
+      for (unsigned int l = 0; l < master_nodes.size(); ++l)
+        if (owned_2.is_element(master_nodes[l].dofs[0]))
+          {
+            master_packed.push_back(l);
+            for (unsigned int c = 0; c < 2; ++c)
+              pack_dirichlet_data(master.constraints(),
+                                  master_nodes[l].dofs[c],
+                                  master_packed);
+          }
+      return master_packed;
+    }
+
+
+
+    void
+    unpack_master_dirichlet_data(
+      const std::vector<std::vector<double>> &gathered,
+      SlaveCondensation                      &condensation)
+    {
+      for (const auto &values : gathered)
+        for (std::size_t i = 0; i < values.size(); i += 5)
+          {
+            const auto l = static_cast<unsigned int>(values[i]);
+            for (unsigned int c = 0; c < 2; ++c)
+              {
+                condensation.master_fixed[l][c] = values[i + 1 + 2 * c] != 0;
+                condensation.master_fixed_value[l][c] = values[i + 2 + 2 * c];
+              }
+          }
+    }
   } // namespace
 
 
@@ -82,49 +214,17 @@ namespace coulomb_adapt
     communicator               = slave.triangulation().get_communicator();
     weights                    = mortar.slave_weights();
 
-    const IndexSet &owned_1 = slave.locally_owned_dof_set();
-    const IndexSet &owned_2 = master.locally_owned_dof_set();
-    offset                  = slave.dof_handler().n_dofs();
+    offset = slave.dof_handler().n_dofs();
     owned.clear();
     owned.set_size(offset + master.dof_handler().n_dofs());
-    owned.add_indices(owned_1);
-    owned.add_indices(owned_2, offset);
+    owned.add_indices(slave.locally_owned_dof_set());
+    owned.add_indices(master.locally_owned_dof_set(), offset);
     owned.compress();
 
-    // Rows of K^1 and f^1 at the slave DoFs, packed as
-    // [node, component, fixed, fixed value, rhs, n, col_0, value_0, ...].
-    std::vector<double> packed;
-    std::string         refused;
+    std::string refused;
     owned_slave_nodes.clear();
-    const auto &K1 = slave.system_matrix();
-    const auto &f1 = slave.system_rhs();
-    for (unsigned int j = 0; j < n_slave; ++j)
-      if (owned_1.is_element(nodes[j].dofs[0]))
-        {
-          owned_slave_nodes.push_back(j);
-          // (Nodes beyond the master's edge never touch: they may be
-          // supported, their rows stay those of K^1.)
-          if (mortar.is_covered(j) && refused.empty())
-            refused = refused_dirichlet_data(nodes[j], slave.constraints());
-          for (unsigned int c = 0; c < 2; ++c)
-            {
-              const auto row   = nodes[j].dofs[c];
-              const bool fixed = slave.constraints().is_constrained(row);
-              packed.push_back(j);
-              packed.push_back(c);
-              packed.push_back(fixed);
-              packed.push_back(
-                fixed ? slave.constraints().get_inhomogeneity(row) : 0.);
-              packed.push_back(f1(row));
-              packed.push_back(K1.row_length(row));
-              for_each_entry(K1,
-                             row,
-                             [&](const auto column, const double value) {
-                               packed.push_back(column);
-                               packed.push_back(value);
-                             });
-            }
-        }
+    const std::vector<double> packed =
+      pack_slave_rows(mortar, slave, owned_slave_nodes, refused);
     // Every rank stops, with the first rank's message.
     for (const auto &message :
          Utilities::MPI::all_gather(communicator, refused))
@@ -133,61 +233,22 @@ namespace coulomb_adapt
     slave_rows.assign(n_slave, {});
     fixed_component.assign(n_slave, -1);
     fixed_value.assign(n_slave, 0.);
-    for (const auto &values : Utilities::MPI::all_gather(communicator, packed))
-      for (std::size_t i = 0; i < values.size();)
-        {
-          const auto j = static_cast<unsigned int>(values[i]);
-          const auto c = static_cast<unsigned int>(values[i + 1]);
-          if (values[i + 2] != 0 && mortar.is_covered(j))
-            {
-              fixed_component[j] = c;
-              fixed_value[j]     = values[i + 3];
-            }
-          SlaveRow &row        = slave_rows[j][c];
-          row.rhs              = values[i + 4];
-          const auto n_entries = static_cast<std::size_t>(values[i + 5]);
-          i += 6;
-          for (std::size_t e = 0; e < n_entries; ++e, i += 2)
-            {
-              row.columns.push_back(
-                static_cast<types::global_dof_index>(values[i]));
-              row.values.push_back(values[i + 1]);
-            }
-        }
+    unpack_slave_rows(Utilities::MPI::all_gather(communicator, packed),
+                      mortar,
+                      *this);
 
     // The master nodes' Dirichlet data, gathered: a slave node's rows
     // couple to master DoFs that its rank need not see. A constrained
     // DoF is zero in the Newton solve (its row's right hand side is zero:
     // deal.II fills in the value when the solution is distributed), so
     // the conditions that couple to it take its value instead.
-    const auto         &master_nodes = mortar.master_nodes();
-    std::vector<double> master_packed;
-    for (unsigned int l = 0; l < master_nodes.size(); ++l)
-      if (owned_2.is_element(master_nodes[l].dofs[0]))
-        {
-          master_packed.push_back(l);
-          for (unsigned int c = 0; c < 2; ++c)
-            {
-              const auto row   = master_nodes[l].dofs[c];
-              const bool fixed = master.constraints().is_constrained(row);
-              master_packed.push_back(fixed);
-              master_packed.push_back(
-                fixed ? master.constraints().get_inhomogeneity(row) : 0.);
-            }
-        }
+    const auto &master_nodes = mortar.master_nodes();
     master_fixed.assign(master_nodes.size(), {{false, false}});
     master_fixed_value.assign(master_nodes.size(), {{0., 0.}});
-    for (const auto &values :
-         Utilities::MPI::all_gather(communicator, master_packed))
-      for (std::size_t i = 0; i < values.size(); i += 5)
-        {
-          const auto l = static_cast<unsigned int>(values[i]);
-          for (unsigned int c = 0; c < 2; ++c)
-            {
-              master_fixed[l][c]       = values[i + 1 + 2 * c] != 0;
-              master_fixed_value[l][c] = values[i + 2 + 2 * c];
-            }
-        }
+    unpack_master_dirichlet_data(
+      Utilities::MPI::all_gather(communicator,
+                                 pack_master_dirichlet_data(mortar, master)),
+      *this);
 
     master_dof_node.clear();
     for (unsigned int l = 0; l < master_nodes.size(); ++l)

@@ -347,15 +347,12 @@ namespace coulomb_adapt
 
 
 
-  LinearSolverReport
-  EliminatedContactSystem::solve(
-    const std::vector<std::vector<double>> &near_null_space,
-    const parameters::LinearSolver         &settings,
-    TrilinosWrappers::MPI::Vector          &solution)
+  // Initial guess: the last u on the components that stay unknowns; an
+  // eliminated component's reduced unknown is zero (decoupled row, zero
+  // right hand side).
+  TrilinosWrappers::MPI::Vector
+  EliminatedContactSystem::initial_reduced_guess() const
   {
-    // Initial guess: the last u on the components that stay unknowns; an
-    // eliminated component's reduced unknown is zero (decoupled row, zero
-    // right hand side).
     TrilinosWrappers::MPI::Vector reduced_solution(owned, communicator);
     if (last_solution.size() == owned.size())
       {
@@ -364,69 +361,111 @@ namespace coulomb_adapt
           reduced_solution(i) = 0.;
         reduced_solution.compress(VectorOperation::insert);
       }
+    return reduced_solution;
+  }
+
+
+
+  bool
+  EliminatedContactSystem::hierarchy_may_be_reused() const
+  {
+    if (!(amg && states_at_build.size() == node_states.size() &&
+          last_iterations <= fresh_iterations * 3 / 2 + 5))
+      return false;
+    unsigned int n_changed = 0;
+    for (unsigned int j = 0; j < node_states.size(); ++j)
+      n_changed += (node_states[j] != states_at_build[j]);
+    n_changed = Utilities::MPI::sum(n_changed, communicator);
+    return n_changed <= max_changed_nodes_for_reuse;
+  }
+
+
+
+  LinearSolverReport
+  EliminatedContactSystem::solve_with_current_hierarchy(
+    const parameters::LinearSolver &settings,
+    TrilinosWrappers::MPI::Vector  &reduced_solution)
+  {
+    parameters::LinearSolver capped = settings;
+    capped.max_iterations =
+      std::min(settings.max_iterations, 2 * fresh_iterations + 10);
+    LinearSolverReport report    = solve_krylov(*reduced,
+                                             reduced_solution,
+                                             reduced_rhs,
+                                             amg->preconditioner,
+                                             capped,
+                                             symmetric);
+    report.preconditioner_reused = true;
+    return report;
+  }
+
+
+
+  LinearSolverReport
+  EliminatedContactSystem::solve_with_fresh_hierarchy(
+    const std::vector<std::vector<double>> &near_null_space,
+    const parameters::LinearSolver         &settings,
+    const TrilinosWrappers::MPI::Vector    &initial_guess,
+    TrilinosWrappers::MPI::Vector          &reduced_solution)
+  {
+    // The modes are zero at the eliminated components: their rows are
+    // decoupled (K's diagonal, zero right hand side), so a mode with an
+    // entry there is no near null vector of the reduced operator, and
+    // the Krylov solves need more iterations (doc/contact.md section 2).
+    std::vector<std::vector<double>> modes = near_null_space;
+    for (auto &mode : modes)
+      for (const auto i : eliminated_dofs)
+        if (owned.is_element(i))
+          mode[owned.index_within_set(i)] = 0.;
+    amg.reset();
+    amg = std::make_unique<ElasticityAMG>();
+    amg->initialize(*reduced, modes);
+    amg_matrix                = reduced;
+    states_at_build           = node_states;
+    reduced_solution          = initial_guess;
+    LinearSolverReport report = solve_krylov(*reduced,
+                                             reduced_solution,
+                                             reduced_rhs,
+                                             amg->preconditioner,
+                                             settings,
+                                             symmetric);
+    fresh_iterations          = report.n_iterations;
+    return report;
+  }
+
+
+
+  // The previous hierarchy is reused when few slave nodes changed set
+  // since it was built, and while it still needs few iterations. Its
+  // attempt is capped, and a failed one is repeated with a fresh
+  // hierarchy, so a poor guess costs a few iterations, not the solve.
+  LinearSolverReport
+  EliminatedContactSystem::solve(
+    const std::vector<std::vector<double>> &near_null_space,
+    const parameters::LinearSolver         &settings,
+    TrilinosWrappers::MPI::Vector          &solution)
+  {
+    TrilinosWrappers::MPI::Vector reduced_solution    = initial_reduced_guess();
     const TrilinosWrappers::MPI::Vector initial_guess = reduced_solution;
 
-    const auto solve_fresh = [&]() {
-      // The modes are zero at the eliminated components: their rows are
-      // decoupled (K's diagonal, zero right hand side), so a mode with an
-      // entry there is no near null vector of the reduced operator, and
-      // the Krylov solves need more iterations (doc/contact.md section 2).
-      std::vector<std::vector<double>> modes = near_null_space;
-      for (auto &mode : modes)
-        for (const auto i : eliminated_dofs)
-          if (owned.is_element(i))
-            mode[owned.index_within_set(i)] = 0.;
-      amg.reset();
-      amg = std::make_unique<ElasticityAMG>();
-      amg->initialize(*reduced, modes);
-      amg_matrix                = reduced;
-      states_at_build           = node_states;
-      reduced_solution          = initial_guess;
-      LinearSolverReport report = solve_krylov(*reduced,
-                                               reduced_solution,
-                                               reduced_rhs,
-                                               amg->preconditioner,
-                                               settings,
-                                               symmetric);
-      fresh_iterations          = report.n_iterations;
-      return report;
-    };
-
-    // The previous hierarchy is reused when few slave nodes changed set
-    // since it was built, and while it still needs few iterations. Its
-    // attempt is capped, and a failed one is repeated with a fresh
-    // hierarchy, so a poor guess costs a few iterations, not the solve.
     LinearSolverReport report;
-    if (amg && states_at_build.size() == node_states.size() &&
-        last_iterations <= fresh_iterations * 3 / 2 + 5)
-      {
-        unsigned int n_changed = 0;
-        for (unsigned int j = 0; j < node_states.size(); ++j)
-          n_changed += (node_states[j] != states_at_build[j]);
-        n_changed = Utilities::MPI::sum(n_changed, communicator);
-        if (n_changed <= max_changed_nodes_for_reuse)
-          try
-            {
-              parameters::LinearSolver capped = settings;
-              capped.max_iterations =
-                std::min(settings.max_iterations, 2 * fresh_iterations + 10);
-              report                       = solve_krylov(*reduced,
-                                    reduced_solution,
-                                    reduced_rhs,
-                                    amg->preconditioner,
-                                    capped,
-                                    symmetric);
-              report.preconditioner_reused = true;
-            }
-          catch (const SolverControl::NoConvergence &)
-            {
-              report = solve_fresh();
-            }
-        else
-          report = solve_fresh();
-      }
+    if (hierarchy_may_be_reused())
+      try
+        {
+          report = solve_with_current_hierarchy(settings, reduced_solution);
+        }
+      catch (const SolverControl::NoConvergence &)
+        {
+          report = solve_with_fresh_hierarchy(near_null_space,
+                                              settings,
+                                              initial_guess,
+                                              reduced_solution);
+        }
     else
-      report = solve_fresh();
+      report = solve_with_fresh_hierarchy(near_null_space,
+                                          settings,
+                                          initial_guess,
+                                          reduced_solution);
     last_iterations = report.n_iterations;
 
     solution.reinit(owned, communicator);

@@ -168,55 +168,66 @@ namespace coulomb_adapt
 
 
 
+  // v . (D u^1 - M u^2)_j = value, scaled to the size of K. A component
+  // a roller fixes is known: its term goes to the right hand side.
+  void
+  RowReplacingContactSystem::add_jump_row(const SlaveNodeConditions    &node,
+                                          const types::global_dof_index row,
+                                          const Tensor<1, 2>           &v,
+                                          double                        value)
+  {
+    const double D     = node.weight;
+    const double scale = row_scale / D;
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        if (static_cast<int>(d) == node.fixed_component)
+          value -= D * v[d] * node.fixed_value;
+        else
+          {
+            columns.push_back(node.dofs[d]);
+            values.push_back(scale * D * v[d]);
+          }
+        for (const auto &coupling : node.couplings)
+          {
+            columns.push_back(coupling.dofs[d]);
+            values.push_back(-scale * coupling.value * v[d]);
+            if (coupling.constrained[d])
+              value += coupling.value * v[d] * coupling.fixed_value[d];
+          }
+      }
+    add_row(row, scale * value);
+  }
+
+
+
+  // w . (K^1 u^1)_j = w . f^1_j, i.e. w . lambda_j = 0.
+  void
+  RowReplacingContactSystem::add_traction_row(const SlaveNodeConditions &node,
+                                              const types::global_dof_index row,
+                                              const Tensor<1, 2>           &w)
+  {
+    double right_hand_side = 0;
+    for (unsigned int d = 0; d < 2; ++d)
+      {
+        const auto &k = condensation->slave_rows[node.index][d];
+        for (unsigned int e = 0; e < k.columns.size(); ++e)
+          {
+            columns.push_back(k.columns[e]);
+            values.push_back(w[d] * k.values[e]);
+          }
+        right_hand_side += w[d] * k.rhs;
+      }
+    add_row(row, right_hand_side);
+  }
+
+
+
   void
   RowReplacingContactSystem::assemble_slave_node_rows(
     const SlaveNodeConditions &node)
   {
     const Tensor<1, 2> &n = node.normal;
     const Tensor<1, 2> &t = node.tangent;
-    const double        D = node.weight;
-
-    // v . (D u^1 - M u^2)_j = value, scaled to the size of K. A component
-    // a roller fixes is known: its term goes to the right hand side.
-    const auto add_jump_row = [&](const types::global_dof_index row,
-                                  const Tensor<1, 2>           &v,
-                                  double                        value) {
-      const double scale = row_scale / D;
-      for (unsigned int d = 0; d < 2; ++d)
-        {
-          if (static_cast<int>(d) == node.fixed_component)
-            value -= D * v[d] * node.fixed_value;
-          else
-            {
-              columns.push_back(node.dofs[d]);
-              values.push_back(scale * D * v[d]);
-            }
-          for (const auto &coupling : node.couplings)
-            {
-              columns.push_back(coupling.dofs[d]);
-              values.push_back(-scale * coupling.value * v[d]);
-              if (coupling.constrained[d])
-                value += coupling.value * v[d] * coupling.fixed_value[d];
-            }
-        }
-      add_row(row, scale * value);
-    };
-    // w . (K^1 u^1)_j = w . f^1_j, i.e. w . lambda_j = 0.
-    const auto add_traction_row = [&](const types::global_dof_index row,
-                                      const Tensor<1, 2>           &w) {
-      double right_hand_side = 0;
-      for (unsigned int d = 0; d < 2; ++d)
-        {
-          const auto &k = condensation->slave_rows[node.index][d];
-          for (unsigned int e = 0; e < k.columns.size(); ++e)
-            {
-              columns.push_back(k.columns[e]);
-              values.push_back(w[d] * k.values[e]);
-            }
-          right_hand_side += w[d] * k.rhs;
-        }
-      add_row(row, right_hand_side);
-    };
 
     // A roller: its fixed component's row stays K^1's, its Dirichlet
     // condition; the free row is lambda_n = 0 or the normal condition.
@@ -226,11 +237,11 @@ namespace coulomb_adapt
         Tensor<1, 2>       e_fixed, e_free;
         e_fixed[fixed]    = 1;
         e_free[1 - fixed] = 1;
-        add_traction_row(node.dofs[fixed], e_fixed);
+        add_traction_row(node, node.dofs[fixed], e_fixed);
         if (node.active)
-          add_jump_row(node.dofs[1 - fixed], n, node.weighted_gap);
+          add_jump_row(node, node.dofs[1 - fixed], n, node.weighted_gap);
         else
-          add_traction_row(node.dofs[1 - fixed], e_free);
+          add_traction_row(node, node.dofs[1 - fixed], e_free);
         return;
       }
 
@@ -240,16 +251,17 @@ namespace coulomb_adapt
     const auto row_t = node.dofs[1 - normal_component];
     if (!node.active)
       {
-        add_traction_row(node.dofs[0], Tensor<1, 2>({1., 0.}));
-        add_traction_row(node.dofs[1], Tensor<1, 2>({0., 1.}));
+        add_traction_row(node, node.dofs[0], Tensor<1, 2>({1., 0.}));
+        add_traction_row(node, node.dofs[1], Tensor<1, 2>({0., 1.}));
       }
     else
       {
-        add_jump_row(row_n, n, node.weighted_gap);
+        add_jump_row(node, row_n, n, node.weighted_gap);
         if (node.stick)
-          add_jump_row(row_t, t, node.weighted_slip);
+          add_jump_row(node, row_t, t, node.weighted_slip);
         else
-          add_traction_row(row_t,
+          add_traction_row(node,
+                           row_t,
                            t - node.friction_coefficient * node.slip_sign * n);
       }
   }

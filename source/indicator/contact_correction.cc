@@ -149,6 +149,85 @@ namespace coulomb_adapt
 
 
 
+    // The projection v <- v - Z G^-1 Z^T v onto the complement of the
+    // free modes Z (G = Z^T Z their Gram matrix): no free-mode component
+    // left in v.
+    class FreeModeRemoval
+    {
+    public:
+      explicit FreeModeRemoval(
+        const std::vector<TrilinosWrappers::MPI::Vector> &modes)
+        : modes(modes)
+        , inverse(modes.size(), modes.size())
+      {
+        const unsigned int n = modes.size();
+        FullMatrix<double> gram(n, n);
+        for (unsigned int a = 0; a < n; ++a)
+          for (unsigned int b = 0; b < n; ++b)
+            gram(a, b) = modes[a] * modes[b];
+        if (n > 0)
+          inverse.invert(gram);
+      }
+
+      void
+      operator()(TrilinosWrappers::MPI::Vector &v) const
+      {
+        const unsigned int  n = modes.size();
+        std::vector<double> projections(n);
+        for (unsigned int a = 0; a < n; ++a)
+          projections[a] = modes[a] * v;
+        for (unsigned int a = 0; a < n; ++a)
+          {
+            double coefficient = 0;
+            for (unsigned int b = 0; b < n; ++b)
+              coefficient += inverse(a, b) * projections[b];
+            v.add(-coefficient, modes[a]);
+          }
+      }
+
+    private:
+      const std::vector<TrilinosWrappers::MPI::Vector> &modes;
+      FullMatrix<double>                                inverse;
+    };
+
+
+
+    // Solve K increment = residual with the free rigid modes @p modes
+    // pinned at DoFs that fix them. The pinned rows keep the size of K's
+    // diagonal, which AMG's smoother expects.
+    void
+    solve_pinned(const ElasticBody                                &body,
+                 const std::vector<TrilinosWrappers::MPI::Vector> &modes,
+                 TrilinosWrappers::MPI::Vector                    &residual,
+                 TrilinosWrappers::MPI::Vector                    &increment,
+                 const parameters::LinearSolver &solver_parameters)
+    {
+      const MPI_Comm comm     = body.triangulation().get_communicator();
+      const auto    &owned    = body.locally_owned_dof_set();
+      const auto    &K        = body.system_matrix();
+      const auto     pinned   = pinning_dofs(modes, comm);
+      double         diagonal = 0;
+      for (const auto i : pinned)
+        if (owned.is_element(i))
+          diagonal = std::max(diagonal, K.diag_element(i));
+      diagonal = Utilities::MPI::max(diagonal, comm);
+      TrilinosWrappers::SparseMatrix pinned_matrix;
+      pinned_matrix.copy_from(K);
+      pinned_matrix.clear_rows(pinned, diagonal);
+      for (const auto i : pinned)
+        if (owned.is_element(i))
+          residual(i) = 0;
+      residual.compress(VectorOperation::insert);
+      solve_linear_system(pinned_matrix,
+                          increment,
+                          residual,
+                          body.rigid_body_modes(),
+                          solver_parameters,
+                          false);
+    }
+
+
+
     // Solve K u = f for a body, pinning its free rigid modes if it has
     // any; the result satisfies the body's constraints and, for a floating
     // body, u - u_reference is orthogonal to the free modes.
@@ -166,32 +245,11 @@ namespace coulomb_adapt
       const TrilinosWrappers::MPI::Vector &u_reference,
       const parameters::LinearSolver      &solver_parameters)
     {
-      const MPI_Comm comm  = body.triangulation().get_communicator();
-      const auto    &owned = body.locally_owned_dof_set();
-      const auto     modes = free_rigid_modes(body);
-      const auto    &K     = body.system_matrix();
-
-      // Gram matrix of the free modes and its inverse.
-      const unsigned int n = modes.size();
-      FullMatrix<double> gram(n, n), inverse(n, n);
-      for (unsigned int a = 0; a < n; ++a)
-        for (unsigned int b = 0; b < n; ++b)
-          gram(a, b) = modes[a] * modes[b];
-      if (n > 0)
-        inverse.invert(gram);
-      // v <- v - Z G^-1 Z^T v: no free-mode component left in v.
-      auto remove_modes = [&](TrilinosWrappers::MPI::Vector &v) {
-        std::vector<double> projections(n);
-        for (unsigned int a = 0; a < n; ++a)
-          projections[a] = modes[a] * v;
-        for (unsigned int a = 0; a < n; ++a)
-          {
-            double coefficient = 0;
-            for (unsigned int b = 0; b < n; ++b)
-              coefficient += inverse(a, b) * projections[b];
-            v.add(-coefficient, modes[a]);
-          }
-      };
+      const MPI_Comm        comm  = body.triangulation().get_communicator();
+      const auto           &owned = body.locally_owned_dof_set();
+      const auto            modes = free_rigid_modes(body);
+      const auto           &K     = body.system_matrix();
+      const FreeModeRemoval remove_modes(modes);
 
       // The increment's load f - K u_reference, zero in constrained rows
       // (the constraints are imposed on u below). For a floating body, the
@@ -209,33 +267,11 @@ namespace coulomb_adapt
       remove_modes(residual);
 
       TrilinosWrappers::MPI::Vector increment(owned, comm);
-      if (n == 0)
+      if (modes.empty())
         solve_linear_system(
           K, increment, residual, body.rigid_body_modes(), solver_parameters);
       else
-        {
-          // The pinned rows keep the size of K's diagonal, which AMG's
-          // smoother expects.
-          const auto pinned   = pinning_dofs(modes, comm);
-          double     diagonal = 0;
-          for (const auto i : pinned)
-            if (owned.is_element(i))
-              diagonal = std::max(diagonal, K.diag_element(i));
-          diagonal = Utilities::MPI::max(diagonal, comm);
-          TrilinosWrappers::SparseMatrix pinned_matrix;
-          pinned_matrix.copy_from(K);
-          pinned_matrix.clear_rows(pinned, diagonal);
-          for (const auto i : pinned)
-            if (owned.is_element(i))
-              residual(i) = 0;
-          residual.compress(VectorOperation::insert);
-          solve_linear_system(pinned_matrix,
-                              increment,
-                              residual,
-                              body.rigid_body_modes(),
-                              solver_parameters,
-                              false);
-        }
+        solve_pinned(body, modes, residual, increment, solver_parameters);
       // No free-mode component in u - u_reference. Removed before the
       // constraints are distributed: the free modes vanish at constrained
       // DoFs, so removed afterwards a mode's hanging-node entries would
@@ -304,6 +340,200 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // R_c: the nodal reactions projected onto the Coulomb cone, into
+    // corrected.fields with the FE gaps and slips; the number of projected
+    // nodes and the relative change. Changes at the level of the
+    // condensation's round-off are not corrections. Returns the largest
+    // nodal reaction.
+    double
+    project_reactions(const MortarInterface               &mortar,
+                      const std::vector<ContactNodeState> &states,
+                      const double                         mu,
+                      CorrectedContactSolution            &corrected)
+    {
+      const auto &nodes = mortar.slave_nodes();
+      const auto &D     = mortar.slave_weights();
+
+      double largest = 0;
+      for (const auto &s : states)
+        largest = std::max(
+          {largest, std::abs(s.pressure), std::abs(s.tangential_traction)});
+      std::vector<Tensor<1, 2>> change(states.size());
+      double                    change_norm = 0, norm = 0;
+      for (unsigned int j = 0; j < states.size(); ++j)
+        {
+          const auto &s = states[j];
+          const auto  projected =
+            project_onto_coulomb_cone(s.pressure, s.tangential_traction, mu);
+          const double dn = projected[0] - s.pressure;
+          const double dt = projected[1] - s.tangential_traction;
+          if (std::abs(dn) + std::abs(dt) > 1e-10 * largest)
+            {
+              ++corrected.n_projected_nodes;
+              change[j] = dn * nodes[j].normal + dt * nodes[j].tangent;
+            }
+          corrected.fields[j].pressure            = projected[0];
+          corrected.fields[j].tangential_traction = projected[1];
+          corrected.fields[j].gap                 = s.gap;
+          // The incremental law's slip: W_t of this load step.
+          corrected.fields[j].slip = s.slip_increment;
+          change_norm += D[j] * change[j].norm_square();
+          norm += D[j] * (s.pressure * s.pressure +
+                          s.tangential_traction * s.tangential_traction);
+        }
+      corrected.relative_change = norm > 0 ? std::sqrt(change_norm / norm) : 0.;
+      return largest;
+    }
+
+
+
+    // The contact loads of the corrected problem: f^1 - D lambda_c on body
+    // 1, f^2 + M^T lambda_c on body 2 (the FE solution satisfies the same
+    // equations with lambda_h), in the mortar or the consistent form.
+    class CorrectedLoads
+    {
+    public:
+      CorrectedLoads(const ElasticBody     &slave,
+                     const ElasticBody     &master,
+                     const MortarInterface &mortar)
+        : bodies{{&slave, &master}}
+        , loads{{slave.system_rhs(), master.system_rhs()}}
+        , mortar(mortar)
+      {}
+
+      // -D_jj lambda_j at slave node j, M_jl lambda_j at master node l.
+      void
+      add_mortar_form(const std::vector<ContactNodeFields> &fields)
+      {
+        const auto &nodes        = mortar.slave_nodes();
+        const auto &D            = mortar.slave_weights();
+        const auto &master_nodes = mortar.master_nodes();
+        const auto &M            = mortar.master_coupling();
+        for (unsigned int j = 0; j < fields.size(); ++j)
+          {
+            const Tensor<1, 2> lambda =
+              fields[j].pressure * nodes[j].normal +
+              fields[j].tangential_traction * nodes[j].tangent;
+            add(0, nodes[j].dofs, -D[j] * lambda);
+            for (const auto &[l, m] : M[j])
+              add(1, master_nodes[l].dofs, m * lambda);
+          }
+      }
+
+      // int R phi_k on the slave side, -int R phi^2_l on the master side:
+      // the same traction field, integrated where the bodies face each
+      // other (R vanishes elsewhere, since a node with a nonzero reaction
+      // has its whole support covered).
+      void
+      add_consistent_form(const std::vector<ContactNodeFields> &fields)
+      {
+        const auto &nodes        = mortar.slave_nodes();
+        const auto &master_nodes = mortar.master_nodes();
+        const auto  points       = mortar.overlap_quadrature(
+          contact_traction_points_per_overlap(mortar.slave_element_degree()));
+        const auto  R = contact_traction_at(mortar, fields, points);
+        const auto &slave_segments  = mortar.slave_segment_list();
+        const auto &master_segments = mortar.master_segment_list();
+        for (unsigned int q = 0; q < points.size(); ++q)
+          {
+            const auto &overlap = mortar.overlaps()[points[q].overlap];
+            const auto &s_nodes = slave_segments[overlap.slave_segment].nodes;
+            const auto &m_nodes = master_segments[overlap.master_segment].nodes;
+            const auto  phi_s   = mortar.slave_shape_values(points[q].xi);
+            const auto  phi_m   = mortar.master_shape_values(points[q].eta);
+            for (unsigned int k = 0; k < s_nodes.size(); ++k)
+              add(0,
+                  nodes[s_nodes[k]].dofs,
+                  phi_s[k] * points[q].weight * R[q]);
+            for (unsigned int k = 0; k < m_nodes.size(); ++k)
+              add(1,
+                  master_nodes[m_nodes[k]].dofs,
+                  -phi_m[k] * points[q].weight * R[q]);
+          }
+      }
+
+      const std::array<const ElasticBody *, 2>     bodies;
+      std::array<TrilinosWrappers::MPI::Vector, 2> loads;
+
+    private:
+      // A nodal force, at the DoFs body @p b owns and does not constrain.
+      void
+      add(const unsigned int                            b,
+          const std::array<types::global_dof_index, 2> &dofs,
+          const Tensor<1, 2>                           &force)
+      {
+        for (unsigned int c = 0; c < 2; ++c)
+          if (bodies[b]->locally_owned_dof_set().is_element(dofs[c]) &&
+              !bodies[b]->constraints().is_constrained(dofs[c]))
+            loads[b](dofs[c]) += force[c];
+      }
+
+      const MortarInterface &mortar;
+    };
+
+
+
+    // The displacements of both bodies under the corrected contact loads,
+    // and W_c from them, measured as the solver measures its iterates.
+    void
+    solve_corrected_problem(const ElasticBody                   &slave,
+                            const ElasticBody                   &master,
+                            const MortarInterface               &mortar,
+                            const std::vector<ContactNodeState> &states,
+                            const parameters::LinearSolver &solver_parameters,
+                            const ContactLoadForm           load_form,
+                            CorrectedContactSolution       &corrected)
+    {
+      CorrectedLoads corrected_loads(slave, master, mortar);
+      if (load_form == ContactLoadForm::mortar)
+        corrected_loads.add_mortar_form(corrected.fields);
+      else
+        corrected_loads.add_consistent_form(corrected.fields);
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          const ElasticBody             &body = *corrected_loads.bodies[b];
+          TrilinosWrappers::MPI::Vector &load = corrected_loads.loads[b];
+          load.compress(VectorOperation::add);
+          const TrilinosWrappers::MPI::Vector solution =
+            solve_under_prescribed_tractions(body,
+                                             load,
+                                             body.solution(),
+                                             solver_parameters);
+          corrected.corrected_displacement[b] = solution;
+        }
+
+      const auto gaps =
+        mortar.nodal_gaps(corrected.displacement(0), corrected.displacement(1));
+      for (unsigned int j = 0; j < mortar.slave_nodes().size(); ++j)
+        if (mortar.is_covered(j))
+          {
+            corrected.fields[j].gap = gaps[j].gap;
+            corrected.fields[j].slip =
+              gaps[j].slip - (states[j].slip - states[j].slip_increment);
+          }
+    }
+
+
+
+    // Penetration at the level of round-off of the displacements is none.
+    double
+    max_penetration(const std::vector<ContactNodeFields> &fields)
+    {
+      double scale = 0;
+      for (const auto &f : fields)
+        scale = std::max({scale, std::abs(f.gap), std::abs(f.slip)});
+      double penetration = 0;
+      for (const auto &f : fields)
+        if (-f.gap > 1e-10 * scale)
+          penetration = std::max(penetration, -f.gap);
+      return penetration;
+    }
+  } // namespace
+
+
+
   CorrectedContactSolution
   correct_contact_solution(const ElasticBody                   &slave,
                            const ElasticBody                   &master,
@@ -313,140 +543,21 @@ namespace coulomb_adapt
                            const parameters::LinearSolver &solver_parameters,
                            const ContactLoadForm           load_form)
   {
-    const auto &nodes = mortar.slave_nodes();
-    const auto &D     = mortar.slave_weights();
-
     CorrectedContactSolution corrected;
     corrected.fields.resize(states.size());
     corrected.fe_displacement = {{&slave.solution(), &master.solution()}};
 
-    // R_c: the nodal reactions projected onto the Coulomb cone. Changes at
-    // the level of the condensation's round-off are not corrections.
-    double largest = 0;
-    for (const auto &s : states)
-      largest = std::max(
-        {largest, std::abs(s.pressure), std::abs(s.tangential_traction)});
-    std::vector<Tensor<1, 2>> change(states.size());
-    double                    change_norm = 0, norm = 0;
-    for (unsigned int j = 0; j < states.size(); ++j)
-      {
-        const auto &s = states[j];
-        const auto  projected =
-          project_onto_coulomb_cone(s.pressure, s.tangential_traction, mu);
-        const double dn = projected[0] - s.pressure;
-        const double dt = projected[1] - s.tangential_traction;
-        if (std::abs(dn) + std::abs(dt) > 1e-10 * largest)
-          {
-            ++corrected.n_projected_nodes;
-            change[j] = dn * nodes[j].normal + dt * nodes[j].tangent;
-          }
-        corrected.fields[j].pressure            = projected[0];
-        corrected.fields[j].tangential_traction = projected[1];
-        corrected.fields[j].gap                 = s.gap;
-        // The incremental law's slip: W_t of this load step.
-        corrected.fields[j].slip = s.slip_increment;
-        change_norm += D[j] * change[j].norm_square();
-        norm += D[j] * (s.pressure * s.pressure +
-                        s.tangential_traction * s.tangential_traction);
-      }
-    corrected.relative_change = norm > 0 ? std::sqrt(change_norm / norm) : 0.;
-    corrected.skipped         = (corrected.n_projected_nodes == 0);
+    const double largest = project_reactions(mortar, states, mu, corrected);
+    corrected.skipped    = (corrected.n_projected_nodes == 0);
     // The consistent load differs from the mortar load the FE solution
     // balances whenever there is any contact traction at all.
     if (load_form == ContactLoadForm::consistent)
       corrected.skipped = (largest == 0);
 
     if (!corrected.skipped)
-      {
-        // The contact loads of the corrected problem: f^1 - D lambda_c on
-        // body 1, f^2 + M^T lambda_c on body 2 (the FE solution satisfies
-        // the same equations with lambda_h).
-        const std::array<const ElasticBody *, 2> bodies = {{&slave, &master}};
-        std::array<TrilinosWrappers::MPI::Vector, 2> loads = {
-          {slave.system_rhs(), master.system_rhs()}};
-        const auto &master_nodes = mortar.master_nodes();
-        const auto &M            = mortar.master_coupling();
-        auto        add_load = [&](const unsigned int                            b,
-                            const std::array<types::global_dof_index, 2> &dofs,
-                            const Tensor<1, 2> &force) {
-          for (unsigned int c = 0; c < 2; ++c)
-            if (bodies[b]->locally_owned_dof_set().is_element(dofs[c]) &&
-                !bodies[b]->constraints().is_constrained(dofs[c]))
-              loads[b](dofs[c]) += force[c];
-        };
-        if (load_form == ContactLoadForm::mortar)
-          for (unsigned int j = 0; j < states.size(); ++j)
-            {
-              const Tensor<1, 2> lambda =
-                corrected.fields[j].pressure * nodes[j].normal +
-                corrected.fields[j].tangential_traction * nodes[j].tangent;
-              add_load(0, nodes[j].dofs, -D[j] * lambda);
-              for (const auto &[l, m] : M[j])
-                add_load(1, master_nodes[l].dofs, m * lambda);
-            }
-        else
-          {
-            // int R phi_k on the slave side, -int R phi^2_l on the master
-            // side: the same traction field, integrated where the bodies
-            // face each other (R vanishes elsewhere, since a node with a
-            // nonzero reaction has its whole support covered).
-            const auto points =
-              mortar.overlap_quadrature(contact_traction_points_per_overlap(
-                mortar.slave_element_degree()));
-            const auto R =
-              contact_traction_at(mortar, corrected.fields, points);
-            const auto &slave_segments  = mortar.slave_segment_list();
-            const auto &master_segments = mortar.master_segment_list();
-            for (unsigned int q = 0; q < points.size(); ++q)
-              {
-                const auto &overlap = mortar.overlaps()[points[q].overlap];
-                const auto &s_nodes =
-                  slave_segments[overlap.slave_segment].nodes;
-                const auto &m_nodes =
-                  master_segments[overlap.master_segment].nodes;
-                const auto phi_s = mortar.slave_shape_values(points[q].xi);
-                const auto phi_m = mortar.master_shape_values(points[q].eta);
-                for (unsigned int k = 0; k < s_nodes.size(); ++k)
-                  add_load(0,
-                           nodes[s_nodes[k]].dofs,
-                           phi_s[k] * points[q].weight * R[q]);
-                for (unsigned int k = 0; k < m_nodes.size(); ++k)
-                  add_load(1,
-                           master_nodes[m_nodes[k]].dofs,
-                           -phi_m[k] * points[q].weight * R[q]);
-              }
-          }
-        for (unsigned int b = 0; b < 2; ++b)
-          {
-            loads[b].compress(VectorOperation::add);
-            const TrilinosWrappers::MPI::Vector solution =
-              solve_under_prescribed_tractions(*bodies[b],
-                                               loads[b],
-                                               bodies[b]->solution(),
-                                               solver_parameters);
-            corrected.corrected_displacement[b] = solution;
-          }
-
-        // W_c from the corrected displacements, measured as the solver
-        // measures its iterates.
-        const auto gaps = mortar.nodal_gaps(corrected.displacement(0),
-                                            corrected.displacement(1));
-        for (unsigned int j = 0; j < nodes.size(); ++j)
-          if (mortar.is_covered(j))
-            {
-              corrected.fields[j].gap = gaps[j].gap;
-              corrected.fields[j].slip =
-                gaps[j].slip - (states[j].slip - states[j].slip_increment);
-            }
-      }
-
-    // Penetration at the level of round-off of the displacements is none.
-    double scale = 0;
-    for (const auto &f : corrected.fields)
-      scale = std::max({scale, std::abs(f.gap), std::abs(f.slip)});
-    for (const auto &f : corrected.fields)
-      if (-f.gap > 1e-10 * scale)
-        corrected.max_penetration = std::max(corrected.max_penetration, -f.gap);
+      solve_corrected_problem(
+        slave, master, mortar, states, solver_parameters, load_form, corrected);
+    corrected.max_penetration = max_penetration(corrected.fields);
     return corrected;
   }
 } // namespace coulomb_adapt

@@ -318,6 +318,204 @@ namespace coulomb_adapt
                              std::to_string(x[1]) + ")."));
       return sigma;
     }
+
+
+
+    // One DoF per vertex: the numbering of the distributed per-vertex data
+    // (its hanging-node constraints mark the hanging vertices). A scalar
+    // linear element, not an FESystem with one component per entry: the
+    // entries of vertex k are k * n_entries + e (vertex_entries), so DoF
+    // distribution and the DoF lookups per cell do not grow with the
+    // number of entries. For p = 1 the stress space is that element
+    // already; p = 2 needs one of its own.
+    class VertexNumbering
+    {
+    public:
+      VertexNumbering(const ElasticBody               &body,
+                      const unsigned int               degree,
+                      const DoFHandler<2>             &stress_dofs,
+                      const IndexSet                  &stress_relevant,
+                      const AffineConstraints<double> &stress_hanging)
+        : dofs(&stress_dofs)
+        , relevant(&stress_relevant)
+        , hanging(&stress_hanging)
+      {
+        if (degree == 1)
+          return;
+        linear_dofs.reinit(body.triangulation());
+        if (body.is_simplex_mesh())
+          linear_dofs.distribute_dofs(FE_SimplexP<2>(1));
+        else
+          linear_dofs.distribute_dofs(FE_Q<2>(1));
+        DoFTools::extract_locally_relevant_dofs(linear_dofs, linear_relevant);
+        linear_hanging.reinit(linear_relevant);
+        DoFTools::make_hanging_node_constraints(linear_dofs, linear_hanging);
+        linear_hanging.close();
+        dofs     = &linear_dofs;
+        relevant = &linear_relevant;
+        hanging  = &linear_hanging;
+      }
+
+      const DoFHandler<2>             *dofs;
+      const IndexSet                  *relevant;
+      const AffineConstraints<double> *hanging;
+
+    private:
+      DoFHandler<2>             linear_dofs;
+      IndexSet                  linear_relevant;
+      AffineConstraints<double> linear_hanging;
+    };
+
+
+
+    void
+    insert_vertices(const VertexCell &c, std::set<types::global_dof_index> &set)
+    {
+      for (const unsigned int v : c->vertex_indices())
+        set.insert(c->vertex_dof_index(v, 0));
+    }
+
+
+
+    // node_value for each kind of node of the stress space: a vertex, a
+    // node on a line, a node inside a cell. A vertex, a line's two or a
+    // cell's three or four own vertices: on the stack, this runs once per
+    // node.
+    struct NodeRecovery
+    {
+      using OwnVertices =
+        boost::container::small_vector<types::global_dof_index, 4>;
+
+      Tensor<1, 3>
+      at_vertex(const Point<2> &x, const types::global_dof_index vertex) const
+      {
+        const OwnVertices own_vertices = {vertex};
+        const auto        surrounding  = [&]() {
+          std::set<types::global_dof_index> set;
+          for (const auto &c :
+               patches[relevant_position(relevant_vertices, vertex)].cells)
+            insert_vertices(c, set);
+          return set;
+        };
+        return node_value(
+          x, own_vertices, surrounding, fits, relevant_vertices);
+      }
+
+      // In 2D the lines of a cell are its faces.
+      Tensor<1, 3>
+      on_line(const Point<2> &x, const DoFHandler<2>::face_iterator &line) const
+      {
+        const OwnVertices own_vertices = {line->vertex_dof_index(0, 0),
+                                          line->vertex_dof_index(1, 0)};
+        const auto        surrounding  = [&]() {
+          std::set<types::global_dof_index> set;
+          for (const auto &c :
+               patches[relevant_position(relevant_vertices, own_vertices[0])]
+                 .cells)
+            for (const unsigned int v : c->vertex_indices())
+              if (c->vertex_dof_index(v, 0) == own_vertices[1])
+                insert_vertices(c, set);
+          return set;
+        };
+        return node_value(
+          x, own_vertices, surrounding, fits, relevant_vertices);
+      }
+
+      Tensor<1, 3>
+      inside_cell(const Point<2> &x, const VertexCell &cell) const
+      {
+        OwnVertices own_vertices;
+        for (const unsigned int v : cell->vertex_indices())
+          own_vertices.push_back(cell->vertex_dof_index(v, 0));
+        const auto surrounding = [&]() {
+          std::set<types::global_dof_index> set;
+          insert_vertices(cell, set);
+          return set;
+        };
+        return node_value(
+          x, own_vertices, surrounding, fits, relevant_vertices);
+      }
+
+      const std::vector<VertexPatch> &patches;
+      const std::vector<PatchFit>    &fits;
+      const IndexSet                 &relevant_vertices;
+    };
+
+
+
+    // Nodal values of the owned, unconstrained nodes of the stress space
+    // (@p dofs with element @p fe), at the nodes' physical positions. The
+    // vertex nodes (all of them for p = 1) sit at the cell's vertices,
+    // which every mapping keeps; only the nodes on lines and inside cells
+    // need the mapping. Only owned entries are written; the constrained
+    // ones and the ghosts are left to the caller.
+    void
+    set_owned_nodal_values(
+      const ElasticBody                          &body,
+      const FiniteElement<2>                     &fe,
+      const DoFHandler<2>                        &dofs,
+      const IndexSet                             &owned_dofs,
+      const AffineConstraints<double>            &constraints,
+      const DoFHandler<2>                        &vertex_dofs,
+      const NodeRecovery                         &recovery,
+      std::array<RecoveredStress::VectorType, 3> &components)
+    {
+      const bool only_vertex_nodes =
+        fe.n_dofs_per_cell() ==
+        fe.reference_cell().n_vertices() * fe.n_dofs_per_vertex();
+      std::optional<FEValues<2>> node_positions;
+      if (!only_vertex_nodes)
+        node_positions.emplace(body.mapping(),
+                               fe,
+                               Quadrature<2>(fe.get_unit_support_points()),
+                               update_quadrature_points);
+      std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
+      std::vector<bool>                    done(owned_dofs.n_elements(), false);
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(dof_indices);
+            if (node_positions)
+              node_positions->reinit(cell);
+            const VertexCell   vertex_cell(&body.triangulation(),
+                                         cell->level(),
+                                         cell->index(),
+                                         &vertex_dofs);
+            const unsigned int first_line_node =
+              cell->n_vertices() * fe.n_dofs_per_vertex();
+            const unsigned int first_interior_node =
+              first_line_node + cell->n_lines() * fe.n_dofs_per_line();
+            for (unsigned int node = 0; node < fe.n_dofs_per_cell(); ++node)
+              {
+                const auto dof = dof_indices[node];
+                if (!owned_dofs.is_element(dof) ||
+                    constraints.is_constrained(dof) ||
+                    done[owned_dofs.index_within_set(dof)])
+                  continue;
+                done[owned_dofs.index_within_set(dof)] = true;
+
+                const Point<2> &x =
+                  node < first_line_node ?
+                    cell->vertex(node / fe.n_dofs_per_vertex()) :
+                    node_positions->quadrature_point(node);
+                Tensor<1, 3> sigma;
+                if (node < first_line_node)
+                  sigma =
+                    recovery.at_vertex(x,
+                                       vertex_cell->vertex_dof_index(
+                                         node / fe.n_dofs_per_vertex(), 0));
+                else if (node < first_interior_node)
+                  sigma = recovery.on_line(x,
+                                           vertex_cell->face(
+                                             (node - first_line_node) /
+                                             fe.n_dofs_per_line()));
+                else
+                  sigma = recovery.inside_cell(x, vertex_cell);
+                for (unsigned int c = 0; c < 3; ++c)
+                  components[c](dof) = sigma[c];
+              }
+          }
+    }
   } // namespace
 
 
@@ -335,37 +533,11 @@ namespace coulomb_adapt
     const MPI_Comm    comm    = body.triangulation().get_communicator();
     const bool        simplex = body.is_simplex_mesh();
 
-    // One DoF per vertex: the numbering of the distributed per-vertex data
-    // (its hanging-node constraints mark the hanging vertices). A scalar
-    // linear element, not an FESystem with one component per entry: the
-    // entries of vertex k are k * n_entries + e (vertex_entries), so DoF
-    // distribution and the DoF lookups per cell do not grow with the
-    // number of entries. For p = 1 the stress space is that element
-    // already; p = 2 needs one of its own.
-    const DoFHandler<2>             *vertex_numbering  = &dofs;
-    const IndexSet                  *relevant_numbered = &relevant_dofs;
-    const AffineConstraints<double> *hanging_numbered  = &constraints;
-    DoFHandler<2>                    linear_dofs;
-    IndexSet                         linear_relevant;
-    AffineConstraints<double>        linear_hanging;
-    if (degree > 1)
-      {
-        linear_dofs.reinit(body.triangulation());
-        if (simplex)
-          linear_dofs.distribute_dofs(FE_SimplexP<2>(1));
-        else
-          linear_dofs.distribute_dofs(FE_Q<2>(1));
-        DoFTools::extract_locally_relevant_dofs(linear_dofs, linear_relevant);
-        linear_hanging.reinit(linear_relevant);
-        DoFTools::make_hanging_node_constraints(linear_dofs, linear_hanging);
-        linear_hanging.close();
-        vertex_numbering  = &linear_dofs;
-        relevant_numbered = &linear_relevant;
-        hanging_numbered  = &linear_hanging;
-      }
-    const DoFHandler<2>             &vertex_dofs       = *vertex_numbering;
-    const IndexSet                  &relevant_vertices = *relevant_numbered;
-    const AffineConstraints<double> &hanging_vertices  = *hanging_numbered;
+    const VertexNumbering numbering(
+      body, degree, dofs, relevant_dofs, constraints);
+    const DoFHandler<2>             &vertex_dofs       = *numbering.dofs;
+    const IndexSet                  &relevant_vertices = *numbering.relevant;
+    const AffineConstraints<double> &hanging_vertices  = *numbering.hanging;
     const IndexSet                   owned_entries =
       vertex_entries(vertex_dofs.locally_owned_dofs(), layout.n_entries());
     const IndexSet relevant_entries =
@@ -393,119 +565,16 @@ namespace coulomb_adapt
       patches, normal_equations, hanging_vertices, layout, degree, fit_vector);
     const auto fits = read_fits(patches, fit_vector, layout);
 
-    // Nodal values of the owned, unconstrained nodes of the stress space,
-    // at the nodes' physical positions. The vertex nodes (all of them for
-    // p = 1) sit at the cell's vertices, which every mapping keeps; only
-    // the nodes on lines and inside cells need the mapping.
-    const FiniteElement<2> &base = fe;
-    const bool              only_vertex_nodes =
-      base.n_dofs_per_cell() ==
-      base.reference_cell().n_vertices() * base.n_dofs_per_vertex();
-    std::optional<FEValues<2>> node_positions;
-    if (!only_vertex_nodes)
-      node_positions.emplace(body.mapping(),
-                             base,
-                             Quadrature<2>(base.get_unit_support_points()),
-                             update_quadrature_points);
-    std::vector<types::global_dof_index> dof_indices(base.n_dofs_per_cell());
-    std::vector<bool>                    done(owned_dofs.n_elements(), false);
-    // Only owned entries are written below; the constrained ones and the
-    // ghosts are filled in at the end.
     for (auto &v : components)
       v = 0;
-
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell->get_dof_indices(dof_indices);
-          if (node_positions)
-            node_positions->reinit(cell);
-          const VertexCell   vertex_cell(&body.triangulation(),
-                                       cell->level(),
-                                       cell->index(),
-                                       &vertex_dofs);
-          const unsigned int first_line_node =
-            cell->n_vertices() * base.n_dofs_per_vertex();
-          const unsigned int first_interior_node =
-            first_line_node + cell->n_lines() * base.n_dofs_per_line();
-
-          for (unsigned int node = 0; node < base.n_dofs_per_cell(); ++node)
-            {
-              const auto dof = dof_indices[node];
-              if (!owned_dofs.is_element(dof) ||
-                  constraints.is_constrained(dof) ||
-                  done[owned_dofs.index_within_set(dof)])
-                continue;
-              done[owned_dofs.index_within_set(dof)] = true;
-
-              // A vertex, a line's two or a cell's three or four: on the
-              // stack, this runs once per node.
-              boost::container::small_vector<types::global_dof_index, 4>
-                         own_vertices;
-              const auto vertices_of =
-                [](const VertexCell                  &c,
-                   std::set<types::global_dof_index> &set) {
-                  for (const unsigned int v : c->vertex_indices())
-                    set.insert(c->vertex_dof_index(v, 0));
-                };
-              const Point<2> &x =
-                node < first_line_node ?
-                  cell->vertex(node / base.n_dofs_per_vertex()) :
-                  node_positions->quadrature_point(node);
-              Tensor<1, 3> sigma;
-              if (node < first_line_node)
-                {
-                  const auto vertex = vertex_cell->vertex_dof_index(
-                    node / base.n_dofs_per_vertex(), 0);
-                  own_vertices           = {vertex};
-                  const auto surrounding = [&]() {
-                    std::set<types::global_dof_index> set;
-                    for (const auto &c :
-                         patches[relevant_position(relevant_vertices, vertex)]
-                           .cells)
-                      vertices_of(c, set);
-                    return set;
-                  };
-                  sigma = node_value(
-                    x, own_vertices, surrounding, fits, relevant_vertices);
-                }
-              else if (node < first_interior_node)
-                {
-                  // In 2D the lines of a cell are its faces.
-                  const auto line = vertex_cell->face((node - first_line_node) /
-                                                      base.n_dofs_per_line());
-                  own_vertices    = {line->vertex_dof_index(0, 0),
-                                     line->vertex_dof_index(1, 0)};
-                  const auto surrounding = [&]() {
-                    std::set<types::global_dof_index> set;
-                    for (const auto &c :
-                         patches[relevant_position(relevant_vertices,
-                                                   own_vertices[0])]
-                           .cells)
-                      for (const unsigned int v : c->vertex_indices())
-                        if (c->vertex_dof_index(v, 0) == own_vertices[1])
-                          vertices_of(c, set);
-                    return set;
-                  };
-                  sigma = node_value(
-                    x, own_vertices, surrounding, fits, relevant_vertices);
-                }
-              else
-                {
-                  for (const unsigned int v : vertex_cell->vertex_indices())
-                    own_vertices.push_back(vertex_cell->vertex_dof_index(v, 0));
-                  const auto surrounding = [&]() {
-                    std::set<types::global_dof_index> set;
-                    vertices_of(vertex_cell, set);
-                    return set;
-                  };
-                  sigma = node_value(
-                    x, own_vertices, surrounding, fits, relevant_vertices);
-                }
-              for (unsigned int c = 0; c < 3; ++c)
-                components[c](dof) = sigma[c];
-            }
-        }
+    set_owned_nodal_values(body,
+                           fe,
+                           dofs,
+                           owned_dofs,
+                           constraints,
+                           vertex_dofs,
+                           NodeRecovery{patches, fits, relevant_vertices},
+                           components);
     for (auto &v : components)
       {
         constraints.distribute(v);

@@ -262,9 +262,11 @@ namespace coulomb_adapt
     unsigned int n_removed = 0;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
+        // With the temporary files of the run-wide ones, which a run
+        // killed during a write leaves behind.
         const std::regex own_file(
-          "(body-[12]|contact)(_[0-9]{3}(\\.[0-9]+)?\\.(vtu|pvtu|csv)|\\.pvd)"
-          "(\\.tmp)?");
+          "(body-[12]|contact)(_[0-9]{3}(\\.[0-9]+)?\\.(vtu|pvtu|csv|h5)|"
+          "\\.(pvd|xdmf))(\\.tmp)?|(summary\\.json|parameters\\.prm)\\.tmp");
         std::error_code error;
         for (const auto &entry :
              std::filesystem::directory_iterator(directory, error))

@@ -90,6 +90,32 @@ namespace coulomb_adapt
           TrilinosWrappers::MPI::Vector          &solution) override;
 
   private:
+    /** The Krylov solve's start: the last u on the components that stay
+     * unknowns, zero at the eliminated ones (and before the first solve
+     * on this mesh). */
+    TrilinosWrappers::MPI::Vector
+    initial_reduced_guess() const;
+    /** Whether the current AMG hierarchy may serve this solve: few slave
+     * nodes changed set since it was built (the same on every rank), and
+     * its last solve needed few iterations. */
+    bool
+    hierarchy_may_be_reused() const;
+    /** The reduced system solved with the current hierarchy, the
+     * iterations capped; throws SolverControl::NoConvergence past the
+     * cap. */
+    LinearSolverReport
+    solve_with_current_hierarchy(
+      const parameters::LinearSolver &settings,
+      TrilinosWrappers::MPI::Vector  &reduced_solution);
+    /** A new hierarchy built for the reduced operator, and the reduced
+     * system solved from @p initial_guess with it. */
+    LinearSolverReport
+    solve_with_fresh_hierarchy(
+      const std::vector<std::vector<double>> &near_null_space,
+      const parameters::LinearSolver         &settings,
+      const TrilinosWrappers::MPI::Vector    &initial_guess,
+      TrilinosWrappers::MPI::Vector          &reduced_solution);
+
     IndexSet                       owned;
     MPI_Comm                       communicator;
     TrilinosWrappers::SparseMatrix stiffness;

@@ -59,6 +59,18 @@ namespace coulomb_adapt
     /** The rows of one slave node: the conditions of its set. */
     void
     assemble_slave_node_rows(const SlaveNodeConditions &node);
+    /** v . (D u^1 - M u^2)_j = value of @p node in @p row, scaled to the
+     * size of K. */
+    void
+    add_jump_row(const SlaveNodeConditions    &node,
+                 const types::global_dof_index row,
+                 const Tensor<1, 2>           &v,
+                 double                        value);
+    /** w . lambda_j = 0 of @p node in @p row. */
+    void
+    add_traction_row(const SlaveNodeConditions    &node,
+                     const types::global_dof_index row,
+                     const Tensor<1, 2>           &w);
     void
     add_row(const types::global_dof_index row, const double right_hand_side);
 

@@ -85,7 +85,9 @@ namespace coulomb_adapt
 
   /**
    * Remove the program's own per-cycle files (`body-1_CCC.vtu`,
-   * `contact_CCC.csv`, ..., their .tmp files and the .pvd lists) from
+   * `contact_CCC.csv`, `body-1_CCC.h5`, ..., their .tmp files, the .pvd
+   * and .xdmf lists, and the .tmp files of summary.json and
+   * parameters.prm that a killed run can leave) from
    * @p directory on rank 0 of @p comm, and say in @p log (rank 0's) how many. A run
    * into the directory of an earlier, longer one would otherwise leave
    * that run's later cycles beside this run's summary.json, as if they
