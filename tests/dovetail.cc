@@ -3,10 +3,9 @@
 // omega = 1000 rad/s about an axis 300 mm below the root, mu = 0.5, P1
 // triangles), on its first mesh, against truths that need no finite
 // elements:
-//  - global equilibrium: only the contact holds the blade sideways and
-//    radially (its two hold points on the centre line fix u_x, which the
-//    symmetric problem does not use), so the contact force on it is minus
-//    its centrifugal force rho omega^2 A (x_c - x_axis). A and the
+//  - global equilibrium: only the contact holds the blade, so the contact
+//    force on it is minus its centrifugal force
+//    rho omega^2 A (x_c - x_axis). A and the
 //    centroid x_c are computed here twice, in closed form from the
 //    polygon's corners (shoelace) and by quadrature over the blade's mesh;
 //    the force to 1e-11 relative (measured 4e-14);

@@ -97,11 +97,12 @@ for cycle, ls, tag in ((cycles[0], "--", "cycle %d" % cycles[0]),
     ax_p.plot(s, mu * p, ls, color="tab:green", lw=1,
               label="mu p, " + tag)
     ax_p.plot(s, t, ls, color="tab:red", lw=1, label="|lambda_t|, " + tag)
-ax_p.set_xlabel("distance from the blade's corner (10, 2) along the flank (mm)")
+ax_p.set_xlabel("distance along the flank from (10, 2), mm")
 ax_p.set_ylabel("MPa")
 ax_p.set_ylim(0, 800)
 ax_p.legend(fontsize=7)
-ax_p.set_title("(c) right flank, mu = %g" % mu)
+ax_p.set_title("(c) right flank, mu = %g (p up to %.0f MPa)"
+               % (mu, max(float(r["contact_pressure"]) for r in contact(last))))
 fig.tight_layout()
 fig.savefig(png, dpi=130)
 print("wrote", png)

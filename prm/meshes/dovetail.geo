@@ -16,8 +16,7 @@
 //
 // Each body is two surfaces, its right half and the mirror image of it
 // (x -> -x), and the left half's mesh is the right half's mirrored (gmsh's
-// periodic meshes), so the mesh is symmetric about x = 0. Two points on
-// the blade's centre line, "blade axis", are nodes of the mesh.
+// periodic meshes), so the mesh is symmetric about x = 0.
 h_c = 0.5;    // element size on the flanks
 h_b = 2;      // elsewhere in the blade
 h_d = 4;      // elsewhere in the disc
@@ -31,17 +30,13 @@ Point(3) = {10, 2, 0, h_c};
 Point(4) = {6, 2 + 4 * t, 0, h_c};
 Point(5) = {6, 40, 0, h_b};
 Point(6) = {0, 40, 0, h_b};
-Point(7) = {0, 30, 0, h_b};
-Point(8) = {0, 20, 0, h_b};
 Line(1) = {1, 2};   // base of the root
 Line(2) = {2, 3};
 Line(3) = {3, 4};   // right flank
 Line(4) = {4, 5};
 Line(5) = {5, 6};   // tip
-Line(6) = {6, 7};   // centre line
-Line(7) = {7, 8};
-Line(8) = {8, 1};
-Curve Loop(1) = {1, 2, 3, 4, 5, 6, 7, 8};
+Line(6) = {6, 1};   // centre line
+Curve Loop(1) = {1, 2, 3, 4, 5, 6};
 Plane Surface(1) = {1};
 
 // Blade, left half: the mirror image.
@@ -54,7 +49,7 @@ Line(12) = {13, 12};
 Line(13) = {14, 13};  // left flank
 Line(14) = {15, 14};
 Line(15) = {6, 15};
-Curve Loop(2) = {11, -8, -7, -6, 15, 14, 13, 12};
+Curve Loop(2) = {11, -6, 15, 14, 13, 12};
 Plane Surface(2) = {2};
 
 // Disc segment, right half, counterclockwise from the centre of its lower
@@ -108,4 +103,3 @@ Physical Curve("blade flanks") = {3, 13};
 Physical Curve("slot flanks") = {25, 35};
 Physical Curve("disc base") = {21, 31};
 Physical Curve("disc sides") = {22, 32};
-Physical Point("blade axis") = {7, 8};
