@@ -240,6 +240,17 @@ namespace coulomb_adapt
                           "boundary's outward normal n (traction -p n; p > 0 "
                           "presses on the body): 'group: p' (MPa), e.g. "
                           "'outer: 5'.");
+        prm.declare_entry("Tangential tractions",
+                          "",
+                          Patterns::Map(Patterns::Anything(),
+                                        Patterns::Anything()),
+                          "Tangential traction per physical curve, "
+                          "following the boundary's tangent t = (-n_y, n_x) "
+                          "(the outward normal n turned counterclockwise: "
+                          "counterclockwise around a body's outer boundary, "
+                          "clockwise around its holes): 'group: s' (MPa), "
+                          "the traction s t, e.g. 'shaft bore: -20' turns a "
+                          "shaft counterclockwise at its bore.");
         prm.declare_entry("Contact pair",
                           "contact, contact",
                           Patterns::List(Patterns::Anything(), 2, 2),
@@ -251,8 +262,9 @@ namespace coulomb_adapt
                           "0, -10",
                           Patterns::List(Patterns::Double(), 2, 2),
                           "Old syntax, used only if 'Fixed components', "
-                          "'Prescribed rotations', 'Tractions' and 'Normal "
-                          "pressures' are all empty: uniform traction "
+                          "'Prescribed rotations', 'Tractions', 'Normal "
+                          "pressures' and 'Tangential tractions' are all "
+                          "empty: uniform traction "
                           "(x, y) on the curves 'traction' (MPa), with "
                           "'dirichlet' clamped.");
         declare_body_materials(prm, 130000., 0.3, 130000., 0.3);
@@ -341,7 +353,7 @@ namespace coulomb_adapt
 
 
 
-    // The conditions of each group, from the three entries (or else the
+    // The conditions of each group, from the entries (or else the
     // old syntax), and which groups clamp both components.
     void
     GmshFile::parse_conditions(ParameterHandler &prm, GmshGroupUse &use)
@@ -360,8 +372,9 @@ namespace coulomb_adapt
                              prm.get("Traction"),
                              "the default: the old 'Traction' entry is not "
                              "used with 'Fixed components', 'Prescribed "
-                             "rotations', 'Tractions' or 'Normal "
-                             "pressures' (give the traction in "
+                             "rotations', 'Tractions', 'Normal pressures' "
+                             "or 'Tangential tractions' (give the traction "
+                             "in "
                              "'Tractions = group: tx; ty')");
       for (const auto &[group, c] : conditions)
         {
@@ -390,7 +403,7 @@ namespace coulomb_adapt
 
 
 
-    // Each group's conditions, from the three entries in turn; a group
+    // Each group's conditions, from the entries in turn; a group
     // keeps the entry that named it first for messages.
     void
     GmshFile::parse_condition_entries(ParameterHandler &prm, GmshGroupUse &use)
@@ -440,6 +453,16 @@ namespace coulomb_adapt
           conditions[group].loaded   = true;
           add_group(group, "Normal pressures");
         }
+      for (const auto &[group, value] : group_map(prm, "Tangential tractions"))
+        {
+          conditions[group].shear  = parse_number(value,
+                                                 "Tangential tractions",
+                                                 group,
+                                                 "a tangential traction s "
+                                                  "(MPa)");
+          conditions[group].loaded = true;
+          add_group(group, "Tangential tractions");
+        }
     }
 
 
@@ -455,8 +478,9 @@ namespace coulomb_adapt
           if (c.loaded)
             throw ParameterError(
               "gmsh file '" + mesh_file + "': '" + support.group +
-              "' is a physical point, not a physical curve: tractions and "
-              "normal pressures act on boundary curves");
+              "' is a physical point, not a physical curve: tractions, "
+              "normal pressures and tangential tractions act on boundary "
+              "curves");
           for (unsigned int k = 0; k < 2; ++k)
             if (c.fixed[k] && *c.fixed[k] != 0)
               throw ParameterError(
@@ -512,6 +536,7 @@ namespace coulomb_adapt
               "Scene/Gmsh/Prescribed rotations",
               "Scene/Gmsh/Tractions",
               "Scene/Gmsh/Normal pressures",
+              "Scene/Gmsh/Tangential tractions",
               "Scene/Gmsh/Traction",
               "Scene/Gmsh/Body 1 and 2/Density, Gravity, Angular velocity"};
     }
@@ -583,6 +608,7 @@ namespace coulomb_adapt
           std::optional<double>                rotation;
           Tensor<1, 2>                         traction;
           double                               pressure = 0;
+          double                               shear    = 0;
           bool                                 loaded   = false;
           for (const auto &g : groups)
             {
@@ -594,6 +620,7 @@ namespace coulomb_adapt
                   fixed[k] = c.fixed[k];
               traction += c.traction;
               pressure += c.pressure;
+              shear += c.shear;
               loaded = loaded || c.loaded;
             }
           // The linearised rigid rotation: the small-strain problem's
@@ -635,9 +662,10 @@ namespace coulomb_adapt
           if (loaded)
             d.tractions.push_back(
               {id,
-               [this, traction, pressure](const Point<2> &,
-                                          const Tensor<1, 2> &n) {
-                 return load_fraction * (traction - pressure * n);
+               [this, traction, pressure, shear](const Point<2> &,
+                                                 const Tensor<1, 2> &n) {
+                 const Tensor<1, 2> t({-n[1], n[0]});
+                 return load_fraction * (traction - pressure * n + shear * t);
                }});
         }
 

@@ -14,13 +14,14 @@ namespace coulomb_adapt
      * Any two-body geometry from a gmsh `.geo` or `.msh` file, with boundary
      * conditions and loads given per physical group (in the manner of
      * ASPECT's `Prescribed velocity boundary indicators`): fixed
-     * components with optional prescribed values, tractions and normal
-     * pressures per curve group, the contact pair (slave group, master
-     * group), and per body its surfaces, material and body force (gravity,
-     * centrifugal). doc/scenes.md describes the entries.
+     * components with optional prescribed values, tractions, normal
+     * pressures and tangential tractions per curve group, the contact pair
+     * (slave group, master group), and per body its surfaces, material and body
+     * force (gravity, centrifugal). doc/scenes.md describes the entries.
      *
      * Without any of `Fixed components`, `Prescribed rotations`,
-     * `Tractions`, `Normal pressures` the old fixed groups apply:
+     * `Tractions`, `Normal pressures`, `Tangential tractions` the old
+     * fixed groups apply:
      * `dirichlet` clamped, the uniform `Traction` on `traction`, contact
      * on `contact`.
      */
@@ -73,7 +74,11 @@ namespace coulomb_adapt
         Tensor<1, 2> traction;
         /** Normal pressure (MPa): the traction -p n. */
         double pressure = 0;
-        /** Whether any traction or pressure is given. */
+        /** Tangential traction (MPa): the traction s t along the
+         * boundary's tangent t = (-n_y, n_x) (n turned counterclockwise). */
+        double shear = 0;
+        /** Whether any traction, pressure or tangential traction is
+         * given. */
         bool loaded = false;
       };
 
