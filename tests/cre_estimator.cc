@@ -15,7 +15,7 @@
 //    whose own error (from the 2-refinement reference) is printed;
 //  - epsilon^2 = sum epsilon_E^2 and homogeneity (loads x 1e3 leave epsilon
 //    and every epsilon_E unchanged), blocks with friction; the same
-//    estimate, bit for bit, on up to 4 threads as on 1;
+//    estimate on up to 4 threads as on 1, to 1e-13 of epsilon;
 //  - the 2-rank run prints what the 1-rank run prints.
 
 #include <deal.II/base/multithread_info.h>
@@ -230,21 +230,27 @@ main(int argc, char **argv)
 
     // The cells and node systems run on deal.II's threads, their results
     // added in the cells' order: the estimate must not depend on how many
-    // threads there are (the run above used 1).
+    // threads there are (the run above used 1). It is bit for bit the same
+    // in nearly every run, but not always (one 2-rank run in about 20
+    // differed): the threads change the addresses of the node systems'
+    // LAPACK workspaces and of the CG's vectors, and vectorised BLAS
+    // kernels may round differently on differently aligned data. A race
+    // between threads would change the estimate far beyond round-off.
     MultithreadInfo::set_thread_limit(4);
     AssertThrow(MultithreadInfo::n_threads() > 1,
                 ExcMessage("this check needs more than one thread: "
                            "DEAL_II_NUM_THREADS limits them to 1"));
     const ErrorEstimate threaded = cre(b1, p1->solver.get(), p1->parameters);
     MultithreadInfo::set_thread_limit(1);
-    const auto i_threaded = testing::gathered_indicators(b1, threaded);
+    const auto i_threaded    = testing::gathered_indicators(b1, threaded);
     double     thread_change = std::abs(threaded.epsilon - e1.epsilon);
     for (unsigned int i = 0; i < i1.size(); ++i)
       thread_change = std::max(thread_change, std::abs(i_threaded[i] - i1[i]));
+    const bool same_to_round_off = thread_change <= 1e-13 * e1.epsilon;
     out << "  up to 4 threads instead of 1: epsilon and every epsilon_E "
-           "identical: "
-        << (thread_change == 0 ? "yes" : "no") << std::endl;
-    AssertThrow(thread_change == 0,
+           "the same to 1e-13 epsilon: "
+        << (same_to_round_off ? "yes" : "no") << std::endl;
+    AssertThrow(same_to_round_off,
                 ExcMessage("cre: the estimate depends on the thread count"));
   }
 }

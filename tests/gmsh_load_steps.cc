@@ -41,9 +41,8 @@ main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
-  const std::string  root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const std::string  prm  = root + "/prm/blocks_gmsh.prm";
-  const std::string  geo  = root + "/prm/meshes/blocks_structured.geo";
+  const std::string prm = testing::example_file("blocks_gmsh.prm");
+  const std::string geo = testing::example_file("meshes/blocks_structured.geo");
   const unsigned int n_steps = 4;
 
   out << "1. traction (0, -10) MPa on the top in " << n_steps << " load steps"

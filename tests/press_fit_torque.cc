@@ -115,7 +115,6 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
   const testing::HeldPressFit fit;
   const double                p       = fit.pressure();
   const double                mu      = 0.3;
@@ -129,12 +128,13 @@ main(int argc, char *argv[])
       << " rad: " << fit.stick_torque(theta) << " N mm/mm" << std::endl;
 
   auto problem = testing::solve_contact_setup(
-    {{"Scene/Gmsh/Mesh file", root + "/prm/meshes/press_fit_torque.geo"},
+    {{"Scene/Gmsh/Mesh file",
+      testing::example_file("meshes/press_fit_torque.geo")},
      {"Scene/Gmsh/Prescribed rotations",
       "shaft bore: " + Patterns::Tools::Convert<double>::to_string(theta)},
      {"Scene/Gmsh/Load steps", std::to_string(n_steps)},
      {"Contact/Friction coefficient", "0.3"}},
-    root + "/prm/press_fit_torque.prm");
+    testing::example_file("press_fit_torque.prm"));
   const Scene &scene = *problem->scene;
   AssertThrow(scene.n_load_steps() == n_steps,
               ExcMessage("the scene's load steps are not 'Load steps'"));

@@ -44,12 +44,12 @@ namespace
     std::array<FootForce, 2> feet;
     while (std::getline(file, line))
       {
-        std::stringstream   row(line);
-        std::string         cell;
+        std::stringstream        row(line);
+        std::string              cell;
         std::vector<std::string> cells;
         while (std::getline(row, cell, ','))
           cells.push_back(cell);
-        FootForce &foot = feet[std::stod(cells[0]) < 100 ? 0 : 1];
+        FootForce   &foot   = feet[std::stod(cells[0]) < 100 ? 0 : 1];
         const double weight = std::stod(cells[4]);
         foot.normal += weight * std::stod(cells[5]);
         foot.tangential += weight * std::stod(cells[6]);
@@ -66,16 +66,15 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string   root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  testing::ProgramRun run({{"Scene/Gmsh/Mesh file",
-                            root + "/tests/data/two_feet.geo"},
-                           {"Adaptation/Strategy", "remesh"},
-                           {"Adaptation/Target error", "2"},
-                           {"Adaptation/Number of cycles", "4"},
-                           {"Output/Write VTU", "false"},
-                           {"Output/Output directory",
-                            "remesh_two_part_body_files"}},
-                          root + "/prm/gmsh_blocks.prm");
+  testing::ProgramRun run(
+    {{"Scene/Gmsh/Mesh file",
+      std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/two_feet.geo"},
+     {"Adaptation/Strategy", "remesh"},
+     {"Adaptation/Target error", "2"},
+     {"Adaptation/Number of cycles", "4"},
+     {"Output/Write VTU", "false"},
+     {"Output/Output directory", "remesh_two_part_body_files"}},
+    testing::example_file("gmsh_blocks.prm"));
 
   const auto &cycles = run.summary["cycles"];
   AssertThrow(cycles.size() >= 2,
@@ -86,15 +85,14 @@ main(int argc, char *argv[])
     {
       const unsigned int c    = cycle["cycle"].get<unsigned int>();
       const auto         feet = foot_forces(run.parameters.output.directory +
-                                    "/contact_00" + std::to_string(c) +
-                                    ".csv");
+                                    "/contact_00" + std::to_string(c) + ".csv");
       out << "cycle " << c << " (" << cycle["strategy"].get<std::string>()
           << "): " << cycle["n_dofs"].get<unsigned long>() << " DoFs, eps "
           << std::fixed << std::setprecision(3)
           << 100 * cycle["epsilon"].get<double>() << " %" << std::endl;
       for (unsigned int f = 0; f < 2; ++f)
         {
-          const double normal_error = std::abs(feet[f].normal / load - 1);
+          const double normal_error     = std::abs(feet[f].normal / load - 1);
           const double tangential_error = std::abs(feet[f].tangential / load);
           out << "  " << (f == 0 ? "left" : "right")
               << " foot: nodes in contact > 0: "
@@ -112,6 +110,5 @@ main(int argc, char *argv[])
                                  std::to_string(feet[f].tangential)));
         }
     }
-  out << "stop: " << run.summary["stop_reason"].get<std::string>()
-      << std::endl;
+  out << "stop: " << run.summary["stop_reason"].get<std::string>() << std::endl;
 }

@@ -210,8 +210,8 @@ namespace coulomb_adapt
       std::vector<std::vector<unsigned int>>
       connected_parts(const std::vector<std::vector<Point<2>>> &polygons)
       {
-        const unsigned int        n = polygons.size();
-        std::vector<unsigned int> depth(n, 0);
+        const unsigned int             n = polygons.size();
+        std::vector<unsigned int>      depth(n, 0);
         std::vector<std::vector<bool>> contains(n, std::vector<bool>(n, false));
         for (unsigned int l = 0; l < n; ++l)
           for (unsigned int m = 0; m < n; ++m)
