@@ -99,7 +99,7 @@ def main():
               % (size, solver, row["output"], row["dofs"], row["peak_MiB"],
                  row["kB_per_dof"]), flush=True)
     old = common.read_csv(a.csv, text=("build", "size", "solver", "output",
-                                       "command"))
+                                       "command"), ints=("dofs", "newton"))
     old = [r for r in old if r.get("build") != a.build]
     common.write_csv(a.csv, old + rows, FIELDS)
 
