@@ -200,6 +200,8 @@ namespace coulomb_adapt
     ContactSolveOutcome outcome =
       contact_solve_driver->solve(previous_contact_states, !last_adaptation);
     contact_solver = std::move(outcome.solver);
+    if (contact_solver)
+      contact_solver->release_newton_system();
     cycle_report->record_contact_solve(outcome);
   }
 

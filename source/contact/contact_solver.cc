@@ -518,6 +518,15 @@ namespace coulomb_adapt
 
 
 
+  void
+  ContactSolver::release_newton_system()
+  {
+    newton_system.reset();
+    near_null_space = std::vector<std::vector<double>>();
+  }
+
+
+
   const std::vector<ContactNodeState> &
   ContactSolver::node_states() const
   {

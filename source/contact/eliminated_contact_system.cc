@@ -300,6 +300,10 @@ namespace coulomb_adapt
       return;
     node_states = std::move(states);
     node_data   = std::move(data);
+    // The last step's matrix is not needed any more unless the AMG
+    // hierarchy was built from it (amg_matrix keeps it then): freed before
+    // the products below build the next one.
+    reduced.reset();
 
     symmetric                       = true;
     const EliminatedRows eliminated = eliminated_rows(nodes, symmetric);

@@ -106,6 +106,16 @@ namespace coulomb_adapt
     const LinearSolverReport &
     last_linear_solver_report() const;
 
+    /** Free the Newton system (the eliminated system's copy of K, the
+     * reduced matrices and the AMG hierarchy, or the direct solver's
+     * factorisation) once no further load step will be solved: the node
+     * states, the mortar interface and the bodies' solutions stay. The
+     * indicator and the output then run in that memory instead of on top
+     * of it (benchmarks/adaptive_run/README.md, "Memory"). A later solve()
+     * builds the system again. */
+    void
+    release_newton_system();
+
     const std::vector<ContactNodeState> &
     node_states() const override;
 
