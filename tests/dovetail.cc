@@ -34,9 +34,8 @@ main(int argc, char *argv[])
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
 
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
-  const double      rho = 7.85e-9, omega = 1000, mu = 0.5;
-  const Point<2>    axis(0, -300);
+  const double   rho = 7.85e-9, omega = 1000, mu = 0.5;
+  const Point<2> axis(0, -300);
 
   // The blade's outline (dovetail.geo), counterclockwise: flanks at 30
   // degrees to the x axis from the root's corners (+-10, 2) up to the neck
@@ -61,10 +60,11 @@ main(int argc, char *argv[])
     }
   const Point<2> centroid(first_moment / A);
 
-  auto               problem = testing::solve_contact({{"Scene/Gmsh/Mesh file",
-                                                        root + "/prm/meshes/dovetail.geo"}},
-                                        root + "/prm/dovetail.prm");
-  const ElasticBody &blade   = *problem->bodies[0];
+  auto problem =
+    testing::solve_contact({{"Scene/Gmsh/Mesh file",
+                             testing::example_file("meshes/dovetail.geo")}},
+                           testing::example_file("dovetail.prm"));
+  const ElasticBody &blade = *problem->bodies[0];
 
   // The same by quadrature over the blade's mesh.
   double       A_mesh = 0;

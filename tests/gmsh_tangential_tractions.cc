@@ -31,15 +31,15 @@ main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
-  const std::string root = std::string(COULOMB_ADAPT_TEST_DATA_DIR) + "/../..";
 
   out << "1. tangential traction 2 MPa and normal pressure 10 MPa on a "
          "straight edge against the traction (-2, -10) MPa"
       << std::endl;
   {
-    const std::string prm = root + "/prm/blocks_gmsh.prm";
-    const std::string geo = root + "/prm/meshes/blocks_structured.geo";
-    const auto        vector_load =
+    const std::string prm = testing::example_file("blocks_gmsh.prm");
+    const std::string geo =
+      testing::example_file("meshes/blocks_structured.geo");
+    const auto vector_load =
       testing::solve_contact({{"Scene/Gmsh/Mesh file", geo},
                               {"Scene/Gmsh/Tractions", "loaded top: -2; -10"}},
                              prm);
@@ -85,7 +85,8 @@ main(int argc, char *argv[])
   {
     const double s       = -13.5;
     auto         problem = testing::solve_contact(
-      {{"Scene/Gmsh/Mesh file", root + "/prm/meshes/press_fit_torque.geo"},
+      {{"Scene/Gmsh/Mesh file",
+                testing::example_file("meshes/press_fit_torque.geo")},
                {"Finite elements/Polynomial degree", "1"},
                {"Scene/Gmsh/Prescribed rotations", ""},
                {"Scene/Gmsh/Tangential tractions", "shaft bore: -13.5"},
@@ -93,7 +94,7 @@ main(int argc, char *argv[])
                {"Scene/Gmsh/Contact pair", "shaft surface, hub bore"},
                {"Scene/Gmsh/Body 1/Physical surfaces", "shaft"},
                {"Scene/Gmsh/Body 2/Physical surfaces", "hub"}},
-      root + "/prm/press_fit_torque.prm");
+      testing::example_file("press_fit_torque.prm"));
     const ElasticBody &shaft = *problem->bodies[0];
 
     // The applied moment about the origin, by quadrature over the faces
