@@ -171,27 +171,12 @@ namespace coulomb_adapt
         }
         prm.leave_subsection();
       }
-    } // namespace
 
-
-
-    void
-    GmshFile::declare_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Gmsh");
+      // The conditions and loads per physical group, their rotation
+      // centre and the load steps.
+      void
+      declare_condition_entries(ParameterHandler &prm)
       {
-        prm.declare_entry("Mesh file",
-                          "",
-                          Patterns::FileName(),
-                          "A .geo or .msh file with the physical groups "
-                          "named below (by default surfaces 'body 1' "
-                          "(upper, slave), 'body 2' and curves 'dirichlet', "
-                          "'traction', 'contact').");
-        prm.declare_entry("Mesh size factor",
-                          "1",
-                          Patterns::Double(0),
-                          "Factor on the element sizes of a .geo file "
-                          "(gmsh's Mesh.MeshSizeFactor); ignored for .msh.");
         prm.declare_entry("Fixed components",
                           "",
                           Patterns::Map(Patterns::Anything(),
@@ -251,6 +236,29 @@ namespace coulomb_adapt
                           "clockwise around its holes): 'group: s' (MPa), "
                           "the traction s t, e.g. 'shaft bore: -20' turns a "
                           "shaft counterclockwise at its bore.");
+      }
+    } // namespace
+
+
+
+    void
+    GmshFile::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Gmsh");
+      {
+        prm.declare_entry("Mesh file",
+                          "",
+                          Patterns::FileName(),
+                          "A .geo or .msh file with the physical groups "
+                          "named below (by default surfaces 'body 1' "
+                          "(upper, slave), 'body 2' and curves 'dirichlet', "
+                          "'traction', 'contact').");
+        prm.declare_entry("Mesh size factor",
+                          "1",
+                          Patterns::Double(0),
+                          "Factor on the element sizes of a .geo file "
+                          "(gmsh's Mesh.MeshSizeFactor); ignored for .msh.");
+        declare_condition_entries(prm);
         prm.declare_entry("Contact pair",
                           "contact, contact",
                           Patterns::List(Patterns::Anything(), 2, 2),
@@ -582,121 +590,6 @@ namespace coulomb_adapt
     {
       geometry.meshes[body].create_triangulation(tria);
       attach_circle_manifolds(geometry.circle_centres, tria);
-    }
-
-
-
-    BodyDescription
-    GmshFile::describe_body(const unsigned int body) const
-    {
-      BodyDescription d;
-      d.name                = "body " + std::to_string(body + 1);
-      d.material            = materials[body];
-      d.contact_boundary_id = boundary_ids::contact;
-
-      std::set<types::boundary_id> ids_of_body;
-      for (const auto &line :
-           geometry.meshes[body].boundary_lines.boundary_lines)
-        ids_of_body.insert(line.boundary_id);
-      for (const auto &[id, groups] : geometry.groups_of_boundary_id)
-        {
-          if (ids_of_body.count(id) == 0)
-            continue;
-          // The groups' conditions combined (the constructor checked that
-          // they agree).
-          std::array<std::optional<double>, 2> fixed;
-          std::optional<double>                rotation;
-          Tensor<1, 2>                         traction;
-          double                               pressure = 0;
-          double                               shear    = 0;
-          bool                                 loaded   = false;
-          for (const auto &g : groups)
-            {
-              const GroupConditions &c = conditions.at(g);
-              if (c.rotation)
-                rotation = c.rotation;
-              for (unsigned int k = 0; k < 2; ++k)
-                if (c.fixed[k])
-                  fixed[k] = c.fixed[k];
-              traction += c.traction;
-              pressure += c.pressure;
-              shear += c.shear;
-              loaded = loaded || c.loaded;
-            }
-          // The linearised rigid rotation: the small-strain problem's
-          // rigid motion (R(angle) x - x would strain the body by
-          // (cos(angle) - 1) in the linearised strain).
-          if (rotation)
-            d.dirichlet.push_back(
-              {id,
-               ComponentMask(2, true),
-               std::make_shared<FunctionFromFunctionObjects<2>>(
-                 std::vector<std::function<double(const Point<2> &)>>{
-                   [this, angle = *rotation](const Point<2> &x) {
-                     return -load_fraction * angle *
-                            (x[1] - rotation_centre[1]);
-                   },
-                   [this, angle = *rotation](const Point<2> &x) {
-                     return load_fraction * angle * (x[0] - rotation_centre[0]);
-                   }})});
-          else if (fixed[0] || fixed[1])
-            {
-              const std::vector<bool>   mask   = {fixed[0].has_value(),
-                                                  fixed[1].has_value()};
-              const std::vector<double> values = {fixed[0].value_or(0.),
-                                                  fixed[1].value_or(0.)};
-              std::shared_ptr<const Function<2>> displacement;
-              if (values[0] == 0 && values[1] == 0)
-                displacement = std::make_shared<Functions::ZeroFunction<2>>(2);
-              else
-                displacement = std::make_shared<FunctionFromFunctionObjects<2>>(
-                  std::vector<std::function<double(const Point<2> &)>>{
-                    [this, v = values[0]](const Point<2> &) {
-                      return load_fraction * v;
-                    },
-                    [this, v = values[1]](const Point<2> &) {
-                      return load_fraction * v;
-                    }});
-              d.dirichlet.push_back({id, ComponentMask(mask), displacement});
-            }
-          if (loaded)
-            d.tractions.push_back(
-              {id,
-               [this, traction, pressure, shear](const Point<2> &,
-                                                 const Tensor<1, 2> &n) {
-                 const Tensor<1, 2> t({-n[1], n[0]});
-                 return load_fraction * (traction - pressure * n + shear * t);
-               }});
-        }
-
-      // Point supports select their vertex (refinement keeps it).
-      double extent = 0;
-      for (const auto &v : geometry.meshes[body].vertices)
-        extent = std::max({extent, std::abs(v[0]), std::abs(v[1])});
-      for (const auto &support : geometry.point_supports)
-        if (support.body == body)
-          {
-            const auto    &fixed     = conditions.at(support.group).fixed;
-            const Point<2> position  = support.position;
-            const double   tolerance = 1e-12 * extent;
-            d.point_constraints.push_back(
-              {[position, tolerance](const Point<2> &x) {
-                 return x.distance(position) <= tolerance;
-               },
-               ComponentMask(
-                 std::vector<bool>{fixed[0].has_value(), fixed[1].has_value()}),
-               std::nullopt});
-            d.support_points.push_back(position);
-          }
-
-      const BodyForce &f = body_forces[body];
-      if (f.density > 0 && (f.gravity.norm() > 0 || f.angular_velocity != 0))
-        d.body_force = [this, f](const Point<2> &x) {
-          return load_fraction * f.density *
-                 (f.gravity +
-                  f.angular_velocity * f.angular_velocity * (x - f.axis));
-        };
-      return d;
     }
   } // namespace scenes
 } // namespace coulomb_adapt
