@@ -263,10 +263,12 @@ namespace coulomb_adapt
     if (Utilities::MPI::this_mpi_process(comm) == 0)
       {
         // With the temporary files of the run-wide ones, which a run
-        // killed during a write leaves behind.
+        // killed during a write leaves behind, and the lock test file
+        // that MPI-IO (ROMIO) makes beside a parallel HDF5 file.
         const std::regex own_file(
           "(body-[12]|contact)(_[0-9]{3}(\\.[0-9]+)?\\.(vtu|pvtu|csv|h5)|"
-          "\\.(pvd|xdmf))(\\.tmp)?|(summary\\.json|parameters\\.prm)\\.tmp");
+          "\\.(pvd|xdmf))(\\.tmp(\\.locktest\\.[0-9]+)?)?|"
+          "(summary\\.json|parameters\\.prm)\\.tmp");
         std::error_code error;
         for (const auto &entry :
              std::filesystem::directory_iterator(directory, error))

@@ -2,13 +2,24 @@
 """SIGKILL during output writing (issue 21 item 5): every file left is
 complete or absent.
 
-Usage: kill_during_output.py PROGRAM OUTPUT_DIRECTORY [ARGUMENT ...]
+Usage: kill_during_output.py [--mpiexec MPIEXEC --ranks N]
+                             [--kill-at NAME ...]
+                             PROGRAM OUTPUT_DIRECTORY [ARGUMENT ...]
 
 Runs PROGRAM (with the ARGUMENTs: a run that writes several cycles) a few
-times into fresh directories below OUTPUT_DIRECTORY. Each run is watched by
-polling its directory, and killed with SIGKILL as soon as a NAME.tmp file
-is seen: the first, the second, ... such file, so that the
-kills land in the writes of different files and cycles. After each kill
+times into fresh directories below OUTPUT_DIRECTORY, on N MPI ranks with
+--mpiexec (MPIEXEC -np N PROGRAM ...). Each run is watched by polling its
+directory, and killed with SIGKILL as soon as a new file name is seen: the
+first, the second, ... new name, so that the kills land in the writes of
+different files and cycles. A new NAME.tmp is a write that has begun; a
+new final name must be a complete file renamed, and a file written under
+its final name (no NAME.tmp) is caught as it is opened. Then one run per
+--kill-at NAME, killed as soon as NAME or NAME.tmp appears: the write of
+that file (a piece of a .pvtu, the .pvd, an .h5 file) is hit for sure. The run is a session of its own, and all of
+it is killed at once: mpirun's process group and every process of the
+session (Open MPI gives each rank a process group of its own), so that
+the ranks die wherever they are, as on a node failure; the script waits
+until no process of the session is left. After each kill
 every file under a final name must be complete:
 
   - .vtu: well-formed XML whose every binary DataArray decodes (deal.II's
@@ -18,7 +29,11 @@ every file under a final name must be complete:
     complete;
   - summary.json: valid JSON with a list of cycles;
   - contact_CCC.csv: a header and rows of as many fields, ending in a
-    newline.
+    newline;
+  - .h5: an HDF5 file whose superblock's end-of-file address is the
+    file's size (HDF5 writes it when the file is closed);
+  - .xdmf: well-formed XML whose every HDF5 file named in a DataItem is
+    there and complete.
 
 NAME.tmp files may be left (README: a killed run can leave them, the next
 run into the directory removes them). At least one kill must have landed
@@ -30,6 +45,7 @@ must remove it.
 import base64
 import json
 import os
+import re
 import shutil
 import signal
 import struct
@@ -109,6 +125,47 @@ def check_listed(path, tag, attribute, checked):
         check_file(listed, checked)
 
 
+def check_xdmf(path, checked):
+    """Every DataItem names FILE.h5:/DATASET; the file must be complete."""
+    root = ET.parse(path).getroot()
+    items = list(root.iter("DataItem"))
+    if root.tag != "Xdmf" or not items:
+        raise Incomplete(path + ": not an XDMF file with data items")
+    for item in items:
+        name = (item.text or "").strip().split(":")[0]
+        listed = os.path.join(os.path.dirname(path), name)
+        if not os.path.isfile(listed):
+            raise Incomplete("%s lists %s, which is not there"
+                             % (path, name))
+        check_file(listed, checked)
+
+
+def check_hdf5(path):
+    """The superblock (HDF5 file format specification, section II.A) at
+    offset 0: the end-of-file address it holds is the file's size once the
+    file is closed; a file cut short, or still open, differs (or has no
+    superblock yet)."""
+    with open(path, "rb") as f:
+        head = f.read(128)
+    size = os.path.getsize(path)
+    if head[:8] != b"\x89HDF\r\n\x1a\n":
+        raise Incomplete(path + ": no HDF5 signature (%d bytes)" % size)
+    version = head[8]
+    if version in (0, 1):
+        n_offsets = head[13]
+        # Versions, sizes, leaf/internal K, flags; version 1 adds 4 bytes.
+        start = 24 + (4 if version == 1 else 0)
+        eof_at = start + 2 * n_offsets
+    else:
+        n_offsets = head[9]
+        eof_at = 12 + 2 * n_offsets
+    fmt = {4: "<I", 8: "<Q"}[n_offsets]
+    eof = struct.unpack(fmt, head[eof_at:eof_at + n_offsets])[0]
+    if eof != size:
+        raise Incomplete("%s: %d bytes, its superblock says %d"
+                         % (path, size, eof))
+
+
 def check_csv(path):
     with open(path) as f:
         text = f.read()
@@ -145,7 +202,12 @@ def check_file(path, checked):
                 raise Incomplete(path + ": no list of cycles")
         elif name.endswith(".csv"):
             check_csv(path)
-    except (ET.ParseError, ValueError, zlib.error, struct.error) as e:
+        elif name.endswith(".h5"):
+            check_hdf5(path)
+        elif name.endswith(".xdmf"):
+            check_xdmf(path, checked)
+    except (ET.ParseError, ValueError, zlib.error, struct.error,
+            KeyError, IndexError) as e:
         raise Incomplete("%s: %s" % (path, e))
 
 
@@ -153,7 +215,8 @@ def check_directory(directory):
     """The final-named files checked, and the .tmp files left."""
     checked, left = set(), []
     for name in sorted(os.listdir(directory)):
-        if name.endswith(".tmp"):
+        # With MPI-IO's lock test file of a parallel HDF5 NAME.tmp.
+        if re.search(r"\.tmp(\.locktest\.[0-9]+)?$", name):
             left.append(name)
         else:
             check_file(os.path.join(directory, name), checked)
@@ -161,56 +224,119 @@ def check_directory(directory):
 
 
 def run_and_kill(command, directory, trigger, timeout):
-    """Run @p command, SIGKILL it once the @p trigger-th distinct NAME.tmp
-    file has been seen in @p directory. Returns the name of
-    that file, or None if the run ended first."""
+    """Run @p command, SIGKILL it once the @p trigger-th distinct file
+    name has been seen in @p directory (@p trigger a number), or the file
+    @p trigger (a name) or its NAME.tmp. Returns that name, or None if the
+    run ended first."""
     process = subprocess.Popen(command, stdout=subprocess.DEVNULL,
-                               stderr=subprocess.DEVNULL)
+                               stderr=subprocess.DEVNULL,
+                               start_new_session=True)
     seen = []
     killed_at = None
     start = time.monotonic()
     while process.poll() is None:
         if time.monotonic() - start > timeout:
-            process.kill()
-            process.wait()
+            kill_group(process)
             raise SystemExit("the run did not end within %g s" % timeout)
         try:
             with os.scandir(directory) as entries:
                 for entry in entries:
-                    if entry.name.endswith(".tmp") and entry.name not in seen:
+                    if entry.name not in seen:
                         seen.append(entry.name)
         except FileNotFoundError:
             pass
-        if len(seen) >= trigger:
-            process.send_signal(signal.SIGKILL)
-            killed_at = seen[trigger - 1]
+        if isinstance(trigger, int):
+            hit = seen[trigger - 1] if len(seen) >= trigger else None
+        else:
+            hit = next((name for name in seen
+                        if name in (trigger, trigger + ".tmp")), None)
+        if hit is not None:
+            kill_group(process)
+            killed_at = hit
             break
         time.sleep(0.0005)
     process.wait()
+    wait_for_group(process.pid)
     return killed_at
 
 
+def session_members(sid):
+    """The live processes of session @p sid (from /proc; a zombie writes
+    nothing more, and a container's init may never reap it)."""
+    members = []
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open("/proc/%s/stat" % entry) as f:
+                    # pid (comm) state ppid pgrp session ...: comm may
+                    # hold blanks.
+                    fields = f.read().rsplit(")", 1)[1].split()
+                if fields[0] != "Z" and int(fields[3]) == sid:
+                    members.append(int(entry))
+            except (OSError, IndexError, ValueError):
+                pass
+    return members
+
+
+def kill_group(process):
+    """SIGKILL to every process of the run: its process group, and every
+    process of its session (Open MPI's mpirun puts each rank in a process
+    group of its own, in mpirun's session; a rank that outlived mpirun
+    would write on)."""
+    for pid in [process.pid] + session_members(process.pid):
+        try:
+            if pid == process.pid:
+                os.killpg(pid, signal.SIGKILL)
+            else:
+                os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+    process.wait()
+
+
+def wait_for_group(sid, timeout=10):
+    """Until no process of the run's session @p sid is left."""
+    start = time.monotonic()
+    while session_members(sid):
+        if time.monotonic() - start > timeout:
+            raise SystemExit("processes %s of the killed run are still "
+                             "there after %g s" % (session_members(sid),
+                                                   timeout))
+        time.sleep(0.01)
+
+
 def main():
-    program, output = sys.argv[1], sys.argv[2]
-    arguments = sys.argv[3:]
+    launcher = []
+    args = sys.argv[1:]
+    if args[:1] == ["--mpiexec"]:
+        if args[2:3] != ["--ranks"]:
+            raise SystemExit("--mpiexec MPIEXEC needs --ranks N")
+        launcher = [args[1], "-np", args[3]]
+        args = args[4:]
+    names = []
+    while args[:1] == ["--kill-at"]:
+        names.append(args[1])
+        args = args[2:]
+    program, output = launcher + [args[0]], args[1]
+    arguments = args[2:]
     shutil.rmtree(output, ignore_errors=True)
     os.makedirs(output)
     timeout = 60
     landed = None
     failures = []
-    for trigger in (1, 2, 4, 7, 12, 20, 30):
-        directory = os.path.join(output, "kill_%02d" % trigger)
-        command = [program] + arguments + [
+    for number, trigger in enumerate([1, 2, 4, 7, 12, 20, 30, 45] + names):
+        directory = os.path.join(output, "kill_%02d" % number)
+        command = program + arguments + [
             "-s", "Output/Output directory=" + directory]
         killed_at = run_and_kill(command, directory, trigger, timeout)
         try:
             n_checked, left = check_directory(directory)
         except (Incomplete, OSError) as e:
             failures.append(str(e))
-            print("kill at .tmp file %d (%s): INCOMPLETE: %s"
+            print("kill at new file %s (%s): INCOMPLETE: %s"
                   % (trigger, killed_at, e))
             continue
-        print("kill at .tmp file %d (%s): %d files complete, left: %s"
+        print("kill at new file %s (%s): %d files complete, left: %s"
               % (trigger, killed_at or "run ended first", n_checked,
                  ", ".join(left) or "none"))
         if left and landed is None:
@@ -223,7 +349,7 @@ def main():
                          "left): nothing was tested")
 
     # The next run into a directory with a .tmp file left removes it.
-    command = [program] + arguments + [
+    command = program + arguments + [
         "-s", "Output/Output directory=" + landed,
         "-s", "Adaptation/Number of cycles=1"]
     result = subprocess.run(command, stdout=subprocess.DEVNULL,
