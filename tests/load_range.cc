@@ -14,6 +14,10 @@
 //    the solve); energies that are no doubles (1e600) are reported scaled
 //    and listed in summary.json, which holds no null;
 //  - moduli times 1e100 and 1e-100 with the loads alike give the same;
+//    so do moduli times 1e+-200 and 1e+-300 with the loads alike (moduli
+//    and loads divided together), and moduli alone times 1e+-150 and
+//    1e+-250 (strains of 1e-253 ... 1e148: displacements scaled too);
+//    strains beyond 1e+-300 stop before the solve;
 //  - manufactured (no contact) with amplitudes 1e-300 and 1e200: the
 //    epsilon, epsilon_E, DoFs and relative exact error of amplitude 1;
 //  - with an initial gap (hertz) the problem is not homogeneous: line
@@ -253,6 +257,99 @@ main(int argc, char **argv)
       AssertThrow(same, ExcMessage("moduli: not the same solution"));
       AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
     }
+
+  // Moduli and loads both beyond 1e+-100 (before: moduli and pressure
+  // times 1e200 "would slide"): divided together by a power of 2, the
+  // strains stay (displacement scale 1): the same epsilon, every epsilon_E,
+  // DoFs and contact sets; the force and the strain energy scale with the
+  // factor. Then moduli alone beyond 1e+-100 (strains of 1e-253 ... 1e148
+  // with ordinary loads; before: a stop after the solve for the smallest
+  // moduli): the displacements are scaled too; the same solution, the
+  // same force, the energy divided by the factor.
+  const auto strain_energy = [](const Result &x) {
+    return x.summary["cycles"]
+      .back()["bodies"][0]["strain_energy"]
+      .get<double>();
+  };
+  const auto scale_exponent = [](const Result &x, const char *key) {
+    return x.summary.contains(key) ? std::ilogb(x.summary[key].get<double>()) :
+                                     0;
+  };
+  for (const bool with_loads : {true, false})
+    for (const std::string &factor :
+         with_loads ?
+           std::vector<std::string>{"1e-300", "1e-200", "1e200", "1e300"} :
+           std::vector<std::string>{"1e-150", "1e-250", "1e150", "1e250"})
+      {
+        std::ostringstream E;
+        E << std::setprecision(17) << 130000. * std::stod(factor);
+        const std::string pressure = with_loads ? factor : "1";
+        const Result      r =
+          run({{"Scene/Name", "blocks"},
+               {"Scene/Blocks/Pressure", pressure},
+               {"Scene/Blocks/Body 1/Young's modulus", E.str()},
+               {"Scene/Blocks/Body 2/Young's modulus", E.str()}},
+              "output-moduli-" + factor + (with_loads ? "-loads" : ""));
+        const bool   same     = same_solution(r, reference, 1e-12);
+        const double f        = std::stod(factor);
+        const bool same_force = std::abs(r.contact_force / std::stod(pressure) /
+                                           reference.contact_force -
+                                         1) <= 1e-12;
+        const double energy_ratio = strain_energy(r) /
+                                    strain_energy(reference) /
+                                    (with_loads ? f : 1 / f);
+        const bool same_energy = std::abs(energy_ratio - 1) <= 1e-12;
+        out << (with_loads ? "moduli and pressure" : "moduli") << " times "
+            << factor << ": load scale 2^" << scale_exponent(r, "load_scale")
+            << ", displacement scale 2^"
+            << (r.summary.contains("displacement_scale") ?
+                  scale_exponent(r, "displacement_scale") :
+                  scale_exponent(r, "load_scale"))
+            << ", epsilon = " << std::fixed << std::setprecision(6)
+            << 100 * r.epsilon << " %" << std::defaultfloat
+            << ", epsilon, epsilon_E, DoFs and contact sets of each cycle as "
+               "pressure 1 to 1e-12: "
+            << (same ? "yes" : "no") << ", contact force / pressure as "
+            << "pressure 1 to 1e-12: " << (same_force ? "yes" : "no")
+            << ", strain energy times " << (with_loads ? "factor" : "1/factor")
+            << " to 1e-12: " << (same_energy ? "yes" : "no")
+            << ", summary.json without null: "
+            << (r.summary_has_null ? "no" : "yes") << std::endl;
+        AssertThrow(r.error.empty(), ExcMessage(r.error));
+        AssertThrow(same && same_force && same_energy,
+                    ExcMessage("moduli: not the same solution"));
+        AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
+      }
+
+  // Strains that no double holds (moduli 1e-200, pressure 1e200: 1e400):
+  // no scaling helps; a stop before the solve on every rank, naming the
+  // entries and the range.
+  {
+    const Result       r = run({{"Scene/Name", "blocks"},
+                                {"Scene/Blocks/Pressure", "1e200"},
+                                {"Scene/Blocks/Body 1/Young's modulus", "1e-200"},
+                                {"Scene/Blocks/Body 2/Young's modulus", "1e-200"}},
+                         "output-moduli-strain-overflow");
+    const unsigned int n_stopped =
+      Utilities::MPI::sum(r.error.empty() ? 0u : 1u, MPI_COMM_WORLD);
+    const bool names_it =
+      r.error.find("scene 'blocks', 'Scene/Blocks/Pressure', "
+                   "'Scene/Blocks/Body 1/Young's modulus', "
+                   "'Scene/Blocks/Body 2/Young's modulus'") !=
+        std::string::npos &&
+      r.error.find("strains of the order of 10^400") != std::string::npos &&
+      r.error.find("outside 1e-300 ... 1e300") != std::string::npos;
+    const bool before_solving =
+      r.log.find("Newton") == std::string::npos && r.cycles.empty();
+    out << "moduli 1e-200, pressure 1e200: stopped on " << n_stopped << "/"
+        << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
+        << " ranks before solving: " << (before_solving ? "yes" : "no")
+        << ", message names the entries, the strain and the range: "
+        << (names_it ? "yes" : "no") << std::endl;
+    AssertThrow(n_stopped == Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
+                ExcMessage("not stopped on every rank"));
+    AssertThrow(names_it && before_solving, ExcMessage("message: " + r.error));
+  }
 
   // Without contact: the manufactured solution's body force, tractions
   // and exact displacement scale together (before: amplitude 1e200 gave

@@ -18,8 +18,8 @@ namespace coulomb_adapt
       "Give loads and moduli in units that keep stresses well inside "
       "1e-120 ... 1e120 (e.g. N, mm, MPa) relative to the moduli: loads "
       "beyond 1e-100 ... 1e100 MPa are scaled automatically when the "
-      "initial gap is zero (theory.md section 6, Homogeneity), but the "
-      "ratio of stresses to moduli (the strains) is not.";
+      "initial gap is zero (theory.md section 6, Homogeneity), and moduli "
+      "beyond 1e-100 ... 1e100 MPa with them.";
 
     std::string
     to_string(const double x)

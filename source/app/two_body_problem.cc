@@ -74,76 +74,6 @@ namespace coulomb_adapt
 
 
 
-  // Theory.md section 6: with zero initial gap the static problem is
-  // positively homogeneous in the loads (tractions, body forces and
-  // prescribed displacements together), so the loads divided by a power
-  // of 2 give the same contact sets, epsilon, epsilon_E and meshes, and
-  // the displacements, stresses and forces divided by it. A gap (Hertz's
-  // curved surfaces, a clearance, an interference) does not scale with
-  // the loads: such a problem is solved as given while its stresses keep
-  // the indicator's squares in the range of doubles, and refused before
-  // the solve beyond.
-  void
-  TwoBodyProblem::choose_load_scale(const LoadStressScale &loads)
-  {
-    std::ostringstream s;
-    s << std::setprecision(3) << "  units: the loads' stress scale is "
-      << loads.stress << " MPa";
-    if (!loads.where.empty())
-      s << " (" << loads.where << ")";
-    // Messages name the scene's load entries (and the mesh file).
-    std::string entries;
-    for (const std::string &entry : scene->load_entries())
-      entries += (entries.empty() ? "'" : ", '") + entry + "'";
-    const std::string source =
-      mesh_source + "scene '" + scene->name() + "', " + entries + ": ";
-    if (!std::isfinite(loads.stress))
-      throw ParameterError(
-        source + s.str().substr(9) +
-        ": not a finite number. Give loads and moduli in units that keep "
-        "stresses finite (e.g. N, mm, MPa)");
-    const double load_scale = units::load_scale_for(loads.stress);
-    if (load_scale == 1)
-      {
-        pcout << s.str() << ": solved as given (load scale 1)" << std::endl;
-        return;
-      }
-    const double gap = has_contact() ? largest_initial_gap(bodies) : 0.;
-    if (gap > 1e-12 * loads.size)
-      {
-        s << ", and the contact curves have an initial gap or overlap of up "
-             "to "
-          << gap
-          << " mm: the problem is not linear in the loads (theory.md "
-             "section 6, Homogeneity), so they cannot be scaled";
-        if (loads.stress <= units::accepted_stress &&
-            loads.stress >= 1 / units::accepted_stress)
-          {
-            pcout << s.str() << "; solved as given (load scale 1)" << std::endl;
-            return;
-          }
-        throw ParameterError(
-          source + s.str().substr(9) +
-          ". With an initial gap the loads must keep stresses within "
-          "1e-120 ... 1e120 MPa in the units of the moduli (e.g. N, mm, "
-          "MPa): beyond, the error indicator's squares of stresses leave "
-          "the range of doubles. Without a gap (touching contact curves) "
-          "any load in the range of doubles is solved");
-      }
-    scene->set_load_scale(load_scale);
-    cycle_report->set_load_scale(load_scale);
-    pcout << s.str() << ": solved with the loads divided by the load scale "
-          << "2^" << std::ilogb(load_scale) << " = " << load_scale
-          << " (theory.md section 6, Homogeneity); displacements, stresses "
-             "and forces are reported multiplied by it, energies by its "
-             "square"
-          << std::endl;
-    // The constraints hold the prescribed displacements.
-    setup_system();
-  }
-
-
-
   void
   TwoBodyProblem::setup_system()
   {
@@ -369,15 +299,21 @@ namespace coulomb_adapt
     // where doubles hold them (CSV, HDF5). VTU's 32-bit floats (1e-38 ...
     // 3e38) cannot hold stresses beyond 1e+-100 MPa: VTU files get the
     // fields of the scaled problem.
-    const double P = scene->load_scale();
-    const bool   scaled_fields =
-      P != 1 && write_fields && parameters.output.format != OutputFormat::hdf5;
+    const units::Scales scales = scene->scales();
+    const bool          scaled = scales.stress != 1 || scales.displacement != 1;
+    const bool          scaled_fields =
+      scaled && write_fields && parameters.output.format != OutputFormat::hdf5;
     if (scaled_fields)
       cycle_report->report_scaled(
         "VTU fields",
-        "32-bit floats cannot hold them; multiply displacement, stresses, "
-        "smoothed stresses, contact_pressure, tangential_traction, gap and "
-        "slip by load_scale, contact_error_density by its square");
+        scales.stress == scales.displacement ?
+          "32-bit floats cannot hold them; multiply displacement, stresses, "
+          "smoothed stresses, contact_pressure, tangential_traction, gap and "
+          "slip by load_scale, contact_error_density by its square" :
+          "32-bit floats cannot hold them; multiply stresses, smoothed "
+          "stresses, contact_pressure and tangential_traction by "
+          "load_scale, displacement, gap and slip by displacement_scale, "
+          "contact_error_density by both");
     if (contact_solver)
       {
         const std::vector<ContactNodeState> &scaled_states =
@@ -387,14 +323,23 @@ namespace coulomb_adapt
                            std::vector<double>();
         std::vector<ContactNodeState> states  = scaled_states;
         std::vector<double>           density = scaled_density;
-        if (P != 1)
+        if (scaled)
           {
             for (ContactNodeState &s : states)
-              for (double *x :
-                   {&s.pressure, &s.tangential_traction, &s.gap, &s.slip})
-                *x = cycle_report->physical(*x, 1, "contact CSV");
+              {
+                for (double *x : {&s.pressure, &s.tangential_traction})
+                  *x = cycle_report->physical(*x,
+                                              units::Kind::stress,
+                                              "contact CSV");
+                for (double *x : {&s.gap, &s.slip})
+                  *x = cycle_report->physical(*x,
+                                              units::Kind::displacement,
+                                              "contact CSV");
+              }
             for (double &d : density)
-              d = cycle_report->physical(d, 2, "contact_error_density");
+              d = cycle_report->physical(d,
+                                         units::Kind::energy,
+                                         "contact_error_density");
           }
         contact_output->write(states,
                               density,
@@ -412,7 +357,7 @@ namespace coulomb_adapt
           fields = {&error_estimate->indicator[b],
                     &error_estimate->density[b],
                     error_estimate->recovered[b].get()};
-        body_outputs[b]->write(*bodies[b], cycle, fields, P);
+        body_outputs[b]->write(*bodies[b], cycle, fields, scales);
       }
   }
 

@@ -52,5 +52,64 @@ namespace coulomb_adapt
       physical = value;
       return true;
     }
+
+
+
+    bool
+    scales_for_moduli(const double stress_scale,
+                      const double modulus,
+                      Scales      &scales)
+    {
+      // In base-2 logarithms: the strain may be no double at all.
+      const double log2_modulus = std::log2(modulus);
+      const double log2_stress =
+        stress_scale > 0 ? std::log2(stress_scale) : log2_modulus;
+      const double log2_strain = log2_stress - log2_modulus;
+      if (std::abs(log2_strain) > std::log2(largest_strain))
+        return false;
+      scales.stress =
+        std::ldexp(1., static_cast<int>(std::lround(log2_stress)));
+      scales.displacement =
+        std::abs(log2_strain) <= std::log2(comfortable_stress) ?
+          1. :
+          std::ldexp(1., static_cast<int>(std::lround(log2_strain)));
+      return true;
+    }
+
+
+
+    // One factor at a time (P, then D): the product may be a double where
+    // P D is not.
+    bool
+    to_physical(const double  scaled_value,
+                const Scales &scales,
+                const Kind    kind,
+                double       &physical)
+    {
+      const double P = scales.stress, D = scales.displacement;
+      double       value = scaled_value;
+      switch (kind)
+        {
+          case Kind::stress:
+            value *= P;
+            break;
+          case Kind::displacement:
+            value *= D;
+            break;
+          case Kind::energy:
+            if (!std::isnormal(std::ldexp(1., std::ilogb(P) + std::ilogb(D))))
+              return false;
+            value = value * P * D;
+            break;
+          case Kind::energy_norm:
+            // With D = P exactly P (the loads scaled alone).
+            value = P == D ? value * P : value * std::sqrt(P) * std::sqrt(D);
+            break;
+        }
+      if (!std::isfinite(value))
+        return false;
+      physical = value;
+      return true;
+    }
   } // namespace units
 } // namespace coulomb_adapt

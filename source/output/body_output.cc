@@ -23,33 +23,46 @@ namespace coulomb_adapt
 
   namespace
   {
-    // The physical fields of a scaled problem, for HDF5's doubles: copies
-    // times P (the owned entries scaled, then the ghosts imported).
+    // The physical fields of a scaled problem, for HDF5's doubles: the
+    // displacement times D; the stresses times P, as those of the solution
+    // times P (with the scaled moduli); the smoothed stresses times P (the
+    // owned entries scaled, then the ghosts imported). With D = P one
+    // vector serves both.
     struct ScaledFields
     {
       TrilinosWrappers::MPI::Vector              solution;
+      TrilinosWrappers::MPI::Vector              stress_solution;
       std::array<RecoveredStress::VectorType, 3> recovered;
     };
+
+    TrilinosWrappers::MPI::Vector
+    scaled_solution(const ElasticBody &body, const double factor)
+    {
+      const MPI_Comm comm = body.triangulation().get_communicator();
+      TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(), comm);
+      owned = body.solution();
+      owned *= factor;
+      TrilinosWrappers::MPI::Vector scaled(body.locally_owned_dof_set(),
+                                           body.locally_relevant_dof_set(),
+                                           comm);
+      scaled = owned;
+      return scaled;
+    }
 
     ScaledFields
     scaled_fields(const ElasticBody     &body,
                   const RecoveredStress *recovered,
-                  const double           load_scale)
+                  const units::Scales   &scales)
     {
-      const MPI_Comm comm = body.triangulation().get_communicator();
-      ScaledFields   scaled;
-      TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(), comm);
-      owned = body.solution();
-      owned *= load_scale;
-      scaled.solution.reinit(body.locally_owned_dof_set(),
-                             body.locally_relevant_dof_set(),
-                             comm);
-      scaled.solution = owned;
+      ScaledFields scaled;
+      scaled.solution = scaled_solution(body, scales.displacement);
+      if (scales.stress != scales.displacement)
+        scaled.stress_solution = scaled_solution(body, scales.stress);
       if (recovered)
         for (unsigned int c = 0; c < 3; ++c)
           {
             scaled.recovered[c] = recovered->component(c);
-            scaled.recovered[c] *= load_scale;
+            scaled.recovered[c] *= scales.stress;
           }
       return scaled;
     }
@@ -107,15 +120,19 @@ namespace coulomb_adapt
   BodyOutput::write(const ElasticBody     &body,
                     const unsigned int     cycle,
                     const BodyErrorFields &error_fields,
-                    const double           load_scale)
+                    const units::Scales   &scales)
   {
     const Triangulation<2> &tria = body.triangulation();
-    const bool         scale = load_scale != 1 && format == OutputFormat::hdf5;
+    const bool scale = (scales.stress != 1 || scales.displacement != 1) &&
+                       format == OutputFormat::hdf5;
     const ScaledFields scaled =
-      scale ? scaled_fields(body, error_fields.recovered, load_scale) :
+      scale ? scaled_fields(body, error_fields.recovered, scales) :
               ScaledFields();
     const TrilinosWrappers::MPI::Vector &solution =
       scale ? scaled.solution : body.solution();
+    const TrilinosWrappers::MPI::Vector &stress_solution =
+      scale && scales.stress != scales.displacement ? scaled.stress_solution :
+                                                      solution;
 
     DataOut<2> data_out;
     data_out.attach_dof_handler(body.dof_handler());
@@ -126,7 +143,7 @@ namespace coulomb_adapt
       std::vector<DataComponentInterpretation::DataComponentInterpretation>(
         2, DataComponentInterpretation::component_is_part_of_vector));
     const StressPostprocessor stresses(body.material());
-    data_out.add_data_vector(solution, stresses);
+    data_out.add_data_vector(stress_solution, stresses);
     const auto cell_fields = material_and_subdomain(tria);
     add_error_fields(data_out,
                      error_fields,

@@ -50,24 +50,50 @@ namespace coulomb_adapt
   void
   CycleReport::set_load_scale(const double load_scale)
   {
-    this->load_scale = load_scale;
-    summary.set("load_scale", load_scale);
+    units::Scales s;
+    s.stress       = load_scale;
+    s.displacement = load_scale;
+    set_scales(s);
   }
 
 
 
-  // With P = 1 (ordinary loads) every number is reported as it is.
+  void
+  CycleReport::set_scales(const units::Scales &scales)
+  {
+    this->scales = scales;
+    summary.set("load_scale", scales.stress);
+    if (scales.displacement != scales.stress)
+      summary.set("displacement_scale", scales.displacement);
+  }
+
+
+
+  // With P = D = 1 (ordinary problems) every number is reported as it is.
   double
   CycleReport::physical(const double       scaled,
-                        const int          power,
+                        const units::Kind  kind,
                         const std::string &key)
   {
     double value = scaled;
-    if (load_scale == 1 || units::to_physical(scaled, load_scale, power, value))
+    if ((scales.stress == 1 && scales.displacement == 1) ||
+        units::to_physical(scaled, scales, kind, value))
       return value;
+    // With D = P (loads scaled alone) as load_scale's power.
+    const char *factor[2][4] = {
+      {"load_scale^1", "load_scale^1", "load_scale^2", "load_scale^1"},
+      {"load_scale",
+       "displacement_scale",
+       "load_scale times displacement_scale",
+       "the square root of load_scale times displacement_scale"}};
+    const bool         two_scales = scales.stress != scales.displacement;
     std::ostringstream reason;
-    reason << std::setprecision(6) << "times load_scale^" << power
-           << " (load_scale = " << load_scale << ") " << key << " = " << scaled
+    reason << std::setprecision(6) << "times "
+           << factor[two_scales][static_cast<int>(kind)]
+           << " (load_scale = " << scales.stress;
+    if (two_scales)
+      reason << ", displacement_scale = " << scales.displacement;
+    reason << ") " << key << " = " << scaled
            << " of the scaled problem is no finite double";
     report_scaled(key, reason.str());
     return scaled;
@@ -145,10 +171,11 @@ namespace coulomb_adapt
           {{"method", outcome.linear_solver.method},
            {"iterations", outcome.linear_solver.n_iterations}}};
     const double force[2] = {
-      physical(report.contact_force[0], 1, "contact_force"),
-      physical(report.contact_force[1], 1, "contact_force")};
-    const double max_pressure =
-      physical(report.max_contact_pressure, 1, "max_contact_pressure");
+      physical(report.contact_force[0], units::Kind::stress, "contact_force"),
+      physical(report.contact_force[1], units::Kind::stress, "contact_force")};
+    const double max_pressure = physical(report.max_contact_pressure,
+                                         units::Kind::stress,
+                                         "max_contact_pressure");
     pcout << "  contact: " << report.newton_iterations << " Newton steps, "
           << report.n_active << " active nodes, "
           << "contact force (" << force[0] << ", " << force[1]
@@ -165,12 +192,13 @@ namespace coulomb_adapt
     record["max_contact_pressure"] = max_pressure;
     record["frictionless"]         = report.frictionless;
     record["contact_moment"] =
-      physical(report.contact_moment, 1, "contact_moment");
+      physical(report.contact_moment, units::Kind::stress, "contact_moment");
     if (outcome.n_load_steps > 1)
       {
         std::vector<double> moments;
         for (const double m : outcome.contact_moment_per_load_step)
-          moments.push_back(physical(m, 1, "contact_moment_per_load_step"));
+          moments.push_back(
+            physical(m, units::Kind::stress, "contact_moment_per_load_step"));
         pcout << "  contact: moment of the contact tractions on body 1 "
                  "about the origin per load step (N mm/mm):";
         for (const double m : moments)
@@ -217,8 +245,9 @@ namespace coulomb_adapt
                "relative change "
             << std::scientific << std::setprecision(3) << c.relative_change
             << std::defaultfloat << "; corrected problem solved";
-    const double max_penetration =
-      physical(c.max_penetration, 1, "max_penetration_clipped");
+    const double max_penetration = physical(c.max_penetration,
+                                            units::Kind::displacement,
+                                            "max_penetration_clipped");
     if (c.max_penetration > 0)
       pcout << "; penetration up to " << std::setprecision(3) << max_penetration
             << " mm clipped";
@@ -286,14 +315,16 @@ namespace coulomb_adapt
     if (compared.empty())
       return;
     auto record_of = [this](const ErrorEstimate &estimate) {
-      return nlohmann::json{
-        {"epsilon", estimate.epsilon},
-        {"epsilon_volume",
-         {estimate.epsilon_volume[0], estimate.epsilon_volume[1]}},
-        {"epsilon_contact", estimate.epsilon_contact},
-        {"normalisation_squared",
-         physical(estimate.normalisation_squared, 2, "normalisation_squared")},
-        {"wall_time_s", estimate.wall_time}};
+      return nlohmann::json{{"epsilon", estimate.epsilon},
+                            {"epsilon_volume",
+                             {estimate.epsilon_volume[0],
+                              estimate.epsilon_volume[1]}},
+                            {"epsilon_contact", estimate.epsilon_contact},
+                            {"normalisation_squared",
+                             physical(estimate.normalisation_squared,
+                                      units::Kind::energy,
+                                      "normalisation_squared")},
+                            {"wall_time_s", estimate.wall_time}};
     };
     nlohmann::json estimators;
     estimators[to_string(e.estimator)] = record_of(e);
@@ -359,18 +390,25 @@ namespace coulomb_adapt
     const double                   reference_energy,
     const double                   epsilon_energy)
   {
-    const double strain_energy = physical(energy, 2, "strain_energy");
+    const double strain_energy =
+      physical(energy, units::Kind::energy, "strain_energy");
     const double reference_strain_energy[2] = {
-      physical(reference.strain_energy(0), 2, "reference_strain_energy"),
-      physical(reference.strain_energy(1), 2, "reference_strain_energy")};
+      physical(reference.strain_energy(0),
+               units::Kind::energy,
+               "reference_strain_energy"),
+      physical(reference.strain_energy(1),
+               units::Kind::energy,
+               "reference_strain_energy")};
     pcout << "  exact error: reference's own error " << std::fixed
           << std::setprecision(3) << 100 * reference.own_error()
           << " % (from the energies " << 100 * reference.own_error_from_energy()
           << " %); energy check: epsilon_energy = " << 100 * epsilon_energy
           << " % (strain energy " << std::scientific << strain_energy
           << ", reference "
-          << physical(reference_energy, 2, "reference_strain_energy") << ")"
-          << std::defaultfloat << std::endl;
+          << physical(reference_energy,
+                      units::Kind::energy,
+                      "reference_strain_energy")
+          << ")" << std::defaultfloat << std::endl;
     record["exact_error_reference_error"] = reference.own_error();
     record["exact_error_reference_error_energy"] =
       reference.own_error_from_energy();
@@ -425,8 +463,10 @@ namespace coulomb_adapt
                                  const ElasticBody      &body,
                                  const ElasticityErrors &e)
   {
-    const double l2     = physical(e.l2, 1, "exact_error.l2");
-    const double energy = physical(e.energy, 1, "exact_error.energy");
+    const double l2 =
+      physical(e.l2, units::Kind::displacement, "exact_error.l2");
+    const double energy =
+      physical(e.energy, units::Kind::energy_norm, "exact_error.energy");
     pcout << "  " << body.name() << ": error against the exact solution: L2 "
           << std::scientific << std::setprecision(3) << l2 << " mm, energy "
           << energy << " (relative " << e.energy / e.energy_of_exact << ")"
@@ -442,7 +482,8 @@ namespace coulomb_adapt
   void
   CycleReport::record_strain_energy(const unsigned int b, const double energy)
   {
-    body_records[b]["strain_energy"] = physical(energy, 2, "strain_energy");
+    body_records[b]["strain_energy"] =
+      physical(energy, units::Kind::energy, "strain_energy");
   }
 
 

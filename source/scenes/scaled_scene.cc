@@ -57,14 +57,17 @@ namespace coulomb_adapt
   ScaledScene::ScaledScene(std::unique_ptr<Scene> scene)
     : scene(std::move(scene))
     , scale(std::make_shared<double>(1.))
+    , displacement_scale(std::make_shared<double>(1.))
   {}
 
 
 
   ScaledScene::ScaledScene(std::unique_ptr<Scene>  scene,
-                           std::shared_ptr<double> load_scale)
+                           std::shared_ptr<double> load_scale,
+                           std::shared_ptr<double> displacement_scale)
     : scene(std::move(scene))
     , scale(std::move(load_scale))
+    , displacement_scale(std::move(displacement_scale))
   {}
 
 
@@ -72,7 +75,28 @@ namespace coulomb_adapt
   void
   ScaledScene::set_load_scale(const double load_scale)
   {
-    *scale = load_scale;
+    *scale              = load_scale;
+    *displacement_scale = load_scale;
+  }
+
+
+
+  void
+  ScaledScene::set_scales(const units::Scales &scales)
+  {
+    *scale              = scales.stress;
+    *displacement_scale = scales.displacement;
+  }
+
+
+
+  units::Scales
+  ScaledScene::scales() const
+  {
+    units::Scales s;
+    s.stress       = *scale;
+    s.displacement = *displacement_scale;
+    return s;
   }
 
 
@@ -126,12 +150,16 @@ namespace coulomb_adapt
       d.body_force = [body_force = d.body_force, s](const Point<2> &x) {
         return body_force(x) / *s;
       };
+    const std::shared_ptr<const double> D = displacement_scale;
     for (auto &dirichlet : d.dirichlet)
       dirichlet.displacement =
-        std::make_shared<ScaledFunction>(dirichlet.displacement, s);
+        std::make_shared<ScaledFunction>(dirichlet.displacement, D);
     if (d.exact_displacement)
       d.exact_displacement =
-        std::make_shared<ScaledFunction>(d.exact_displacement, s);
+        std::make_shared<ScaledFunction>(d.exact_displacement, D);
+    // The material is a value: the bodies are made again after a change
+    // of P / D. Dividing by 1 keeps the modulus to the last bit.
+    d.material.youngs_modulus /= *scale / *displacement_scale;
     return d;
   }
 
@@ -183,6 +211,7 @@ namespace coulomb_adapt
     std::unique_ptr<Scene> coarser = scene->with_coarser_graded_meshes(k);
     if (!coarser)
       return nullptr;
-    return std::unique_ptr<Scene>(new ScaledScene(std::move(coarser), scale));
+    return std::unique_ptr<Scene>(
+      new ScaledScene(std::move(coarser), scale, displacement_scale));
   }
 } // namespace coulomb_adapt

@@ -73,6 +73,17 @@ namespace coulomb_adapt
      * ParameterError before anything is solved. Logs its choice. */
     void
     choose_load_scale(const LoadStressScale &loads);
+    /** The same for moduli beyond 1e+-100 MPa (choose_load_scale calls
+     * it): moduli and loads divided together (units::scales_for_moduli),
+     * the bodies made again with the scaled moduli; a ParameterError
+     * before anything is solved where the strains are beyond 1e+-300, or
+     * where displacements must be scaled but the contact curves have an
+     * initial gap. @p message is the log line begun, @p source the
+     * scene's file and load entries. */
+    void
+    choose_scales_for_moduli(const LoadStressScale &loads,
+                             std::ostringstream    &message,
+                             const std::string     &source);
     void
     setup_system();
     void

@@ -9,6 +9,7 @@
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/core/options.h>
+#include <coulomb_adapt/core/units.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 
 #include <string>
@@ -39,17 +40,17 @@ namespace coulomb_adapt
                const std::string &base_name,
                const OutputFormat format);
 
-    /** With a @p load_scale P other than 1 (core/units.h), the body's
-     * solution is that of the scaled problem: with format "hdf5" (doubles)
-     * the displacement, the stresses and the smoothed stresses are written
-     * multiplied by P. VTU files hold 32-bit floats (1e-38 ... 3e38),
-     * which cannot hold the stresses of a scaled problem (beyond 1e+-100
-     * MPa): they get the scaled fields. */
+    /** With @p scales other than 1 (core/units.h), the body's solution
+     * is that of the scaled problem: with format "hdf5" (doubles) the
+     * displacement is written multiplied by D, the stresses and the
+     * smoothed stresses by P. VTU files hold 32-bit floats (1e-38 ...
+     * 3e38), which cannot hold the stresses of a scaled problem (beyond
+     * 1e+-100 MPa): they get the scaled fields. */
     void
     write(const ElasticBody     &body,
           const unsigned int     cycle,
           const BodyErrorFields &error_fields = BodyErrorFields(),
-          const double           load_scale   = 1);
+          const units::Scales   &scales       = units::Scales());
 
   private:
     /** The cycle's `<base>_<cycle>.h5` and the index `<base>.xdmf`. */

@@ -11,6 +11,7 @@
 #include <coulomb_adapt/bodies/elasticity_errors.h>
 #include <coulomb_adapt/contact/contact_solve_driver.h>
 #include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/core/units.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 #include <coulomb_adapt/indicator/exact_error.h>
 #include <coulomb_adapt/output/run_summary.h>
@@ -60,11 +61,20 @@ namespace coulomb_adapt
     void
     set_load_scale(const double load_scale);
 
-    /** @p scaled (of the scaled problem, proportional to the loads to the
-     * power @p power) as a physical value, or as given if that is not
+    /** The same with a displacement scale D other than P (moduli beyond
+     * 1e+-100 MPa, core/units.h): "load_scale" P and "displacement_scale"
+     * D in summary.json; displacements, gaps and slips are reported
+     * multiplied by D, stresses and forces by P, energies by P D. */
+    void
+    set_scales(const units::Scales &scales);
+
+    /** @p scaled (of the scaled problem, a quantity of kind @p kind:
+     * units::Kind) as a physical value, or as given if that is not
      * representable (then @p key is listed as reported scaled). */
     double
-    physical(const double scaled, const int power, const std::string &key);
+    physical(const double       scaled,
+             const units::Kind  kind,
+             const std::string &key);
 
     /** Record that @p key is reported in the scaled form (once: a log
      * line with @p reason, and the key under "reported_scaled"). */
@@ -175,7 +185,7 @@ namespace coulomb_adapt
     /** One row per cycle, printed at the end. */
     TableHandler table;
 
-    double                load_scale = 1;
+    units::Scales         scales;
     std::set<std::string> scaled_keys;
   };
 } // namespace coulomb_adapt

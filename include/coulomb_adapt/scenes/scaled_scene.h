@@ -1,6 +1,7 @@
 #ifndef coulomb_adapt_scenes_scaled_scene_h
 #define coulomb_adapt_scenes_scaled_scene_h
 
+#include <coulomb_adapt/core/units.h>
 #include <coulomb_adapt/scenes/scene.h>
 
 #include <memory>
@@ -11,7 +12,10 @@ namespace coulomb_adapt
    * A scene with every load divided by the load scale P (core/units.h):
    * tractions, body forces, prescribed displacements and the exact
    * displacement, on every load step and on the coarser graded meshes of
-   * nested iteration. Geometry and materials are the scene's own.
+   * nested iteration. Geometry is the scene's own. With a displacement
+   * scale D other than P (set_scales: moduli beyond 1e+-100 MPa),
+   * tractions and body forces are divided by P, prescribed and exact
+   * displacements by D, Young's moduli by P / D.
    *
    * The functions of describe_body() read P when they are evaluated, so
    * P may be chosen after the bodies are made (from their meshes and
@@ -29,6 +33,13 @@ namespace coulomb_adapt
 
     double
     load_scale() const;
+
+    /** P and D (units::Scales); set_load_scale(P) means D = P. */
+    void
+    set_scales(const units::Scales &scales);
+
+    units::Scales
+    scales() const;
 
     std::string
     name() const override;
@@ -65,11 +76,14 @@ namespace coulomb_adapt
 
   private:
     ScaledScene(std::unique_ptr<Scene>  scene,
-                std::shared_ptr<double> load_scale);
+                std::shared_ptr<double> load_scale,
+                std::shared_ptr<double> displacement_scale);
 
     std::unique_ptr<Scene> scene;
     /** Shared with the functions handed out and with the coarser scenes. */
     std::shared_ptr<double> scale;
+    /** D: divides the prescribed and exact displacements (shared too). */
+    std::shared_ptr<double> displacement_scale;
   };
 } // namespace coulomb_adapt
 
