@@ -16,11 +16,21 @@ namespace coulomb_adapt
     void
     sum_duplicates(Entries &entries)
     {
-      std::stable_sort(entries.begin(),
-                       entries.end(),
-                       [](const auto &a, const auto &b) {
-                         return a.first < b.first;
-                       });
+      const auto by_column = [](const auto &a, const auto &b) {
+        return a.first < b.first;
+      };
+      // Most rows are K's, ascending already.
+      if (std::is_sorted(entries.begin(), entries.end(), by_column))
+        {
+          if (std::adjacent_find(entries.begin(),
+                                 entries.end(),
+                                 [](const auto &a, const auto &b) {
+                                   return a.first == b.first;
+                                 }) == entries.end())
+            return;
+        }
+      else
+        std::stable_sort(entries.begin(), entries.end(), by_column);
       std::size_t n = 0;
       for (std::size_t e = 0; e < entries.size(); ++e)
         if (n > 0 && entries[n - 1].first == entries[e].first)

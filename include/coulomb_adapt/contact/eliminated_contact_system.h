@@ -67,10 +67,11 @@ namespace coulomb_adapt
            const SlaveCondensation &condensation) override;
 
     /**
-     * Build Z, Z~, u_g and the reduced system for the sets given by
-     * @p nodes (the slave nodes this rank owns); once per Newton step,
-     * nothing when neither the sets nor the gaps changed since the last
-     * call.
+     * Build the eliminated rows of Z, Z~, u_g and, from them and the
+     * bodies' K and f, the reduced system (EliminatedOperator) for the
+     * sets given by @p nodes (the slave nodes this rank owns); once per
+     * Newton step, nothing when neither the sets nor the gaps changed
+     * since the last call.
      */
     void
     assemble(const std::vector<SlaveNodeConditions> &nodes) override;
