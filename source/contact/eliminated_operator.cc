@@ -188,7 +188,9 @@ namespace coulomb_adapt
 
   // (K Z)_r = sum_l K_rl Z_l: Z_l is the unit row where l is not
   // eliminated (the entry is K's, exactly), otherwise the placeholder on
-  // the diagonal and the eliminated row's entries.
+  // the diagonal and the eliminated row's entries. Stored zeros of K are
+  // left out, as the products left them out (zeros of Z are kept: so did
+  // they).
   void
   EliminatedOperator::append_kz_row(const types::global_dof_index row,
                                     Entries                      &entries) const
@@ -309,6 +311,7 @@ namespace coulomb_adapt
                                          diagonal = K_il;
                                      });
             const auto d = std::lower_bound(columns.begin(), columns.end(), i);
+            Assert(d != columns.end() && *d == i, ExcInternalError());
             values[d - columns.begin()] = diagonal;
           }
         matrix.set(i, columns.size(), columns.data(), values.data());
