@@ -1,10 +1,8 @@
 #include <deal.II/base/mpi.h>
 
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_control.h>
 
 #include <coulomb_adapt/contact/eliminated_contact_system.h>
-#include <coulomb_adapt/solvers/matrix_rows.h>
 
 #include <cmath>
 #include <map>
@@ -13,16 +11,6 @@ namespace coulomb_adapt
 {
   namespace
   {
-    // The rows of Z and Z~ that differ from the identity: an eliminated
-    // component is a combination of other DoFs, with no entry of its own.
-    // Per column the entries of Z and Z~, and the row's entry of u_g.
-    struct EliminatedRow
-    {
-      std::map<types::global_dof_index, std::array<double, 2>> entries;
-      double                                                   shift = 0;
-    };
-    using EliminatedRows = std::map<types::global_dof_index, EliminatedRow>;
-
     // What decides the system: (active, stick, slip sign) and (weighted
     // gap, weighted slip) of each node, compared with the last call's.
     std::pair<std::vector<std::array<int, 3>>,
@@ -157,64 +145,15 @@ namespace coulomb_adapt
     }
 
     // An eliminated component has no unknown of its own, but Z keeps a
-    // negligible entry on its diagonal: it puts the component's row and
-    // column into the product's pattern, where the row is then replaced by
-    // K's diagonal entry in place. Without it the product has no such row,
-    // and a filled Epetra matrix takes no new entries: the product had to
-    // be copied into a new pattern, half of the assembly at 1e6 DoFs. (An
-    // explicit zero does not survive Trilinos' transposed product.) Its
-    // traces elsewhere are placeholder times K, 1e-100 of K's entries,
-    // and the right hand side's entry is set to zero.
+    // negligible entry on its diagonal: the reduced matrix has the
+    // component's row (which then holds K's diagonal entry only) and
+    // column in its pattern, with placeholder times K's entries elsewhere
+    // in them, 1e-100 of K's. The matrix is thereby the one the earlier
+    // construction with Trilinos' matrix products gave, entry for entry
+    // and with the same pattern (benchmarks/adaptive_run, "Memory"), and
+    // so are the AMG hierarchy and the solution. The right hand side's
+    // entry is zero.
     constexpr double placeholder = 1e-100;
-
-    // The pattern of Z (and Z~): the diagonal and the eliminated rows.
-    DynamicSparsityPattern
-    elimination_pattern(const IndexSet &owned, const EliminatedRows &eliminated)
-    {
-      DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
-      for (const auto i : owned)
-        {
-          dsp.add(i, i);
-          const auto row = eliminated.find(i);
-          if (row != eliminated.end())
-            for (const auto &[column, value] : row->second.entries)
-              dsp.add(i, column);
-        }
-      return dsp;
-    }
-
-    // The entries of Z, Z~ (unless symmetric) and u_g on this rank's rows:
-    // the identity where nothing is eliminated.
-    void
-    set_elimination_entries(const IndexSet                 &owned,
-                            const EliminatedRows           &eliminated,
-                            const bool                      symmetric,
-                            TrilinosWrappers::SparseMatrix &Z,
-                            TrilinosWrappers::SparseMatrix &Z_test,
-                            TrilinosWrappers::MPI::Vector  &shift)
-    {
-      for (const auto i : owned)
-        {
-          const auto row = eliminated.find(i);
-          if (row == eliminated.end())
-            {
-              Z.set(i, i, 1.);
-              if (!symmetric)
-                Z_test.set(i, i, 1.);
-              continue;
-            }
-          Z.set(i, i, placeholder);
-          if (!symmetric)
-            Z_test.set(i, i, placeholder);
-          for (const auto &[column, value] : row->second.entries)
-            {
-              Z.set(i, column, value[0]);
-              if (!symmetric)
-                Z_test.set(i, column, value[1]);
-            }
-          shift(i) = row->second.shift;
-        }
-    }
   } // namespace
 
 
@@ -225,64 +164,21 @@ namespace coulomb_adapt
                                   const ElasticBody       &master,
                                   const SlaveCondensation &condensation)
   {
-    const auto     &K1           = slave.system_matrix();
-    const auto     &K2           = master.system_matrix();
-    const auto     &f1           = slave.system_rhs();
-    const auto     &f2           = master.system_rhs();
-    const IndexSet &owned        = condensation.owned;
-    const auto      offset       = condensation.offset;
-    const MPI_Comm  communicator = condensation.communicator;
-
     // A new load step or mesh: K may have changed, so the hierarchy is
     // rebuilt; u of the last solve stays the initial guess on the same
     // index space (the previous load step's solution).
     amg.reset();
     amg_matrix.reset();
     reduced.reset();
-    if (owned != this->owned)
+    if (condensation.owned != owned)
       last_solution.clear();
-    this->owned        = owned;
-    this->communicator = communicator;
-
-    DynamicSparsityPattern dsp(owned.size(), owned.size(), owned);
-    for (const auto row : K1.locally_owned_range_indices())
-      for_each_entry(K1, row, [&](const auto column, const double) {
-        dsp.add(row, column);
-      });
-    for (const auto row : K2.locally_owned_range_indices())
-      for_each_entry(K2, row, [&](const auto column, const double) {
-        dsp.add(offset + row, offset + column);
-      });
-    stiffness.reinit(owned, owned, dsp, communicator);
-
-    std::vector<types::global_dof_index> columns;
-    std::vector<double>                  values;
-    const auto copy_rows = [&](const TrilinosWrappers::SparseMatrix &K,
-                               const types::global_dof_index         shift) {
-      for (const auto row : K.locally_owned_range_indices())
-        {
-          columns.clear();
-          values.clear();
-          for_each_entry(K, row, [&](const auto column, const double value) {
-            columns.push_back(shift + column);
-            values.push_back(value);
-          });
-          stiffness.set(shift + row,
-                        columns.size(),
-                        columns.data(),
-                        values.data());
-        }
-    };
-    copy_rows(K1, 0);
-    copy_rows(K2, offset);
-    stiffness.compress(VectorOperation::insert);
-
-    load.reinit(owned, communicator);
-    for (const auto i : f1.locally_owned_elements())
-      load(i) = f1(i);
-    for (const auto i : f2.locally_owned_elements())
-      load(offset + i) = f2(i);
-    load.compress(VectorOperation::insert);
+    owned        = condensation.owned;
+    communicator = condensation.communicator;
+    offset       = condensation.offset;
+    K1           = &slave.system_matrix();
+    K2           = &master.system_matrix();
+    f1           = &slave.system_rhs();
+    f2           = &master.system_rhs();
   }
 
 
@@ -302,51 +198,21 @@ namespace coulomb_adapt
     node_data   = std::move(data);
     // The last step's matrix is not needed any more unless the AMG
     // hierarchy was built from it (amg_matrix keeps it then): freed before
-    // the products below build the next one.
+    // the next one is built.
     reduced.reset();
 
-    symmetric                       = true;
-    const EliminatedRows eliminated = eliminated_rows(nodes, symmetric);
-    symmetric = Utilities::MPI::min(symmetric ? 1 : 0, communicator) == 1;
-
-    const DynamicSparsityPattern dsp = elimination_pattern(owned, eliminated);
-    // A symmetric system has Z~ = Z: built once.
-    TrilinosWrappers::SparseMatrix        Z_test_storage;
-    const TrilinosWrappers::SparseMatrix &Z_test =
-      symmetric ? Z : Z_test_storage;
-    Z.reinit(owned, owned, dsp, communicator);
-    if (!symmetric)
-      Z_test_storage.reinit(owned, owned, dsp, communicator);
-    shift.reinit(owned, communicator);
-    set_elimination_entries(
-      owned, eliminated, symmetric, Z, Z_test_storage, shift);
-    Z.compress(VectorOperation::insert);
-    if (!symmetric)
-      Z_test_storage.compress(VectorOperation::insert);
-    shift.compress(VectorOperation::insert);
-
-    TrilinosWrappers::SparseMatrix KZ;
-    stiffness.mmult(KZ, Z);
-    reduced = std::make_shared<TrilinosWrappers::SparseMatrix>();
-    Z_test.Tmmult(*reduced, KZ);
-    // The rows of eliminated components: decoupled, with K's diagonal
-    // entry, so that the operator keeps the scale AMG's smoother expects.
+    symmetric  = true;
+    eliminated = eliminated_rows(nodes, symmetric);
+    symmetric  = Utilities::MPI::min(symmetric ? 1 : 0, communicator) == 1;
     eliminated_dofs.clear();
     for (const auto &[i, row] : eliminated)
       eliminated_dofs.push_back(i);
-    reduced->clear_rows(eliminated_dofs);
-    for (const auto i : eliminated_dofs)
-      reduced->set(i, i, stiffness.diag_element(i));
-    reduced->compress(VectorOperation::insert);
 
-    TrilinosWrappers::MPI::Vector residual(owned, communicator);
-    stiffness.vmult(residual, shift);
-    residual.sadd(-1., 1., load);
-    reduced_rhs.reinit(owned, communicator);
-    Z_test.Tvmult(reduced_rhs, residual);
-    for (const auto i : eliminated_dofs)
-      reduced_rhs(i) = 0.;
-    reduced_rhs.compress(VectorOperation::insert);
+    const EliminatedOperator product(
+      *K1, *K2, *f1, *f2, offset, owned, communicator, eliminated, placeholder);
+    reduced = std::make_shared<TrilinosWrappers::SparseMatrix>();
+    product.reduced_matrix(*reduced);
+    product.reduced_rhs(reduced_rhs);
   }
 
 
@@ -472,9 +338,10 @@ namespace coulomb_adapt
                                           reduced_solution);
     last_iterations = report.n_iterations;
 
-    solution.reinit(owned, communicator);
-    Z.vmult(solution, reduced_solution);
-    solution += shift;
+    EliminatedOperator::expand(eliminated,
+                               placeholder,
+                               reduced_solution,
+                               solution);
     last_solution = solution;
     return report;
   }

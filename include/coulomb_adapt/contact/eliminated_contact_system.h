@@ -8,6 +8,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <coulomb_adapt/contact/condensed_newton_system.h>
+#include <coulomb_adapt/contact/eliminated_operator.h>
 #include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
 
@@ -54,8 +55,10 @@ namespace coulomb_adapt
   {
   public:
     /**
-     * Copy K^1, K^2 and f^1, f^2 into the combined index space of
-     * @p condensation (body 2 shifted); once per mesh and load step.
+     * Take K^1, K^2 and f^1, f^2 of the bodies and the combined index
+     * space of @p condensation (body 2 shifted); once per mesh and load
+     * step. The bodies' systems are read, not copied: they must stay as
+     * they are until the next reinit().
      */
     void
     reinit(const MortarInterface   &mortar,
@@ -64,10 +67,11 @@ namespace coulomb_adapt
            const SlaveCondensation &condensation) override;
 
     /**
-     * Build Z, Z~, u_g and the reduced system for the sets given by
-     * @p nodes (the slave nodes this rank owns); once per Newton step,
-     * nothing when neither the sets nor the gaps changed since the last
-     * call.
+     * Build the eliminated rows of Z, Z~, u_g and, from them and the
+     * bodies' K and f, the reduced system (EliminatedOperator) for the
+     * sets given by @p nodes (the slave nodes this rank owns); once per
+     * Newton step, nothing when neither the sets nor the gaps changed
+     * since the last call.
      */
     void
     assemble(const std::vector<SlaveNodeConditions> &nodes) override;
@@ -116,13 +120,18 @@ namespace coulomb_adapt
       const TrilinosWrappers::MPI::Vector    &initial_guess,
       TrilinosWrappers::MPI::Vector          &reduced_solution);
 
-    IndexSet                       owned;
-    MPI_Comm                       communicator;
-    TrilinosWrappers::SparseMatrix stiffness;
-    TrilinosWrappers::MPI::Vector  load;
+    IndexSet                owned;
+    MPI_Comm                communicator;
+    types::global_dof_index offset = 0;
+    /** The bodies' K and f (EliminatedOperator reads them row by row). */
+    const TrilinosWrappers::SparseMatrix *K1 = nullptr;
+    const TrilinosWrappers::SparseMatrix *K2 = nullptr;
+    const TrilinosWrappers::MPI::Vector  *f1 = nullptr;
+    const TrilinosWrappers::MPI::Vector  *f2 = nullptr;
 
-    TrilinosWrappers::SparseMatrix Z;
-    TrilinosWrappers::MPI::Vector  shift; // u_g
+    /** The rows of Z, Z~ and u_g of this step's eliminated components
+     * that this rank owns; the identity (and zero) elsewhere. */
+    EliminatedRows eliminated;
     /** Shared with the AMG hierarchy built from it: ML applies the
      * matrix it was built from in its V-cycles, so a reused hierarchy
      * keeps that matrix alive after the next Newton step replaced it. */
