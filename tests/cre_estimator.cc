@@ -39,13 +39,15 @@ namespace
       const ContactSolver                      *solver,
       const Parameters                         &parameters,
       const bool                                optimise_tractions = true,
-      const unsigned int                        degree_increase    = 3)
+      const unsigned int                        degree_increase    = 3,
+      const bool                                relax_equilibration = true)
   {
     return estimate_error_cre(bodies,
                               solver,
                               parameters.contact.friction_coefficient,
                               degree_increase,
                               optimise_tractions,
+                              relax_equilibration,
                               parameters.linear_solver);
   }
 

@@ -253,7 +253,15 @@ namespace coulomb_adapt
             << std::defaultfloat << std::endl;
     if (e.estimator == ErrorEstimator::cre && e.optimisation_iterations > 0)
       pcout << "  cre: edge tractions optimised (" << e.optimisation_iterations
-            << " CG steps); with the classical tractions epsilon would be "
+            << " CG steps; prolongation conditions "
+            << (e.relaxed_equilibration[0] && e.relaxed_equilibration[1] ?
+                  "relaxed" :
+                e.relaxed_equilibration[0] || e.relaxed_equilibration[1] ?
+                  "relaxed in one body" :
+                  "kept: the relaxed modes need 'CRE relaxed "
+                  "equilibration' and displacement data that the FE space "
+                  "interpolates exactly")
+            << "); with the classical tractions epsilon would be "
             << std::fixed << std::setprecision(3)
             << 100 * e.epsilon_before_optimisation << " %" << std::defaultfloat
             << std::endl;
@@ -281,6 +289,9 @@ namespace coulomb_adapt
                        {"node_system_defect", e.node_system_defect},
                        {"local_problem_defect", e.local_problem_defect},
                        {"optimisation_iterations", e.optimisation_iterations},
+                       {"relaxed_equilibration",
+                        {e.relaxed_equilibration[0],
+                         e.relaxed_equilibration[1]}},
                        {"epsilon_classical_tractions",
                         e.epsilon_before_optimisation}};
     if (compared.empty())
