@@ -102,7 +102,7 @@ namespace coulomb_adapt
                                      optimise_tractions,
                                      relax_equilibration);
         before_squared += errors.error_squared_before_optimisation;
-        estimate.optimisation_iterations += errors.optimisation_iterations;
+        estimate.optimisation_parameters += errors.optimisation_parameters;
         estimate.relaxed_equilibration[b] = errors.relaxed;
         estimate.contribution_squared[b].swap(errors.error_squared);
         normalisation_squared += errors.sum_norm_squared;

@@ -7,9 +7,10 @@
 #include <deal.II/fe/fe_system.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
 #include <coulomb_adapt/indicator/equilibration_mesh.h>
@@ -407,27 +408,50 @@ namespace coulomb_adapt
 
 
 
-      // H alpha = -g by CG. The estimate is the quadratic's value, whose
-      // excess over the minimum is r^T H^-1 r for the residual r:
-      // quadratic in the residual. 1e-6 leaves the estimates of the test
-      // suite unchanged in their printed digits with about 70 % of the
-      // steps 1e-8 took; 1e-4 changed the seed example's adapted mesh
-      // (928 -> 924 cells). Returns the number of steps.
-      unsigned int
+      // H alpha = -g. Without the relaxed modes by CG with Jacobi: the
+      // estimate is the quadratic's value, whose excess over the minimum is
+      // r^T H^-1 r for the residual r; 1e-6 leaves the estimates of the
+      // test suite unchanged in their printed digits with about 70 % of
+      // the steps 1e-8 took (1e-4 changed the seed example's adapted mesh).
+      // With the relaxed modes H is, like the complementary energy of an
+      // Airy stress function, a fourth-order operator: CG took 500 steps
+      // on the seed's 488 DoFs and did not reach 1e-6 in 1000 on 26,724
+      // (the estimate then depended on round-off, which broke its
+      // homogeneity). There a sparse direct solve (MUMPS, as for the
+      // contact system) is cheaper and exact to round-off. Returns the
+      // number of parameters.
+      types::global_dof_index
       minimise(TrilinosWrappers::SparseMatrix &H,
                TrilinosWrappers::MPI::Vector  &g,
-               TrilinosWrappers::MPI::Vector  &alpha)
+               TrilinosWrappers::MPI::Vector  &alpha,
+               const bool                      direct)
       {
         // Names without a free parameter (vertices on loaded edges, edges
-        // with known tractions, the interior DoF of Q2) get alpha = 0.
+        // with known tractions, the interior DoF of Q2, the vertices'
+        // third component without the couple mode) get alpha = 0.
+        types::global_dof_index n_parameters = 0;
         for (const auto i : H.locally_owned_range_indices())
           if (H.diag_element(i) == 0)
             H.set(i, i, 1.);
+          else
+            ++n_parameters;
         H.compress(VectorOperation::insert);
+        n_parameters =
+          Utilities::MPI::sum(n_parameters, alpha.get_mpi_communicator());
         g *= -1;
         const double g_norm = g.l2_norm();
         if (g_norm == 0)
-          return 0;
+          return n_parameters;
+        if (direct)
+          {
+            SolverControl                                  control(1, 0);
+            TrilinosWrappers::SolverDirect::AdditionalData data(
+              false, "Amesos_Mumps");
+            TrilinosWrappers::SolverDirect solver(control, data);
+            solver.initialize(H);
+            solver.solve(alpha, g);
+            return n_parameters;
+          }
         SolverControl                           control(1000, 1e-6 * g_norm);
         SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
         TrilinosWrappers::PreconditionJacobi    jacobi;
@@ -440,7 +464,7 @@ namespace coulomb_adapt
           {
             // The last iterate is as admissible as the solution.
           }
-        return control.last_step();
+        return n_parameters;
       }
     } // namespace
 
@@ -526,7 +550,7 @@ namespace coulomb_adapt
       result.error_squared_before_optimisation =
         Utilities::MPI::sum(forms.classical_sum(), comm);
 
-      result.optimisation_iterations = minimise(H, g, alpha);
+      result.optimisation_parameters = minimise(H, g, alpha, relaxed);
       TrilinosWrappers::MPI::Vector alpha_ghosted(names.owned,
                                                   names.relevant,
                                                   comm);

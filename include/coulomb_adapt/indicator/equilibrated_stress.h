@@ -51,8 +51,8 @@ namespace coulomb_adapt
      * parameters are optimised; equal to the sum of error_squared when
      * they are not). */
     double error_squared_before_optimisation = 0;
-    /** CG iterations of the optimisation of the free parameters. */
-    unsigned int optimisation_iterations = 0;
+    /** The number of free parameters optimised (one direct solve). */
+    types::global_dof_index optimisation_parameters = 0;
     /** Whether the optimisation also moved the relaxed modes (see
      * equilibrated_stress_errors()). */
     bool relaxed = false;

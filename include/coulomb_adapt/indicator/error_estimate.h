@@ -48,7 +48,7 @@ namespace coulomb_adapt
      * averaged traction), before its free parameters are optimised, and
      * the CG steps of that optimisation (0: not optimised). */
     double       epsilon_before_optimisation = 0;
-    unsigned int optimisation_iterations     = 0;
+    types::global_dof_index optimisation_parameters = 0;
     /** cre, per body: whether the relaxed equilibration modes were used
      * (equilibrated_stress_errors()). */
     std::array<bool, 2> relaxed_equilibration = {{false, false}};
