@@ -42,6 +42,7 @@ namespace coulomb_adapt
                      const double                              mu,
                      const unsigned int                        degree_increase,
                      const bool                      optimise_tractions,
+                     const bool                      relax_equilibration,
                      const parameters::LinearSolver &solver_parameters,
                      const ErrorEstimateOptions     &options)
   {
@@ -98,9 +99,11 @@ namespace coulomb_adapt
                                      estimate.correction.displacement(b),
                                      contact[b],
                                      degree_increase,
-                                     optimise_tractions);
+                                     optimise_tractions,
+                                     relax_equilibration);
         before_squared += errors.error_squared_before_optimisation;
-        estimate.optimisation_iterations += errors.optimisation_iterations;
+        estimate.optimisation_parameters += errors.optimisation_parameters;
+        estimate.relaxed_equilibration[b] = errors.relaxed;
         estimate.contribution_squared[b].swap(errors.error_squared);
         normalisation_squared += errors.sum_norm_squared;
         volume_squared[b] =

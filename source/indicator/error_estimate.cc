@@ -168,6 +168,7 @@ namespace coulomb_adapt
                                 mu,
                                 indicator_parameters.cre_degree_increase,
                                 indicator_parameters.cre_traction_optimisation,
+                                indicator_parameters.cre_relaxed_equilibration,
                                 solver_parameters,
                                 options);
     }

@@ -280,9 +280,17 @@ namespace coulomb_adapt
             << std::setprecision(1) << e.node_system_defect
             << ", local problems' rigid-motion load " << e.local_problem_defect
             << std::defaultfloat << std::endl;
-    if (e.estimator == ErrorEstimator::cre && e.optimisation_iterations > 0)
-      pcout << "  cre: edge tractions optimised (" << e.optimisation_iterations
-            << " CG steps); with the classical tractions epsilon would be "
+    if (e.estimator == ErrorEstimator::cre && e.optimisation_parameters > 0)
+      pcout << "  cre: edge tractions optimised (" << e.optimisation_parameters
+            << " parameters; prolongation conditions "
+            << (e.relaxed_equilibration[0] && e.relaxed_equilibration[1] ?
+                  "relaxed" :
+                e.relaxed_equilibration[0] || e.relaxed_equilibration[1] ?
+                  "relaxed in one body" :
+                  "kept: the relaxed modes need 'CRE relaxed "
+                  "equilibration' and displacement data that the FE space "
+                  "interpolates exactly")
+            << "); with the classical tractions epsilon would be "
             << std::fixed << std::setprecision(3)
             << 100 * e.epsilon_before_optimisation << " %" << std::defaultfloat
             << std::endl;
@@ -309,7 +317,10 @@ namespace coulomb_adapt
       record["cre"] = {{"degree_increase", cre_degree_increase},
                        {"node_system_defect", e.node_system_defect},
                        {"local_problem_defect", e.local_problem_defect},
-                       {"optimisation_iterations", e.optimisation_iterations},
+                       {"optimisation_parameters", e.optimisation_parameters},
+                       {"relaxed_equilibration",
+                        {e.relaxed_equilibration[0],
+                         e.relaxed_equilibration[1]}},
                        {"epsilon_classical_tractions",
                         e.epsilon_before_optimisation}};
     if (compared.empty())

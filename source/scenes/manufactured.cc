@@ -159,6 +159,7 @@ namespace coulomb_adapt
       d.name               = body == 0 ? "upper square" : "lower square";
       d.material           = materials[body];
       d.exact_displacement = exact;
+      d.displacement_data_interpolated_exactly = false;
       d.dirichlet.push_back(
         {boundary_ids::dirichlet, ComponentMask(2, true), exact});
 

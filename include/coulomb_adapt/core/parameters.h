@@ -107,6 +107,7 @@ namespace coulomb_adapt
       /** Choose the equilibration's free parameters to minimise the cre
        * estimate (else: closest to the averaged traction). */
       bool cre_traction_optimisation;
+      bool cre_relaxed_equilibration;
       /** Compare with the exact error: the scene's exact solution if it
        * has one, else a reference solution on a finer mesh. */
       bool compute_exact_error;

@@ -51,8 +51,11 @@ namespace coulomb_adapt
      * parameters are optimised; equal to the sum of error_squared when
      * they are not). */
     double error_squared_before_optimisation = 0;
-    /** CG iterations of the optimisation of the free parameters. */
-    unsigned int optimisation_iterations = 0;
+    /** The number of free parameters optimised (one direct solve). */
+    types::global_dof_index optimisation_parameters = 0;
+    /** Whether the optimisation also moved the relaxed modes (see
+     * equilibrated_stress_errors()). */
+    bool relaxed = false;
   };
 
   /**
@@ -76,7 +79,11 @@ namespace coulomb_adapt
    *    @p optimise_tractions, these are chosen to minimise the estimate
    *    sum_E ||sigma^ - sigma_c||^2 over all cells (one sparse SPD
    *    system); the classical technique keeps the least-squares choice
-   *    (doc/indicator.md compares both).
+   *    (doc/indicator.md compares both). With @p relax_equilibration (and
+   *    the bubbles) the optimisation also moves the edge tractions that
+   *    keep every cell in equilibrium without the prolongation conditions,
+   *    where the body's displacement data are interpolated exactly
+   *    (BodyDescription::displacement_data_interpolated_exactly).
    * 2. F_G: the polynomial of degree p on each edge with these moments.
    * 3. On each cell, the Neumann problem with body force f and tractions
    *    eta F_G (the prescribed data on loaded and contact edges) in the
@@ -89,7 +96,8 @@ namespace coulomb_adapt
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const ContactTractionData           &contact,
                              const unsigned int degree_increase,
-                             const bool         optimise_tractions = true);
+                             const bool         optimise_tractions  = true,
+                             const bool         relax_equilibration = true);
 } // namespace coulomb_adapt
 
 #endif

@@ -132,7 +132,8 @@ namespace coulomb_adapt
 
     /** Steps 5 and 6: the free parameters that minimise the estimate (see
      * the .cc; the faces' edge bubbles of degree p + 1 among them when
-     * @p with_bubbles), cell by cell on the threads deal.II may use (with a
+     * @p with_bubbles, and the modes that relax the prolongation
+     * conditions when @p relaxed), cell by cell on the threads deal.II may use (with a
      * copy of @p local each), and the errors at the minimum in @p result
      * (error_squared, sum_norm_squared and the classical estimate). The
      * faces keep the classical moments. */
@@ -144,6 +145,7 @@ namespace coulomb_adapt
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const LocalProblemLoads             &loads,
                              const bool                           with_bubbles,
+                             const bool                           relaxed,
                              EquilibratedStressErrors            &result);
   } // namespace equilibration
 } // namespace coulomb_adapt

@@ -48,7 +48,10 @@ namespace coulomb_adapt
      * averaged traction), before its free parameters are optimised, and
      * the CG steps of that optimisation (0: not optimised). */
     double       epsilon_before_optimisation = 0;
-    unsigned int optimisation_iterations     = 0;
+    types::global_dof_index optimisation_parameters = 0;
+    /** cre, per body: whether the relaxed equilibration modes were used
+     * (equilibrated_stress_errors()). */
+    std::array<bool, 2> relaxed_equilibration = {{false, false}};
     /** The corrected solution (for scenes with contact). */
     CorrectedContactSolution correction;
     bool                     has_contact = false;
@@ -131,6 +134,7 @@ namespace coulomb_adapt
                      const double                    friction_coefficient,
                      const unsigned int              degree_increase,
                      const bool                      optimise_tractions,
+                     const bool                      relax_equilibration,
                      const parameters::LinearSolver &solver_parameters,
                      const ErrorEstimateOptions     &options = {});
 

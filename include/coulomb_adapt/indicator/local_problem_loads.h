@@ -48,8 +48,9 @@ namespace coulomb_adapt
                 Vector<double>            &load) const;
 
       /** W(m, j): the work of the traction basis j of @p face (its nodal
-       * polynomials, then the bubble), with cell @p slot's orientation, on
-       * monomial m of @p local. */
+       * polynomials, then the bubble of degree p + 1, then the linear
+       * Legendre polynomial), with cell @p slot's orientation, on monomial
+       * m of @p local. */
       void
       face_work(const LocalNeumannProblem &local,
                 const unsigned int         slot,

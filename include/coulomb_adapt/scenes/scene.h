@@ -89,6 +89,11 @@ namespace coulomb_adapt
     std::function<Tensor<1, 2>(const Point<2> &)> body_force;
     /** Boundary id of the candidate contact zone. */
     types::boundary_id contact_boundary_id = numbers::invalid_boundary_id;
+    /** The Dirichlet data are polynomials of degree <= 1 (zero, constant,
+     * a linearised rotation), which every FE space interpolates exactly,
+     * so the FE solution is kinematically admissible: the cre bound
+     * assumes it (false for the manufactured scene's sinusoidal data). */
+    bool displacement_data_interpolated_exactly = true;
     /** Exact displacement, when the scene knows it (for verification). */
     std::shared_ptr<const Function<2>> exact_displacement;
     /** The boundary parts whose junctions with other parts are singular
