@@ -137,9 +137,9 @@ namespace coulomb_adapt
   // alone: then, as for body 1, the sets must have an active node,
   // without friction its Dirichlet data must hold its slide along the
   // interface (a frictionless contact does not), and with friction the
-  // sets must not leave it a rigid slide with every node slipping. Otherwise the system is
-  // singular and body 2's rigid motion arbitrary (and different on 1 and
-  // 2 ranks).
+  // sets must not leave it a rigid slide with every node slipping. Otherwise
+  // the system is singular and body 2's rigid motion arbitrary (and different
+  // on 1 and 2 ranks).
   void
   ContactSolver::check_master_support(const unsigned int k) const
   {

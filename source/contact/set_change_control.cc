@@ -173,10 +173,10 @@ namespace coulomb_adapt
 
   // Sets without a stick node can leave a floating body 1 free to slide
   // (the system is singular; not when the normals of the active nodes hold
-  // it, as the two flanks of a dovetail do). In a later Newton step that is more often an
-  // iterate gone astray than a load beyond the friction limit: the node
-  // nearest to sticking stays in stick, and the next step decides again.
-  // An oscillating iteration whose changes are restricted loses the last
+  // it, as the two flanks of a dovetail do). In a later Newton step that is
+  // more often an iterate gone astray than a load beyond the friction limit:
+  // the node nearest to sticking stays in stick, and the next step decides
+  // again. An oscillating iteration whose changes are restricted loses the last
   // stick node as easily as it regains it, so the count applies only
   // before the restriction; the step limit still ends it.
   void
