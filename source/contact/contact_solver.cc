@@ -167,13 +167,14 @@ namespace coulomb_adapt
     // With friction, as for body 1: all active nodes slipping must not
     // leave body 2 a rigid motion along the interface (a shaft turning in
     // its hub under a torque beyond mu times the pressure's moment).
-    newton_diagnostics::check_sliding(rigid_motion_left_free(master_gram,
-                                                             Point<2>(),
-                                                             states),
-                                      states,
-                                      mu,
-                                      k,
-                                      "body 2 (" + master.name() + ")");
+    if (mu > 0)
+      newton_diagnostics::check_sliding(rigid_motion_left_free(master_gram,
+                                                               Point<2>(),
+                                                               states),
+                                        states,
+                                        mu,
+                                        k,
+                                        "body 2 (" + master.name() + ")");
   }
 
 
