@@ -4,15 +4,16 @@
 // mm.
 //
 // The blade (body 1, slave): a root 20 mm wide at its base y = 0, with a
-// 2 mm vertical side and a 45 degree flank on each side up to a 12 mm
-// neck, the neck and a stub of the airfoil up to y = 40 (area 512 mm^2).
-// The disc segment (body 2, master): 50 mm wide, from y = -30 to its rim
-// y = 10, with a slot whose flanks lie on the blade's flank lines
-// x + y = 12 (right) and -x + y = 12 (left), a 1 mm clearance under the
-// root and at the neck. The flanks coincide along 7 <= |x| <= 10: each
-// contact zone ends at the blade's lower corner (+-10, 2) on the disc's
-// flank and at the disc's upper corner (+-7, 5) on the blade's flank, two
-// edges of contact at a corner of one body on the flat of the other.
+// 2 mm vertical side and a flank at alpha to the x axis on each side up to
+// a 12 mm neck, the neck and a stub of the airfoil up to y = 40 (area
+// 505.24 mm^2 for alpha = 30 degrees, 512 mm^2 for 45). The disc segment
+// (body 2, master): 50 mm wide, from y = -30 to its rim y = 10, with a
+// slot whose flanks lie on the blade's flank lines y = 2 + (10 - |x|) t,
+// t = tan(alpha), a 1 mm clearance under the root and at the neck. The
+// flanks coincide along 7 <= |x| <= 10: each contact zone ends at the
+// blade's lower corner (+-10, 2) on the disc's flank and at the disc's
+// upper corner (+-7, 2 + 3 t) on the blade's flank, two edges of contact
+// at a corner of one body on the flat of the other.
 //
 // Each body is two surfaces, its right half and the mirror image of it
 // (x -> -x), and the left half's mesh is the right half's mirrored (gmsh's
@@ -20,7 +21,11 @@
 h_c = 0.5;    // element size on the flanks
 h_b = 2;      // elsewhere in the blade
 h_d = 4;      // elsewhere in the disc
-alpha = 30;   // flank angle to the x axis (degrees)
+// The flank angle to the x axis (degrees): 30, unless a file that includes
+// this one has set it (dovetail_45.geo).
+If (!Exists(alpha))
+  alpha = 30;
+EndIf
 t = Tan(alpha * Pi / 180);
 
 // Blade, right half, counterclockwise from the centre of the base.

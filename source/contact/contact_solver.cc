@@ -134,11 +134,12 @@ namespace coulomb_adapt
 
 
   // Body 2 is held by its Dirichlet data, or, floating, by the contact
-  // alone: then, as for body 1, the sets must have an active node, and
+  // alone: then, as for body 1, the sets must have an active node,
   // without friction its Dirichlet data must hold its slide along the
-  // interface (a frictionless contact does not). Otherwise the system is
-  // singular and body 2's rigid motion arbitrary (and different on 1 and
-  // 2 ranks).
+  // interface (a frictionless contact does not), and with friction the
+  // sets must not leave it a rigid slide with every node slipping. Otherwise
+  // the system is singular and body 2's rigid motion arbitrary (and different
+  // on 1 and 2 ranks).
   void
   ContactSolver::check_master_support(const unsigned int k) const
   {
@@ -163,6 +164,17 @@ namespace coulomb_adapt
                                      "data do not hold it tangentially. Hold "
                                      "it, or use friction.",
                              k - 1);
+    // With friction, as for body 1: all active nodes slipping must not
+    // leave body 2 a rigid motion along the interface (a shaft turning in
+    // its hub under a torque beyond mu times the pressure's moment).
+    if (mu > 0)
+      newton_diagnostics::check_sliding(rigid_motion_left_free(master_gram,
+                                                               Point<2>(),
+                                                               states),
+                                        states,
+                                        mu,
+                                        k,
+                                        "body 2 (" + master.name() + ")");
   }
 
 

@@ -140,6 +140,41 @@ namespace coulomb_adapt
                   const unsigned int                   step,
                   const std::string                   &body_name)
     {
+      unsigned int n_active = 0;
+      for (const auto &s : states)
+        n_active += (s.status != ContactStatus::open);
+      const std::string where =
+        newton_step(step) + ": body 1 (" + body_name + ") ";
+      if (n_active == 0 && !support.holds_all_rigid_motions())
+        throw ContactDiagnosis(where + unheld_message(states, step), step - 1);
+      check_sliding(support.slip_motion_free(states),
+                    states,
+                    friction_coefficient,
+                    step,
+                    "body 1 (" + body_name + ")");
+    }
+
+
+
+    // Every active node slips: each fixes only its normal gap, the
+    // tangential traction follows from the pressure (mu p), and nothing
+    // but the normals and the Dirichlet data resists a rigid motion. If a
+    // rigid motion keeps every normal gap (the normals of a flat interface
+    // all parallel, those of a circle all through its centre), the system
+    // is singular, and the sets have no equilibrium: along that motion
+    // friction resists with mu p at every node, and the load would have to
+    // equal that exactly. If the normals hold every rigid motion (two
+    // flanks of a wedge, a dovetail), the body is held although every node
+    // slips: the normal forces of the flanks balance the load in the
+    // directions their friction cannot, and the solve goes on (the force
+    // balance of the converged sets is checked at the end).
+    void
+    check_sliding(const bool                           rigid_motion_free,
+                  const std::vector<ContactNodeState> &states,
+                  const double                         friction_coefficient,
+                  const unsigned int                   step,
+                  const std::string                   &body_label)
+    {
       unsigned int n_active = 0, n_stick = 0;
       for (const auto &s : states)
         if (s.status != ContactStatus::open)
@@ -147,22 +182,10 @@ namespace coulomb_adapt
             ++n_active;
             n_stick += (s.status == ContactStatus::stick);
           }
-      const std::string where =
-        newton_step(step) + ": body 1 (" + body_name + ") ";
-      if (n_active == 0 && !support.holds_all_rigid_motions())
-        throw ContactDiagnosis(where + unheld_message(states, step), step - 1);
-      if (n_stick == 0 && n_active > 0)
-        {
-          Tensor<1, 2> tangent;
-          for (const auto &s : states)
-            if (s.status != ContactStatus::open)
-              tangent += s.tangent;
-          tangent /= tangent.norm();
-          if (!support.holds_translation_along(tangent))
-            throw ContactDiagnosis(where + sliding_message(friction_coefficient,
-                                                           step),
-                                   step - 1);
-        }
+      if (n_stick == 0 && n_active > 0 && rigid_motion_free)
+        throw ContactDiagnosis(newton_step(step) + ": " + body_label + " " +
+                                 sliding_message(friction_coefficient, step),
+                               step - 1);
     }
 
 

@@ -171,11 +171,12 @@ namespace coulomb_adapt
 
 
 
-  // Sets without a stick node leave a floating body 1 free to slide (the
-  // system is singular). In a later Newton step that is more often an
-  // iterate gone astray than a load beyond the friction limit: the node
-  // nearest to sticking stays in stick, and the next step decides again.
-  // An oscillating iteration whose changes are restricted loses the last
+  // Sets without a stick node can leave a floating body 1 free to slide
+  // (the system is singular; not when the normals of the active nodes hold
+  // it, as the two flanks of a dovetail do). In a later Newton step that is
+  // more often an iterate gone astray than a load beyond the friction limit:
+  // the node nearest to sticking stays in stick, and the next step decides
+  // again. An oscillating iteration whose changes are restricted loses the last
   // stick node as easily as it regains it, so the count applies only
   // before the restriction; the step limit still ends it.
   void
@@ -187,11 +188,9 @@ namespace coulomb_adapt
       node_nearest_to_sticking(rule, previous_weighted_slip, states);
     if (j == states.size())
       return;
-    Tensor<1, 2> tangent;
-    for (const auto &s : states)
-      if (s.status != ContactStatus::open)
-        tangent += s.tangent;
-    if (support.holds_translation_along(tangent / tangent.norm()))
+    // (Every active node slips.) Held without a stick node: by its
+    // Dirichlet data, or by the normals of the active nodes alone.
+    if (!support.slip_motion_free(states))
       return;
     states[j].status = ContactStatus::stick;
     if (!restricted)

@@ -1,5 +1,9 @@
+#include <deal.II/base/symmetric_tensor.h>
+
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 #include <coulomb_adapt/contact/slave_support.h>
+
+#include <algorithm>
 
 namespace coulomb_adapt
 {
@@ -68,5 +72,73 @@ namespace coulomb_adapt
                                         active_centre);
         }
     return !coulomb_adapt::holds_all_rigid_motions(constrained);
+  }
+
+
+
+  bool
+  SlaveSupport::slip_motion_free(
+    const std::vector<ContactNodeState> &states) const
+  {
+    return rigid_motion_left_free(gram, centre, states);
+  }
+
+
+
+  // The rows of the active nodes as in rotation_free, but the test whether
+  // they hold every rigid motion compares all three modes on one scale:
+  // the rotation about the active nodes' centroid divided by their extent
+  // L (a motion of at most unit size at the nodes), and the smallest
+  // eigenvalue against the trace. rotation_free's test, relative to the
+  // rotation's own diagonal entry, takes the round-off of normals that
+  // all pass through one point (a circle's) for a held rotation; here it
+  // stays round-off against the trace, while the two flanks of a wedge
+  // hold every motion by a clear margin (doc/contact.md).
+  bool
+  rigid_motion_left_free(const FullMatrix<double>            &gram,
+                         const Point<2>                      &gram_centre,
+                         const std::vector<ContactNodeState> &states)
+  {
+    Point<2>     active_centre;
+    unsigned int n_active = 0;
+    for (const auto &s : states)
+      if (s.status != ContactStatus::open)
+        {
+          active_centre += s.position;
+          ++n_active;
+        }
+    if (n_active == 0)
+      return !coulomb_adapt::holds_all_rigid_motions(gram);
+    active_centre /= static_cast<double>(n_active);
+    double L = 0;
+    for (const auto &s : states)
+      if (s.status != ContactStatus::open)
+        L = std::max(L, active_centre.distance(s.position));
+    FullMatrix<double> constrained =
+      move_rotation_centre(gram, active_centre - gram_centre);
+    for (const auto &s : states)
+      if (s.status != ContactStatus::open)
+        {
+          add_rigid_motion_constraint(constrained,
+                                      s.normal,
+                                      s.position,
+                                      active_centre);
+          if (s.status == ContactStatus::stick)
+            add_rigid_motion_constraint(constrained,
+                                        s.tangent,
+                                        s.position,
+                                        active_centre);
+        }
+    // A single active node (L = 0) holds no rotation: only the Dirichlet
+    // data can.
+    if (L == 0)
+      return !coulomb_adapt::holds_all_rigid_motions(constrained);
+    const double          scale[3] = {1., 1., 1. / L};
+    SymmetricTensor<2, 3> g;
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = a; b < 3; ++b)
+        g[a][b] = scale[a] * constrained(a, b) * scale[b];
+    const auto values = eigenvalues(g);
+    return values[2] <= 1e-10 * trace(g);
   }
 } // namespace coulomb_adapt

@@ -24,17 +24,31 @@ namespace coulomb_adapt
    */
   namespace newton_diagnostics
   {
-    /** Is body 1 held by the sets of Newton step @p step? Without stick
-     * nodes nothing resists a rigid slide along the interface, and
-     * without active nodes nothing holds it at all, unless its own
-     * Dirichlet data do: the system would be singular, and the static
-     * problem has no solution. Throws the diagnosis if not. */
+    /** Is body 1 held by the sets of Newton step @p step? Without active
+     * nodes nothing holds it at all, unless its own Dirichlet data do;
+     * with every active node slipping, a rigid motion along which every
+     * normal gap stays put is free (check_sliding): the system would be
+     * singular, and the static problem has no solution. Throws the
+     * diagnosis if not. */
     void
     check_support(const SlaveSupport                  &support,
                   const std::vector<ContactNodeState> &states,
                   const double                         friction_coefficient,
                   const unsigned int                   step,
                   const std::string                   &body_name);
+
+    /** Does a body whose contact nodes all slip slide? @p
+     * rigid_motion_free: whether the sets and the body's Dirichlet data
+     * leave a rigid motion free (rigid_motion_left_free). With every
+     * active node slipping and such a motion, the system is singular and
+     * the sets have no equilibrium: throws the diagnosis, naming @p
+     * body_label ("body 2 (hub)"). Which body floats does not matter. */
+    void
+    check_sliding(const bool                           rigid_motion_free,
+                  const std::vector<ContactNodeState> &states,
+                  const double                         friction_coefficient,
+                  const unsigned int                   step,
+                  const std::string                   &body_label);
 
     /** The Krylov solver of Newton step @p step did not converge. */
     ContactDiagnosis

@@ -46,10 +46,28 @@ namespace coulomb_adapt
     bool
     rotation_free(const std::vector<ContactNodeState> &states) const;
 
+    /** Whether the sets of @p states and the Dirichlet data leave body 1
+     * a rigid motion that moves every active node along the contact
+     * surface and no stick node (rigid_motion_left_free). */
+    bool
+    slip_motion_free(const std::vector<ContactNodeState> &states) const;
+
   private:
     FullMatrix<double> gram;
     Point<2>           centre;
   };
+
+  /** Whether the contact sets of @p states and the Dirichlet data of a
+   * body (the Gram matrix @p gram of its supported rigid motions, about
+   * @p gram_centre: ElasticBody::support_gram) leave a rigid motion of the
+   * body free: one that moves every active node along its contact surface
+   * (n . v = 0) and no stick node at all. Such a motion makes the Newton
+   * system singular. The same test for either body: the constraints of a
+   * node on body 2's motion are those on body 1's with the opposite sign. */
+  bool
+  rigid_motion_left_free(const FullMatrix<double>            &gram,
+                         const Point<2>                      &gram_centre,
+                         const std::vector<ContactNodeState> &states);
 } // namespace coulomb_adapt
 
 #endif
