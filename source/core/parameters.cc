@@ -138,43 +138,12 @@ namespace coulomb_adapt
 
 
 
-    void
-    ErrorIndicator::declare_parameters(ParameterHandler &prm)
+    namespace
     {
-      prm.enter_subsection("Error indicator");
+      // The cre estimator's entries of "Error indicator".
+      void
+      declare_cre_entries(ParameterHandler &prm)
       {
-        prm.declare_entry("Estimator",
-                          "zz",
-                          Patterns::Selection(option_pattern<ErrorEstimator>()),
-                          "The a posteriori error estimator; the one that "
-                          "drives the adaptation. zz: the seed's, the "
-                          "corrected FE stress smoothed by global L2 "
-                          "projection onto the continuous FE space of the "
-                          "same degree (Zienkiewicz-Zhu 1987); spr: smoothed "
-                          "by superconvergent patch recovery (Zienkiewicz-Zhu "
-                          "1992); cre: error in constitutive relation with a "
-                          "statically admissible stress built by the element "
-                          "equilibration technique (Ladeveze-Leguillon 1983, "
-                          "Coorevits-Hild-Hjiaj 2001), an upper bound of the "
-                          "exact error for frictionless contact; conforming "
-                          "meshes only (not with Adaptation/Strategy = "
-                          "refine). All three add the same contact term and "
-                          "use the seed's normalisation.");
-        prm.declare_entry("Recovery",
-                          "",
-                          Patterns::Anything(),
-                          "Removed: replaced by 'Estimator' (zz | spr | cre). "
-                          "A file that sets it is refused with a message "
-                          "naming the new entry.");
-        prm.declare_entry("Compare estimators",
-                          "false",
-                          Patterns::Bool(),
-                          "Compute zz, spr and cre on the same solution in "
-                          "every cycle (summary.json 'estimators', with "
-                          "their effectivity when the exact error is "
-                          "computed); 'Estimator' still drives the "
-                          "adaptation. For studies of the estimators: it "
-                          "costs the two other estimators' time.");
         prm.declare_entry("CRE degree increase",
                           "3",
                           Patterns::Integer(1, 4),
@@ -213,6 +182,49 @@ namespace coulomb_adapt
                           "displacement data are interpolated exactly (the "
                           "bound assumes it); the log says when it is not. "
                           "false: the prolongation conditions are kept.");
+      }
+    } // namespace
+
+
+
+    void
+    ErrorIndicator::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Error indicator");
+      {
+        prm.declare_entry("Estimator",
+                          "zz",
+                          Patterns::Selection(option_pattern<ErrorEstimator>()),
+                          "The a posteriori error estimator; the one that "
+                          "drives the adaptation. zz: the seed's, the "
+                          "corrected FE stress smoothed by global L2 "
+                          "projection onto the continuous FE space of the "
+                          "same degree (Zienkiewicz-Zhu 1987); spr: smoothed "
+                          "by superconvergent patch recovery (Zienkiewicz-Zhu "
+                          "1992); cre: error in constitutive relation with a "
+                          "statically admissible stress built by the element "
+                          "equilibration technique (Ladeveze-Leguillon 1983, "
+                          "Coorevits-Hild-Hjiaj 2001), an upper bound of the "
+                          "exact error for frictionless contact; conforming "
+                          "meshes only (not with Adaptation/Strategy = "
+                          "refine). All three add the same contact term and "
+                          "use the seed's normalisation.");
+        prm.declare_entry("Recovery",
+                          "",
+                          Patterns::Anything(),
+                          "Removed: replaced by 'Estimator' (zz | spr | cre). "
+                          "A file that sets it is refused with a message "
+                          "naming the new entry.");
+        prm.declare_entry("Compare estimators",
+                          "false",
+                          Patterns::Bool(),
+                          "Compute zz, spr and cre on the same solution in "
+                          "every cycle (summary.json 'estimators', with "
+                          "their effectivity when the exact error is "
+                          "computed); 'Estimator' still drives the "
+                          "adaptation. For studies of the estimators: it "
+                          "costs the two other estimators' time.");
+        declare_cre_entries(prm);
         prm.declare_entry("Compute exact error",
                           "false",
                           Patterns::Bool(),
@@ -443,12 +455,12 @@ namespace coulomb_adapt
         max_dofs             = prm.get_double("Maximum number of DoFs");
         refinement_criterion =
           parse_option<RefinementCriterion>(prm.get("Refinement criterion"));
-        refine_fraction     = prm.get_double("Refine fraction");
-        coarsen_fraction    = prm.get_double("Coarsen fraction");
-        min_size_ratio      = prm.get_double("Minimum size ratio");
-        max_size_ratio      = prm.get_double("Maximum size ratio");
-        singular_rate       = prm.get_double("Singular convergence rate");
-        warm_start          = prm.get_bool("Warm start");
+        refine_fraction  = prm.get_double("Refine fraction");
+        coarsen_fraction = prm.get_double("Coarsen fraction");
+        min_size_ratio   = prm.get_double("Minimum size ratio");
+        max_size_ratio   = prm.get_double("Maximum size ratio");
+        singular_rate    = prm.get_double("Singular convergence rate");
+        warm_start       = prm.get_bool("Warm start");
         remeshing_algorithm =
           parse_option<RemeshingAlgorithm>(prm.get("Remeshing algorithm"));
         require_parameter(refine_fraction + coarsen_fraction <= 1,

@@ -36,6 +36,30 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // Body @p b's cell errors, defects and optimisation figures into
+    // @p estimate; returns the body's sum of the cell errors (every rank).
+    double
+    add_body_errors(const ElasticBody        &body,
+                    const unsigned int        b,
+                    EquilibratedStressErrors &errors,
+                    ErrorEstimate            &estimate)
+    {
+      estimate.optimisation_parameters += errors.optimisation_parameters;
+      estimate.relaxed_equilibration[b] = errors.relaxed;
+      estimate.contribution_squared[b].swap(errors.error_squared);
+      estimate.node_system_defect =
+        std::max(estimate.node_system_defect, errors.node_system_defect);
+      estimate.local_problem_defect =
+        std::max(estimate.local_problem_defect, errors.local_problem_defect);
+      return Utilities::MPI::sum(estimate.contribution_squared[b].l1_norm(),
+                                 body.triangulation().get_communicator());
+    }
+  } // namespace
+
+
+
   ErrorEstimate
   estimate_error_cre(const std::array<const ElasticBody *, 2> &bodies,
                      const ContactSolution                    *contact_solver,
@@ -102,17 +126,8 @@ namespace coulomb_adapt
                                      optimise_tractions,
                                      relax_equilibration);
         before_squared += errors.error_squared_before_optimisation;
-        estimate.optimisation_parameters += errors.optimisation_parameters;
-        estimate.relaxed_equilibration[b] = errors.relaxed;
-        estimate.contribution_squared[b].swap(errors.error_squared);
         normalisation_squared += errors.sum_norm_squared;
-        volume_squared[b] =
-          Utilities::MPI::sum(estimate.contribution_squared[b].l1_norm(),
-                              bodies[b]->triangulation().get_communicator());
-        estimate.node_system_defect =
-          std::max(estimate.node_system_defect, errors.node_system_defect);
-        estimate.local_problem_defect =
-          std::max(estimate.local_problem_defect, errors.local_problem_defect);
+        volume_squared[b] = add_body_errors(*bodies[b], b, errors, estimate);
       }
 
     const OptionalTimerSection section(options.timer,
