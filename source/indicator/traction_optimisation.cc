@@ -7,8 +7,8 @@
 #include <deal.II/fe/fe_system.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -29,7 +29,10 @@ namespace coulomb_adapt
       // The names of the free parameters: the vertex and edge DoFs of the
       // continuous quadratic element on the same mesh (one DoF per vertex
       // and one per edge whatever p; deal.II 9.4 has no cubic
-      // FE_SimplexP), which also give the pattern of the parameters'
+      // FE_SimplexP; components 0 and 1 for the node systems' null vectors
+      // and the bubbles, with the relaxed modes a third for the couple
+      // modes (vertices) and the tangential ones (edges)), which also give
+      // the pattern of the parameters'
       // system and its parallel layout.
       struct ParameterNames
       {
@@ -130,15 +133,14 @@ namespace coulomb_adapt
                         const Name               &name,
                         const Direction          &direction)
       {
-        const CellData     &data   = in.cells[slot];
-        const auto         &cell   = data.cell;
-        const FaceData     &face   = in.faces[data.faces[f]];
-        const unsigned int  column = face.nodes.size() + 1;
-        const unsigned int  M      = W.m();
-        const Tensor<1, 2>  tangent = (face.v1 - face.v0) / face.length;
-        const double        eta =
-          face.plus == static_cast<int>(slot) ? 1 : -1;
-        const auto allowed = [&](const unsigned int c) {
+        const CellData    &data    = in.cells[slot];
+        const auto        &cell    = data.cell;
+        const FaceData    &face    = in.faces[data.faces[f]];
+        const unsigned int column  = face.nodes.size() + 1;
+        const unsigned int M       = W.m();
+        const Tensor<1, 2> tangent = (face.v1 - face.v0) / face.length;
+        const double       eta = face.plus == static_cast<int>(slot) ? 1 : -1;
+        const auto         allowed = [&](const unsigned int c) {
           return face.unknown[c] || std::abs(tangent[c]) < 1e-12;
         };
         if (allowed(0) && allowed(1))
@@ -159,19 +161,19 @@ namespace coulomb_adapt
           eta * (tangent[0] * face.normal[1] - tangent[1] * face.normal[0]);
         for (unsigned int v = 0; v < cell->n_vertices(); ++v)
           {
-            const Point<2> &x = data.points[v];
-            const bool at_v0  = x.distance(face.v0) < 1e-12 * face.length;
-            const bool at_v1  = x.distance(face.v1) < 1e-12 * face.length;
+            const Point<2> &x     = data.points[v];
+            const bool      at_v0 = x.distance(face.v0) < 1e-12 * face.length;
+            const bool      at_v1 = x.distance(face.v1) < 1e-12 * face.length;
             if (!(at_v0 || at_v1))
               continue;
             const auto a = in.couple_allowed->find(data.nodes[v]);
             if (a == in.couple_allowed->end() || !a->second)
               continue;
-            const Tensor<1, 2> along = (at_v0 ? face.v1 : face.v0) - x;
+            const Tensor<1, 2> along       = (at_v0 ? face.v1 : face.v0) - x;
             const Tensor<1, 2> to_centroid = centroid - x;
             const double       desired =
               along[0] * to_centroid[1] - along[1] * to_centroid[0] > 0 ? 1 :
-                                                                           -1;
+                                                                                -1;
             const double scale =
               desired / raw * 6 / (face.length * face.length);
             Vector<double> &d = direction(name(2, v));
@@ -445,8 +447,8 @@ namespace coulomb_adapt
         if (direct)
           {
             SolverControl                                  control(1, 0);
-            TrilinosWrappers::SolverDirect::AdditionalData data(
-              false, "Amesos_Mumps");
+            TrilinosWrappers::SolverDirect::AdditionalData data(false,
+                                                                "Amesos_Mumps");
             TrilinosWrappers::SolverDirect solver(control, data);
             solver.initialize(H);
             solver.solve(alpha, g);
@@ -473,8 +475,9 @@ namespace coulomb_adapt
     // Step 5 of equilibrated_stress_errors(): the free parameters that
     // minimise sum_E ||sigma^ - sigma_c||^2. They are the null vectors of
     // the node systems (one per interior or Dirichlet vertex and
-    // component) and the edge bubbles (one per edge with unknown tractions
-    // and component). On each owned cell, sigma^ = sigma^_0 + sum_j alpha_j
+    // component), the edge bubbles (one per edge with unknown tractions
+    // and component) and, when @p relaxed, the modes of add_relaxed_modes().
+    // On each owned cell, sigma^ = sigma^_0 + sum_j alpha_j
     // S_j with S_j the response of the local problem to the change of the
     // edge tractions per unit of parameter j; the minimum solves
     // H alpha = -g with
@@ -492,8 +495,8 @@ namespace coulomb_adapt
                              const bool                           relaxed,
                              EquilibratedStressErrors            &result)
     {
-      const MPI_Comm         comm = body.triangulation().get_communicator();
-      const ParameterNames   names(body, relaxed);
+      const MPI_Comm       comm = body.triangulation().get_communicator();
+      const ParameterNames names(body, relaxed);
       std::map<types::global_dof_index, bool> couple_allowed;
       if (relaxed)
         for (const FaceData &face : faces)
@@ -523,10 +526,14 @@ namespace coulomb_adapt
       for (unsigned int slot = 0; slot < cells.size(); ++slot)
         if (cells[slot].owned)
           owned_slots.push_back(slot);
-      const FormInputs in{
-        cells, faces, loads, u_kinematic, names, with_bubbles,
-        relaxed ? &couple_allowed : nullptr};
-      CellForms forms;
+      const FormInputs in{cells,
+                          faces,
+                          loads,
+                          u_kinematic,
+                          names,
+                          with_bubbles,
+                          relaxed ? &couple_allowed : nullptr};
+      CellForms        forms;
       WorkStream::run(
         owned_slots.cbegin(),
         owned_slots.cend(),
