@@ -25,6 +25,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include "contact_test_utilities.h"
+#include "dovetail_blade.h"
 
 using namespace coulomb_adapt;
 
@@ -37,28 +38,11 @@ main(int argc, char *argv[])
   const double   rho = 7.85e-9, omega = 1000, mu = 0.5;
   const Point<2> axis(0, -300);
 
-  // The blade's outline (dovetail.geo), counterclockwise: flanks at 30
-  // degrees to the x axis from the root's corners (+-10, 2) up to the neck
-  // x = +-6.
-  const double                t       = std::tan(numbers::PI / 6);
-  const std::vector<Point<2>> corners = {{-10, 0},
-                                         {10, 0},
-                                         {10, 2},
-                                         {6, 2 + 4 * t},
-                                         {6, 40},
-                                         {-6, 40},
-                                         {-6, 2 + 4 * t},
-                                         {-10, 2}};
-  double                      A       = 0;
-  Tensor<1, 2>                first_moment;
-  for (unsigned int i = 0; i < corners.size(); ++i)
-    {
-      const Point<2> &a = corners[i], &b = corners[(i + 1) % corners.size()];
-      const double    cross = a[0] * b[1] - b[0] * a[1];
-      A += cross / 2;
-      first_moment += cross / 6 * (a + b);
-    }
-  const Point<2> centroid(first_moment / A);
+  // The blade's outline (dovetail.geo: flanks at 30 degrees), its area and
+  // centroid in closed form.
+  const DovetailBlade outline(numbers::PI / 6);
+  const double        A        = outline.area;
+  const Point<2>      centroid = outline.centroid;
 
   auto problem =
     testing::solve_contact({{"Scene/Gmsh/Mesh file",

@@ -25,6 +25,7 @@
 // The 2-rank output is the same file: 1 and 2 ranks agree.
 
 #include "contact_test_utilities.h"
+#include "dovetail_blade.h"
 
 using namespace coulomb_adapt;
 
@@ -37,29 +38,14 @@ main(int argc, char *argv[])
   const double   rho = 7.85e-9, omega = 1000, mu = 0.5;
   const Point<2> axis(0, -300);
   const double   alpha = numbers::PI / 4;
-  const double   t     = std::tan(alpha);
 
-  // The blade's outline (dovetail.geo with alpha = 45), counterclockwise.
-  const std::vector<Point<2>> corners = {{-10, 0},
-                                         {10, 0},
-                                         {10, 2},
-                                         {6, 2 + 4 * t},
-                                         {6, 40},
-                                         {-6, 40},
-                                         {-6, 2 + 4 * t},
-                                         {-10, 2}};
-  double                      A       = 0;
-  Tensor<1, 2>                first_moment;
-  for (unsigned int i = 0; i < corners.size(); ++i)
-    {
-      const Point<2> &a = corners[i], &b = corners[(i + 1) % corners.size()];
-      const double    cross = a[0] * b[1] - b[0] * a[1];
-      A += cross / 2;
-      first_moment += cross / 6 * (a + b);
-    }
-  const Point<2>     centroid(first_moment / A);
-  const Tensor<1, 2> centrifugal = rho * omega * omega * A * (centroid - axis);
-  const double       F           = centrifugal.norm();
+  // The blade's outline (dovetail.geo with alpha = 45), its area and
+  // centroid in closed form.
+  const DovetailBlade blade(alpha);
+  const double        A           = blade.area;
+  const Point<2>      centroid    = blade.centroid;
+  const Tensor<1, 2>  centrifugal = rho * omega * omega * A * (centroid - axis);
+  const double        F           = centrifugal.norm();
 
   out << std::setprecision(8) << "blade: area " << A << " mm^2, centroid ("
       << (std::abs(centroid[0]) < 1e-12 ? 0. : centroid[0]) << ", "

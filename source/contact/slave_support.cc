@@ -35,6 +35,50 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // The Gram matrix @p gram of the supported rigid motions (rotation
+    // about @p gram_centre) with the rows of the active nodes added: n . u
+    // at every active node, t . u at stick nodes, all taken about the
+    // active nodes' centroid, which is returned in @p active_centre (left
+    // unchanged without active nodes).
+    FullMatrix<double>
+    gram_with_active_nodes(const FullMatrix<double>            &gram,
+                           const Point<2>                      &gram_centre,
+                           const std::vector<ContactNodeState> &states,
+                           Point<2>                            &active_centre)
+    {
+      Point<2>     sum;
+      unsigned int n_active = 0;
+      for (const auto &s : states)
+        if (s.status != ContactStatus::open)
+          {
+            sum += s.position;
+            ++n_active;
+          }
+      if (n_active > 0)
+        active_centre = sum / static_cast<double>(n_active);
+      FullMatrix<double> constrained =
+        move_rotation_centre(gram, active_centre - gram_centre);
+      for (const auto &s : states)
+        if (s.status != ContactStatus::open)
+          {
+            add_rigid_motion_constraint(constrained,
+                                        s.normal,
+                                        s.position,
+                                        active_centre);
+            if (s.status == ContactStatus::stick)
+              add_rigid_motion_constraint(constrained,
+                                          s.tangent,
+                                          s.position,
+                                          active_centre);
+          }
+      return constrained;
+    }
+  } // namespace
+
+
+
   // Translations held, but perhaps not the rotation: a body resting on one
   // active node (a disc on a mesh coarser than its contact zone, or the
   // first step from the initial gap) or on nodes whose normals meet in one
@@ -46,32 +90,9 @@ namespace coulomb_adapt
   bool
   SlaveSupport::rotation_free(const std::vector<ContactNodeState> &states) const
   {
-    Point<2>     active_centre;
-    unsigned int n_active = 0;
-    for (const auto &s : states)
-      if (s.status != ContactStatus::open)
-        {
-          active_centre += s.position;
-          ++n_active;
-        }
-    active_centre =
-      (n_active > 0) ? active_centre / static_cast<double>(n_active) : centre;
-    FullMatrix<double> constrained =
-      move_rotation_centre(gram, active_centre - centre);
-    for (const auto &s : states)
-      if (s.status != ContactStatus::open)
-        {
-          add_rigid_motion_constraint(constrained,
-                                      s.normal,
-                                      s.position,
-                                      active_centre);
-          if (s.status == ContactStatus::stick)
-            add_rigid_motion_constraint(constrained,
-                                        s.tangent,
-                                        s.position,
-                                        active_centre);
-        }
-    return !coulomb_adapt::holds_all_rigid_motions(constrained);
+    Point<2> active_centre = centre;
+    return !coulomb_adapt::holds_all_rigid_motions(
+      gram_with_active_nodes(gram, centre, states, active_centre));
   }
 
 
@@ -99,36 +120,17 @@ namespace coulomb_adapt
                          const Point<2>                      &gram_centre,
                          const std::vector<ContactNodeState> &states)
   {
-    Point<2>     active_centre;
-    unsigned int n_active = 0;
-    for (const auto &s : states)
-      if (s.status != ContactStatus::open)
-        {
-          active_centre += s.position;
-          ++n_active;
-        }
-    if (n_active == 0)
+    if (std::none_of(states.begin(), states.end(), [](const auto &s) {
+          return s.status != ContactStatus::open;
+        }))
       return !coulomb_adapt::holds_all_rigid_motions(gram);
-    active_centre /= static_cast<double>(n_active);
+    Point<2>                 active_centre = gram_centre;
+    const FullMatrix<double> constrained =
+      gram_with_active_nodes(gram, gram_centre, states, active_centre);
     double L = 0;
     for (const auto &s : states)
       if (s.status != ContactStatus::open)
         L = std::max(L, active_centre.distance(s.position));
-    FullMatrix<double> constrained =
-      move_rotation_centre(gram, active_centre - gram_centre);
-    for (const auto &s : states)
-      if (s.status != ContactStatus::open)
-        {
-          add_rigid_motion_constraint(constrained,
-                                      s.normal,
-                                      s.position,
-                                      active_centre);
-          if (s.status == ContactStatus::stick)
-            add_rigid_motion_constraint(constrained,
-                                        s.tangent,
-                                        s.position,
-                                        active_centre);
-        }
     // A single active node (L = 0) holds no rotation: only the Dirichlet
     // data can.
     if (L == 0)
