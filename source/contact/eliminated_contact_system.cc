@@ -221,11 +221,10 @@ namespace coulomb_adapt
     // the last step's. Building it again would hold two copies of it
     // while a reused AMG hierarchy keeps the old one.
     const bool same_matrix =
-      Utilities::MPI::min(reduced && same_elimination(rows, eliminated) ? 1 :
-                                                                          0,
+      Utilities::MPI::min(reduced && same_elimination(rows, eliminated) ? 1 : 0,
                           communicator) == 1;
     eliminated = std::move(rows);
-    symmetric = Utilities::MPI::min(step_symmetric ? 1 : 0, communicator) == 1;
+    symmetric  = Utilities::MPI::min(step_symmetric ? 1 : 0, communicator) == 1;
     eliminated_dofs.clear();
     for (const auto &[i, row] : eliminated)
       eliminated_dofs.push_back(i);

@@ -72,8 +72,8 @@ namespace coulomb_adapt
 
   void
   ElasticityAMG::initialize(
-    const TrilinosWrappers::SparseMatrix         &A,
-    const std::vector<std::vector<double>>       &near_null_space,
+    const TrilinosWrappers::SparseMatrix       &A,
+    const std::vector<std::vector<double>>     &near_null_space,
     const std::vector<types::global_dof_index> &zero_rows)
   {
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
@@ -154,7 +154,8 @@ namespace coulomb_adapt
     // matrix products, where the contact solve has its peak. Returned
     // when the solver is done with them.
     const auto release_vectors = [] {
-      GrowingVectorMemory<TrilinosWrappers::MPI::Vector>::release_unused_memory();
+      GrowingVectorMemory<
+        TrilinosWrappers::MPI::Vector>::release_unused_memory();
       return_freed_heap_memory();
     };
     if (symmetric)

@@ -61,8 +61,8 @@ namespace coulomb_adapt
      * taken as zero (the decoupled rows of an eliminated system), so that
      * a caller need not copy the modes to change them. */
     void
-    initialize(const TrilinosWrappers::SparseMatrix         &A,
-               const std::vector<std::vector<double>>       &near_null_space,
+    initialize(const TrilinosWrappers::SparseMatrix       &A,
+               const std::vector<std::vector<double>>     &near_null_space,
                const std::vector<types::global_dof_index> &zero_rows = {});
 
     TrilinosWrappers::PreconditionAMG preconditioner;
