@@ -4,6 +4,7 @@
 
 #include <coulomb_adapt/contact/eliminated_contact_system.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -144,6 +145,22 @@ namespace coulomb_adapt
       return eliminated;
     }
 
+    // Whether two steps eliminate the same components with the same rows
+    // of Z and Z~ (u_g aside): with K unchanged, A = Z~^T K Z is then the
+    // same matrix.
+    bool
+    same_elimination(const EliminatedRows &a, const EliminatedRows &b)
+    {
+      return a.size() == b.size() &&
+             std::equal(a.begin(),
+                        a.end(),
+                        b.begin(),
+                        [](const auto &row_a, const auto &row_b) {
+                          return row_a.first == row_b.first &&
+                                 row_a.second.entries == row_b.second.entries;
+                        });
+    }
+
     // An eliminated component has no unknown of its own, but Z keeps a
     // negligible entry on its diagonal: the reduced matrix has the
     // component's row (which then holds K's diagonal entry only) and
@@ -196,22 +213,36 @@ namespace coulomb_adapt
       return;
     node_states = std::move(states);
     node_data   = std::move(data);
-    // The last step's matrix is not needed any more unless the AMG
-    // hierarchy was built from it (amg_matrix keeps it then): freed before
-    // the next one is built.
-    reduced.reset();
 
-    symmetric  = true;
-    eliminated = eliminated_rows(nodes, symmetric);
-    symmetric  = Utilities::MPI::min(symmetric ? 1 : 0, communicator) == 1;
+    bool           step_symmetric = true;
+    EliminatedRows rows           = eliminated_rows(nodes, step_symmetric);
+    // The same sets with other gaps or slips (typically the last Newton
+    // step, which confirms the sets): only u_g and with it b change, A is
+    // the last step's. Building it again would hold two copies of it
+    // while a reused AMG hierarchy keeps the old one.
+    const bool same_matrix =
+      Utilities::MPI::min(reduced && same_elimination(rows, eliminated) ? 1 : 0,
+                          communicator) == 1;
+    eliminated = std::move(rows);
+    symmetric  = Utilities::MPI::min(step_symmetric ? 1 : 0, communicator) == 1;
     eliminated_dofs.clear();
     for (const auto &[i, row] : eliminated)
       eliminated_dofs.push_back(i);
 
     const EliminatedOperator product(
       *K1, *K2, *f1, *f2, offset, owned, communicator, eliminated, placeholder);
-    reduced = std::make_shared<TrilinosWrappers::SparseMatrix>();
-    product.reduced_matrix(*reduced);
+    if (!same_matrix)
+      {
+        // The last step's matrix is not needed any more unless the AMG
+        // hierarchy was built from it (amg_matrix keeps it then): freed
+        // before the next one is built.
+        reduced.reset();
+        reduced = std::make_shared<TrilinosWrappers::SparseMatrix>();
+        product.reduced_matrix(*reduced);
+        // The pattern of A, built row by row in many small blocks, is
+        // freed: its pages back before the AMG setup.
+        return_freed_heap_memory();
+      }
     product.reduced_rhs(reduced_rhs);
   }
 
@@ -282,14 +313,9 @@ namespace coulomb_adapt
     // decoupled (K's diagonal, zero right hand side), so a mode with an
     // entry there is no near null vector of the reduced operator, and
     // the Krylov solves need more iterations (doc/contact.md section 2).
-    std::vector<std::vector<double>> modes = near_null_space;
-    for (auto &mode : modes)
-      for (const auto i : eliminated_dofs)
-        if (owned.is_element(i))
-          mode[owned.index_within_set(i)] = 0.;
     amg.reset();
     amg = std::make_unique<ElasticityAMG>();
-    amg->initialize(*reduced, modes);
+    amg->initialize(*reduced, near_null_space, eliminated_dofs);
     amg_matrix                = reduced;
     states_at_build           = node_states;
     reduced_solution          = initial_guess;

@@ -10,6 +10,10 @@
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 
+#ifdef __GLIBC__
+#  include <malloc.h>
+#endif
+
 namespace coulomb_adapt
 {
   namespace
@@ -57,9 +61,20 @@ namespace coulomb_adapt
 
 
   void
+  return_freed_heap_memory()
+  {
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+  }
+
+
+
+  void
   ElasticityAMG::initialize(
-    const TrilinosWrappers::SparseMatrix   &A,
-    const std::vector<std::vector<double>> &near_null_space)
+    const TrilinosWrappers::SparseMatrix       &A,
+    const std::vector<std::vector<double>>     &near_null_space,
+    const std::vector<types::global_dof_index> &zero_rows)
   {
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     // Smoothed aggregation for elasticity, also for the (nearly
@@ -86,15 +101,22 @@ namespace coulomb_adapt
 
     const unsigned int n_modes = near_null_space.size();
     const unsigned int n_local = A.local_size();
-    // ML is handed a pointer to the mode values: they live as long as
-    // the preconditioner, which may be kept across solves.
-    modes.assign(n_modes * n_local, 0.);
+    // ML copies the mode values during the setup (its aggregation object
+    // keeps its own null space), so this buffer is needed only until the
+    // hierarchy is built.
+    std::vector<double> modes(n_modes * n_local, 0.);
+    const IndexSet      owned = A.locally_owned_range_indices();
     for (unsigned int m = 0; m < n_modes; ++m)
       {
         AssertDimension(near_null_space[m].size(), n_local);
         std::copy(near_null_space[m].begin(),
                   near_null_space[m].end(),
                   modes.begin() + m * n_local);
+        for (const auto i : zero_rows)
+          {
+            Assert(owned.is_element(i), ExcInternalError());
+            modes[m * n_local + owned.index_within_set(i)] = 0.;
+          }
       }
     // Aggregate the two displacement components of a node together:
     // without this ML treats every DoF as its own PDE and its iteration
@@ -109,6 +131,9 @@ namespace coulomb_adapt
       }
 
     preconditioner.initialize(A, ml_parameters);
+    // The setup's products (A P, R A P, several times the size of A) are
+    // freed now: their pages back before the Krylov basis is allocated.
+    return_freed_heap_memory();
   }
 
 
@@ -129,7 +154,9 @@ namespace coulomb_adapt
     // matrix products, where the contact solve has its peak. Returned
     // when the solver is done with them.
     const auto release_vectors = [] {
-      GrowingVectorMemory<TrilinosWrappers::MPI::Vector>::release_unused_memory();
+      GrowingVectorMemory<
+        TrilinosWrappers::MPI::Vector>::release_unused_memory();
+      return_freed_heap_memory();
     };
     if (symmetric)
       {

@@ -57,13 +57,27 @@ namespace coulomb_adapt
    */
   struct ElasticityAMG
   {
+    /** @p zero_rows: locally owned rows of @p A at which the modes are
+     * taken as zero (the decoupled rows of an eliminated system), so that
+     * a caller need not copy the modes to change them. */
     void
-    initialize(const TrilinosWrappers::SparseMatrix   &A,
-               const std::vector<std::vector<double>> &near_null_space);
+    initialize(const TrilinosWrappers::SparseMatrix       &A,
+               const std::vector<std::vector<double>>     &near_null_space,
+               const std::vector<types::global_dof_index> &zero_rows = {});
 
     TrilinosWrappers::PreconditionAMG preconditioner;
-    std::vector<double>               modes;
   };
+
+  /**
+   * Give the pages of freed heap memory back to the system (glibc's
+   * malloc_trim; nothing elsewhere). The AMG setup, the Krylov basis and
+   * the sparsity pattern of a reduced matrix free hundreds of MiB in many
+   * small blocks, which the heap otherwise keeps resident: the next
+   * allocations do not fit in them and grow the process instead
+   * (benchmarks/adaptive_run, "Memory").
+   */
+  void
+  return_freed_heap_memory();
 
   /**
    * CG (@p symmetric) or right-preconditioned GMRES(100) on A x = b to
