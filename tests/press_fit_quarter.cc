@@ -33,6 +33,10 @@
 //    took the master nodes' fixed values, the solve saw them at zero and
 //    the contact solve stopped with a complementarity residual of 3.6.
 // The whole cross-section (tests/press_fit, P2, factor 1) has 0.074 %.
+// P1's mean is 3.1e-4 above p with the initial gap measured between the
+// circles (doc/contact.md section 7); on the chords it was 2.3e-4, the
+// chords' distance delta cos(theta / 2) being 7.8e-5 short of delta and
+// compensating part of P1's error.
 
 #include "contact_test_utilities.h"
 #include "lame_press_fit.h"
@@ -58,12 +62,12 @@ main(int argc, char *argv[])
     double translation_tolerance = 0;
   };
   std::vector<double> untranslated; // the first case's pressures
-  for (const Case &test : {Case{"1", "0.5", "0", "direct", 0.01, 3e-4},
+  for (const Case &test : {Case{"1", "0.5", "0", "direct", 0.01, 4e-4},
                            Case{"2", "1", "0", "direct", 0.002, 3e-5},
                            Case{"2", "1", "0.3", "direct", 0.002, 3e-5},
                            Case{"2", "1", "0.3", "amg", 0.002, 3e-5},
-                           Case{"1", "0.5", "0", "direct", 0.01, 3e-4, 1e-10},
-                           Case{"1", "0.5", "0", "amg", 0.01, 3e-4, 1e-8}})
+                           Case{"1", "0.5", "0", "direct", 0.01, 4e-4, 1e-10},
+                           Case{"1", "0.5", "0", "amg", 0.01, 4e-4, 1e-8}})
     {
       const bool translated = test.translation_tolerance > 0;
       const auto problem    = testing::solve_example(

@@ -52,7 +52,8 @@ namespace coulomb_adapt
     // Every rank's contact faces in one flat list of doubles, so that one
     // all_gather gives each rank the whole boundary. Per face: for each
     // node (x, y, dof_x, dof_y), then the outward normal of the face's
-    // chord and the cell's id (4 integers, exact in doubles).
+    // chord and the cell's id (4 integers, exact in doubles); for degree 1
+    // then the manifold's midpoint of the face.
     std::vector<double>
     pack_local_contact_faces(const DoFHandler<2>     &dof_handler,
                              const types::boundary_id contact_id,
@@ -86,6 +87,11 @@ namespace coulomb_adapt
                 local.push_back(normal[1]);
                 for (const unsigned int id : cell->id().to_binary<2>())
                   local.push_back(id);
+                if (degree == 1)
+                  {
+                    const Point<2> middle = face->center(true);
+                    local.insert(local.end(), {middle[0], middle[1]});
+                  }
               }
       return local;
     }
@@ -99,13 +105,16 @@ namespace coulomb_adapt
       std::vector<std::vector<types::global_dof_index>> segment_dofs;
       std::vector<Tensor<1, 2>>                         segment_normals;
       std::vector<CellId>                               segment_cells;
+      /** Degree 1: the faces' midpoints on their manifolds. */
+      std::vector<Point<2>> segment_middles;
     };
 
     GatheredBoundary
     unpack_contact_faces(const std::vector<std::vector<double>> &gathered,
                          const unsigned int                      n_face_nodes)
     {
-      const unsigned int record = 4 * n_face_nodes + 6;
+      const bool         linear = n_face_nodes == 2;
+      const unsigned int record = 4 * n_face_nodes + 6 + (linear ? 2 : 0);
       GatheredBoundary   boundary;
       for (const auto &values : gathered)
         for (std::size_t i = 0; i < values.size(); i += record)
@@ -131,6 +140,9 @@ namespace coulomb_adapt
             for (unsigned int k = 0; k < 4; ++k)
               id[k] = static_cast<unsigned int>(values[n + 2 + k]);
             boundary.segment_cells.emplace_back(id);
+            if (linear)
+              boundary.segment_middles.emplace_back(values[n + 6],
+                                                    values[n + 7]);
           }
       return boundary;
     }
@@ -171,6 +183,15 @@ namespace coulomb_adapt
             segment.nodes.push_back(index_of[dof]);
           segment.normal = boundary.segment_normals[s];
           segment.cell   = boundary.segment_cells[s];
+          if (degree == 1)
+            {
+              const Point<2> &a       = nodes[segment.nodes[0]].position,
+                             &b       = nodes[segment.nodes[1]].position;
+              segment.manifold_middle = boundary.segment_middles[s];
+              segment.on_curved_manifold =
+                segment.manifold_middle.distance(a + 0.5 * (b - a)) >
+                1e-10 * a.distance(b);
+            }
           if (degree == 2)
             {
               // A middle node off the chord's midpoint (on a curved

@@ -37,6 +37,69 @@ namespace coulomb_adapt
       return intersect_along(y, p, n, eta);
     }
 
+    // Degree 1: a segment's geometry for the initial gap, the circle
+    // through its ends and its manifold midpoint where the manifold is
+    // curved (the manifold's circle itself), else its chord.
+    struct GapGeometry
+    {
+      bool     curved;
+      Point<2> a, b, centre;
+      double   radius;
+    };
+
+    GapGeometry
+    gap_geometry(const std::vector<MortarInterface::Node> &nodes,
+                 const MortarInterface::Segment           &segment)
+    {
+      const Point<2> &a = nodes[segment.nodes[0]].position,
+                     &b = nodes[segment.nodes[1]].position;
+      if (!segment.on_curved_manifold)
+        return {false, a, b, Point<2>(), 0.};
+      // The circumcentre of a, b and the manifold midpoint m.
+      const Tensor<1, 2> u = b - a, v = segment.manifold_middle - a;
+      const double       d = 2 * (u[0] * v[1] - u[1] * v[0]);
+      const Point<2>     centre =
+        a +
+        Tensor<1, 2>({(v[1] * u.norm_square() - u[1] * v.norm_square()) / d,
+                      (u[0] * v.norm_square() - v[0] * u.norm_square()) / d});
+      return {true, a, b, centre, centre.distance(a)};
+    }
+
+    // The initial gap at the slave chord's point x: x moved radially onto
+    // the slave circle, and the distance along the circle's normal there
+    // to the master circle (or chord); the root of |X + t n - C| = R
+    // nearer to X.
+    double
+    initial_gap_on_curves(const GapGeometry  &slave,
+                          const GapGeometry  &master,
+                          const Tensor<1, 2> &outward,
+                          const Point<2>     &x)
+    {
+      Point<2>     X = x;
+      Tensor<1, 2> n = outward;
+      if (slave.curved)
+        {
+          n = (x - slave.centre) / (x - slave.centre).norm();
+          X = slave.centre + slave.radius * n;
+          if (n * outward < 0)
+            n = -n;
+        }
+      if (!master.curved)
+        {
+          const Tensor<1, 2> cd = master.b - master.a, r = X - master.a;
+          return (cd[0] * r[1] - cd[1] * r[0]) / (-cd[0] * n[1] + cd[1] * n[0]);
+        }
+      const Tensor<1, 2> q  = X - master.centre;
+      const double       qn = q * n;
+      const double       discriminant =
+        qn * qn - q.norm_square() + master.radius * master.radius;
+      const double root = std::sqrt(std::max(discriminant, 0.));
+      return std::abs(-qn + root) < std::abs(-qn - root) ? -qn + root :
+                                                           -qn - root;
+    }
+
+
+
     // A Gauss rule fine enough for the length element |x'(xi)| of a curved
     // segment (not a polynomial): the row sums of M then equal D to round
     // off, as on straight segments.
@@ -194,6 +257,13 @@ namespace coulomb_adapt
       return;
     overlap_list.push_back({slave_index, master_index, begin, end});
 
+    // The initial gap on the manifolds' curves where a P1 face lies on one
+    // (Segment::on_curved_manifold), else on the chords.
+    const bool on_curves =
+      slave_segment.on_curved_manifold || master_segment.on_curved_manifold;
+    const GapGeometry slave_geometry  = gap_geometry(slave, slave_segment);
+    const GapGeometry master_geometry = gap_geometry(master, master_segment);
+
     // Exact for the products of the (dual) slave and master shape
     // functions on straight segments.
     const QGauss<1>     gauss(std::max(slave_degree, master_degree) + 2);
@@ -207,7 +277,10 @@ namespace coulomb_adapt
         const Tensor<1, 2> r  = x - c;
         // Cramer's rule on [cd, -n] (eta, t)^T = r.
         const double eta = (-r[0] * n[1] + r[1] * n[0]) / det;
-        const double t   = (cd[0] * r[1] - cd[1] * r[0]) / det;
+        const double t =
+          on_curves ?
+            initial_gap_on_curves(slave_geometry, master_geometry, n, x) :
+            (cd[0] * r[1] - cd[1] * r[0]) / det;
 
         const auto phi_s = segment_shape_values(slave_degree, xi);
         const auto phi_m = segment_shape_values(master_degree, eta);

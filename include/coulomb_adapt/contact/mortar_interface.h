@@ -30,7 +30,9 @@ namespace coulomb_adapt
    * built from the segment's own mass matrix, master ends are projected
    * onto the slave curve orthogonally and slave points onto the master
    * curve along the slave curve's normal; nodal normals are the curves'
-   * normals at the nodes.
+   * normals at the nodes. Degree 1 on a curved manifold keeps the
+   * chords for everything but the initial gap g_0, which is measured
+   * between the manifold's curves (Segment::on_curved_manifold).
    *
    * The Lagrange multiplier lives on the slave nodes with Wohlmuth's dual
    * basis (psi_a = 2 phi_a - phi_b on a linear slave segment [a, b]; for
@@ -80,6 +82,16 @@ namespace coulomb_adapt
        * curved manifold): the segment is the parabola through its three
        * nodes, and the integrals are taken on it. */
       bool curved = false;
+      /** Degree 1 with the boundary's manifold off the chord (a circle):
+       * the manifold's point halfway along the face. The element is the
+       * chord, which lies h^2 / (8 R) inside a circle of radius R at its
+       * middle, more than the interference of a press fit; so the initial
+       * gap g_0 (only it) is measured on the circle through the ends and
+       * this point (the manifold's circle itself), so that nodes of the
+       * two sides at different angles see the true distance of the
+       * curves. */
+      Point<2> manifold_middle;
+      bool     on_curved_manifold = false;
     };
 
     /** Where a projected master segment overlaps a slave segment: the
