@@ -424,12 +424,13 @@ namespace coulomb_adapt
 
 
   GmshMeshing
-  mesh_with_gmsh_here(const Triangulation<2>                     &geometry,
-                      const std::vector<SizeFieldTriangle>       &size_field,
-                      const std::string                          &body_name,
-                      const RemeshingAlgorithm                    algorithm,
-                      const std::vector<std::array<Point<2>, 2>> &interior_lines,
-                      const std::vector<Point<2>>                &support_points)
+  mesh_with_gmsh_here(
+    const Triangulation<2>                     &geometry,
+    const std::vector<SizeFieldTriangle>       &size_field,
+    const std::string                          &body_name,
+    const RemeshingAlgorithm                    algorithm,
+    const std::vector<std::array<Point<2>, 2>> &interior_lines,
+    const std::vector<Point<2>>                &support_points)
   {
     // gmsh's Mesh.Algorithm numbers.
     const int algorithm_number =
@@ -471,7 +472,8 @@ namespace coulomb_adapt
                   const MPI_Comm     comm,
                   const unsigned int root)
   {
-    const std::string error = Utilities::MPI::broadcast(comm, meshing.error, root);
+    const std::string error =
+      Utilities::MPI::broadcast(comm, meshing.error, root);
     AssertThrow(error.empty(),
                 ExcMessage("remeshing " + body_name + " failed: " + error));
     return unpack(Utilities::MPI::broadcast(comm, meshing.packed_mesh, root));

@@ -64,18 +64,19 @@ namespace coulomb_adapt
    * on every rank.
    */
   GmshMeshing
-  mesh_with_gmsh_here(const Triangulation<2>                     &geometry,
-                      const std::vector<SizeFieldTriangle>       &size_field,
-                      const std::string                          &body_name,
-                      const RemeshingAlgorithm                    algorithm,
-                      const std::vector<std::array<Point<2>, 2>> &interior_lines,
-                      const std::vector<Point<2>> &support_points = {});
+  mesh_with_gmsh_here(
+    const Triangulation<2>                     &geometry,
+    const std::vector<SizeFieldTriangle>       &size_field,
+    const std::string                          &body_name,
+    const RemeshingAlgorithm                    algorithm,
+    const std::vector<std::array<Point<2>, 2>> &interior_lines,
+    const std::vector<Point<2>>                &support_points = {});
 
   CoarseMeshData
-  share_gmsh_mesh(const GmshMeshing  &meshing,
-                  const std::string  &body_name,
-                  const MPI_Comm      comm,
-                  const unsigned int  root);
+  share_gmsh_mesh(const GmshMeshing &meshing,
+                  const std::string &body_name,
+                  const MPI_Comm     comm,
+                  const unsigned int root);
 } // namespace coulomb_adapt
 
 #endif
