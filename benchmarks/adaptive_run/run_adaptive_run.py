@@ -7,11 +7,14 @@ summary.json gives the per-cycle phase times (timings_s), summed here over
 the cycles; the wall time is the process's.
 
   benchmarks/adaptive_run/run_adaptive_run.py [--exe build/coulomb-adapt]
-      [--baseline EXE] [--repeat N]
+      [--baseline EXE] [--repeat N] [--ranks 1,2] [--targets 0.25,1]
+      [--variants vtu,...] [--csv results.csv]
 
 --baseline runs an older executable (e.g. a copy of main's build) with the
-variant 'vtu' only (older builds know no Output/Format). Writes results.csv
-beside this script and prints a Markdown table. The machine is shared:
+variant 'vtu' only (older builds know no Output/Format). --ranks runs each
+case on each number of MPI ranks (mpirun; the phase times are rank 0's).
+Writes results.csv (or --csv) beside this script and prints a Markdown
+table. The machine is shared:
 other_cpu_s is the CPU time other processes took during the run.
 """
 
@@ -33,19 +36,19 @@ VARIANTS = {
 }
 PHASES = ["setup", "assembly", "contact solve", "error indicator",
           "output", "adapt mesh"]
-FIELDS = (["build", "target_percent", "variant", "cycles", "dofs", "epsilon",
+FIELDS = (["build", "ranks", "target_percent", "variant", "cycles", "dofs", "epsilon",
            "newton", "wall_s", "other_cpu_s", "peak_memory_MiB"]
           + [p.replace(" ", "_") + "_s" for p in PHASES]
           + ["output_share", "remesh_share", "wall_over_solve_estimate",
              "command"])
 
 
-def one_run(build, exe, target, variant):
+def one_run(build, exe, target, variant, ranks):
     out_dir = tempfile.mkdtemp(prefix="coulomb-bench-")
     args = common.program_command(
         exe, ["Adaptation/Target error=" + target]
         + VARIANTS[variant] + ["Output/Output directory=" + out_dir],
-        prm=os.path.join(common.PRM_DIR, "blocks.prm"))
+        prm=os.path.join(common.PRM_DIR, "blocks.prm"), ranks=ranks)
     run = common.run(args, 1800, common.program_env(exe))
     summary = common.read_summary(out_dir)
     shutil.rmtree(out_dir, ignore_errors=True)
@@ -53,7 +56,7 @@ def one_run(build, exe, target, variant):
         raise SystemExit("%s failed: %s" % (common.shell_command(args),
                                              run.failure()))
     cycles = summary["cycles"]
-    row = dict(build=build, target_percent=target, variant=variant,
+    row = dict(build=build, ranks=ranks, target_percent=target, variant=variant,
                cycles=len(cycles), dofs=cycles[-1]["n_dofs"],
                epsilon=cycles[-1]["epsilon"],
                newton=sum(c.get("newton_iterations", 0) for c in cycles),
@@ -75,28 +78,41 @@ def main():
     parser.add_argument("--exe", default=common.DEFAULT_EXE)
     parser.add_argument("--baseline", help="an older executable")
     parser.add_argument("--repeat", type=int, default=1)
+    parser.add_argument("--ranks", default="1",
+                        help="comma-separated numbers of MPI ranks")
+    parser.add_argument("--targets", default=",".join(TARGETS))
+    parser.add_argument("--variants", default=",".join(VARIANTS))
+    parser.add_argument("--csv", default="results.csv")
     args = parser.parse_args()
-    builds = [("this", common.check_executable(args.exe), list(VARIANTS))]
+    ranks = [int(r) for r in args.ranks.split(",")]
+    targets = args.targets.split(",")
+    variants = args.variants.split(",")
+    for v in variants:
+        if v not in VARIANTS:
+            raise SystemExit("--variants: '%s' is not one of %s"
+                             % (v, ", ".join(VARIANTS)))
+    builds = [("this", common.check_executable(args.exe), variants)]
     if args.baseline:
         builds.insert(0, ("baseline", common.check_executable(args.baseline),
-                          ["vtu"]))
+                          [v for v in variants if v == "vtu"]))
     common.print_header(builds[-1][1])
     rows = []
     for _ in range(args.repeat):
-        for target in TARGETS:
-            for build, exe, variants in builds:
-                for variant in variants:
-                    rows.append(one_run(build, exe, target, variant))
-                    common.write_csv(os.path.join(HERE, "results.csv"),
-                                     rows, FIELDS)
-    print("| build | eps0 % | output | cycles | DoFs | wall s | output s "
+        for target in targets:
+            for n in ranks:
+                for build, exe, build_variants in builds:
+                    for variant in build_variants:
+                        rows.append(one_run(build, exe, target, variant, n))
+                        common.write_csv(os.path.join(HERE, args.csv),
+                                         rows, FIELDS)
+    print("| build | ranks | eps0 % | output | cycles | DoFs | wall s | output s "
           "| adapt mesh s | contact s | output % | remesh % | wall/(solve+est)"
           " | other CPU s |")
-    print("|---" * 13 + "|")
+    print("|---" * 14 + "|")
     for r in rows:
-        print("| %s | %s | %s | %d | %d | %s | %s | %s | %s | %s | %s | %s "
-              "| %s |" % (
-                  r["build"], r["target_percent"], r["variant"], r["cycles"],
+        print("| %s | %d | %s | %s | %d | %d | %s | %s | %s | %s | %s | %s "
+              "| %s | %s |" % (
+                  r["build"], r["ranks"], r["target_percent"], r["variant"], r["cycles"],
                   r["dofs"], common.fmt(r["wall_s"]),
                   common.fmt(r["output_s"]), common.fmt(r["adapt_mesh_s"]),
                   common.fmt(r["contact_solve_s"]),

@@ -423,6 +423,64 @@ namespace coulomb_adapt
 
 
 
+  GmshMeshing
+  mesh_with_gmsh_here(
+    const Triangulation<2>                     &geometry,
+    const std::vector<SizeFieldTriangle>       &size_field,
+    const std::string                          &body_name,
+    const RemeshingAlgorithm                    algorithm,
+    const std::vector<std::array<Point<2>, 2>> &interior_lines,
+    const std::vector<Point<2>>                &support_points)
+  {
+    // gmsh's Mesh.Algorithm numbers.
+    const int algorithm_number =
+      algorithm == RemeshingAlgorithm::delaunay ? 5 : 6;
+    GmshMeshing result;
+    gmsh::initialize();
+    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh::option::setNumber("General.Verbosity", 0);
+    try
+      {
+        result.packed_mesh = pack(mesh_in_gmsh(geometry,
+                                               size_field,
+                                               body_name,
+                                               algorithm_number,
+                                               interior_lines,
+                                               support_points));
+      }
+    catch (const std::exception &e)
+      {
+        result.error = e.what();
+      }
+    catch (const std::string &thrown)
+      {
+        result.error = "gmsh: " + gmsh_error_message(thrown);
+      }
+    catch (...)
+      {
+        result.error = "gmsh: " + gmsh_error_message("");
+      }
+    gmsh::finalize();
+    return result;
+  }
+
+
+
+  CoarseMeshData
+  share_gmsh_mesh(const GmshMeshing &meshing,
+                  const std::string &body_name,
+                  const MPI_Comm     comm,
+                  const unsigned int root)
+  {
+    const std::string error =
+      Utilities::MPI::broadcast(comm, meshing.error, root);
+    AssertThrow(error.empty(),
+                ExcMessage("remeshing " + body_name + " failed: " + error));
+    return unpack(Utilities::MPI::broadcast(comm, meshing.packed_mesh, root));
+  }
+
+
+
   CoarseMeshData
   remesh_with_gmsh(const Triangulation<2>                     &geometry,
                    const std::vector<SizeFieldTriangle>       &size_field,
@@ -432,43 +490,15 @@ namespace coulomb_adapt
                    const std::vector<std::array<Point<2>, 2>> &interior_lines,
                    const std::vector<Point<2>>                &support_points)
   {
-    // gmsh's Mesh.Algorithm numbers.
-    const int algorithm_number =
-      algorithm == RemeshingAlgorithm::delaunay ? 5 : 6;
     // One rank meshes (gmsh is serial), every rank gets the mesh.
-    std::vector<double> data;
-    std::string         error;
+    GmshMeshing meshing;
     if (Utilities::MPI::this_mpi_process(comm) == 0)
-      {
-        gmsh::initialize();
-        gmsh::option::setNumber("General.Terminal", 0);
-        gmsh::option::setNumber("General.Verbosity", 0);
-        try
-          {
-            data = pack(mesh_in_gmsh(geometry,
-                                     size_field,
-                                     body_name,
-                                     algorithm_number,
-                                     interior_lines,
-                                     support_points));
-          }
-        catch (const std::exception &e)
-          {
-            error = e.what();
-          }
-        catch (const std::string &thrown)
-          {
-            error = "gmsh: " + gmsh_error_message(thrown);
-          }
-        catch (...)
-          {
-            error = "gmsh: " + gmsh_error_message("");
-          }
-        gmsh::finalize();
-      }
-    error = Utilities::MPI::broadcast(comm, error, 0);
-    AssertThrow(error.empty(),
-                ExcMessage("remeshing " + body_name + " failed: " + error));
-    return unpack(Utilities::MPI::broadcast(comm, data, 0));
+      meshing = mesh_with_gmsh_here(geometry,
+                                    size_field,
+                                    body_name,
+                                    algorithm,
+                                    interior_lines,
+                                    support_points);
+    return share_gmsh_mesh(meshing, body_name, comm, 0);
   }
 } // namespace coulomb_adapt

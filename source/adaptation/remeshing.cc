@@ -1,3 +1,5 @@
+#include <deal.II/base/mpi.h>
+
 #include <coulomb_adapt/adaptation/adaptation_strategy.h>
 #include <coulomb_adapt/adaptation/gmsh_remesher.h>
 
@@ -37,6 +39,14 @@ namespace coulomb_adapt
 
   // Each body's new mesh is made by gmsh on the scene's geometry (its
   // coarse mesh), with the nodal size field of the plan.
+  //
+  // gmsh is one instance per process, so on two or more ranks the bodies
+  // are meshed at the same time on different ones: body b on rank
+  // b mod n_ranks, each with its own gmsh. Every collective step (the
+  // gathers of the size fields, the broadcasts of the meshes, the new
+  // triangulations) comes before or after all the gmsh calls, so that no
+  // rank waits in one while another meshes. The field does not depend on
+  // the rank it is gathered on, so the meshes are those of one rank.
   void
   Remeshing::change_meshes(const std::array<ElasticBody *, 2> &bodies,
                            const ErrorEstimate &,
@@ -46,20 +56,38 @@ namespace coulomb_adapt
                            const double,
                            MeshAdaptationReport &) const
   {
+    std::array<unsigned int, 2>                   root;
+    std::array<std::vector<SizeFieldTriangle>, 2> fields;
+    std::array<Triangulation<2>, 2>               geometries;
     for (unsigned int b = 0; b < 2; ++b)
       {
-        const auto       field = nodal_size_field(*bodies[b], ratios.ratio[b]);
-        Triangulation<2> geometry;
-        bodies[b]->create_scene_coarse_mesh(geometry);
-        bodies[b]->replace_mesh(
-          remesh_with_gmsh(geometry,
-                           field,
-                           bodies[b]->name(),
-                           bodies[b]->dof_handler().get_communicator(),
-                           parameters.remeshing_algorithm,
-                           bodies[b]->description().interior_lines(),
-                           bodies[b]->description().support_points));
+        const MPI_Comm comm = bodies[b]->dof_handler().get_communicator();
+        root[b]             = b % Utilities::MPI::n_mpi_processes(comm);
+        fields[b] = nodal_size_field(*bodies[b], ratios.ratio[b], root[b]);
+        bodies[b]->create_scene_coarse_mesh(geometries[b]);
       }
+
+    std::array<GmshMeshing, 2> meshings;
+    for (unsigned int b = 0; b < 2; ++b)
+      if (Utilities::MPI::this_mpi_process(
+            bodies[b]->dof_handler().get_communicator()) == root[b])
+        {
+          meshings[b] =
+            mesh_with_gmsh_here(geometries[b],
+                                fields[b],
+                                bodies[b]->name(),
+                                parameters.remeshing_algorithm,
+                                bodies[b]->description().interior_lines(),
+                                bodies[b]->description().support_points);
+          fields[b] = {};
+        }
+
+    for (unsigned int b = 0; b < 2; ++b)
+      bodies[b]->replace_mesh(
+        share_gmsh_mesh(meshings[b],
+                        bodies[b]->name(),
+                        bodies[b]->dof_handler().get_communicator(),
+                        root[b]));
   }
 
 

@@ -18,14 +18,16 @@ namespace coulomb_adapt
 
 
 
-    // The owned cells of @p body with h*_E = r_E h_E, gathered on rank 0.
-    // Only rank 0 meshes. The cells are put in a fixed order, whatever the
+    // The owned cells of @p body with h*_E = r_E h_E, gathered on rank
+    // @p root, the one that meshes the body. The cells are put in a fixed order, whatever the
     // partition: gmsh's result depends on the order of the view's
     // triangles and on the last bits of the sizes, and the mesh must not
     // depend on the number of ranks. The sizes are rounded to float for the
     // same reason (r_E comes from MPI sums).
     std::vector<PackedCell>
-    gathered_cells(const ElasticBody &body, const Vector<double> &ratio)
+    gathered_cells(const ElasticBody    &body,
+                   const Vector<double> &ratio,
+                   const unsigned int    root)
     {
       std::vector<double> local;
       for (const auto &cell : body.triangulation().active_cell_iterators())
@@ -43,7 +45,9 @@ namespace coulomb_adapt
             local.push_back(cell->measure());
           }
       const auto gathered =
-        Utilities::MPI::gather(body.dof_handler().get_communicator(), local, 0);
+        Utilities::MPI::gather(body.dof_handler().get_communicator(),
+                               local,
+                               root);
       std::vector<PackedCell> cells;
       for (const auto &part : gathered)
         for (std::size_t c = 0; c < part.size(); c += n_values)
@@ -114,9 +118,11 @@ namespace coulomb_adapt
 
 
   std::vector<SizeFieldTriangle>
-  nodal_size_field(const ElasticBody &body, const Vector<double> &ratio)
+  nodal_size_field(const ElasticBody    &body,
+                   const Vector<double> &ratio,
+                   const unsigned int    root)
   {
-    const auto                     cells = gathered_cells(body, ratio);
+    const auto                     cells = gathered_cells(body, ratio, root);
     const auto                     sizes = vertex_sizes(cells);
     std::vector<SizeFieldTriangle> field(cells.size());
     for (std::size_t c = 0; c < cells.size(); ++c)

@@ -41,6 +41,42 @@ namespace coulomb_adapt
                    const RemeshingAlgorithm                    algorithm,
                    const std::vector<std::array<Point<2>, 2>> &interior_lines,
                    const std::vector<Point<2>> &support_points = {});
+
+
+
+  /**
+   * What gmsh made of one body on the process that meshed it: the mesh
+   * packed for the broadcast, or gmsh's error. Empty on the other ranks.
+   */
+  struct GmshMeshing
+  {
+    std::vector<double> packed_mesh;
+    std::string         error;
+  };
+
+  /**
+   * remesh_with_gmsh() in two halves, so that the bodies can be meshed at
+   * the same time on different ranks: mesh_with_gmsh_here() runs gmsh on
+   * the calling process only (its own gmsh::initialize() and finalize();
+   * not collective, no MPI call), with the arguments of
+   * remesh_with_gmsh(); share_gmsh_mesh() is collective over @p comm and
+   * gives every rank the mesh made on rank @p root, or throws gmsh's error
+   * on every rank.
+   */
+  GmshMeshing
+  mesh_with_gmsh_here(
+    const Triangulation<2>                     &geometry,
+    const std::vector<SizeFieldTriangle>       &size_field,
+    const std::string                          &body_name,
+    const RemeshingAlgorithm                    algorithm,
+    const std::vector<std::array<Point<2>, 2>> &interior_lines,
+    const std::vector<Point<2>>                &support_points = {});
+
+  CoarseMeshData
+  share_gmsh_mesh(const GmshMeshing &meshing,
+                  const std::string &body_name,
+                  const MPI_Comm     comm,
+                  const unsigned int root);
 } // namespace coulomb_adapt
 
 #endif

@@ -21,8 +21,9 @@ namespace coulomb_adapt
   };
 
   /**
-   * The size field h*(x) of a triangle mesh, on rank 0 (empty on the
-   * others, which do not mesh): h*_E = r_E h_E
+   * The size field h*(x) of a triangle mesh, on rank @p root of the body's
+   * communicator (empty on the others, which do not mesh this body; the
+   * field does not depend on which rank gathers it): h*_E = r_E h_E
    * with h_E = (4 |E| / sqrt 3)^1/2, the edge of the equilateral triangle of
    * the same area (so that the cell count of the new mesh is sum_E r_E^-2
    * for any shape), smoothed by taking at each vertex the geometric mean of
@@ -32,7 +33,9 @@ namespace coulomb_adapt
    * entries).
    */
   std::vector<SizeFieldTriangle>
-  nodal_size_field(const ElasticBody &body, const Vector<double> &ratio);
+  nodal_size_field(const ElasticBody    &body,
+                   const Vector<double> &ratio,
+                   const unsigned int    root = 0);
 } // namespace coulomb_adapt
 
 #endif
