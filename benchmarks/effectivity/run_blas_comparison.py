@@ -7,11 +7,20 @@ both alike).
         --openblas /usr/lib/x86_64-linux-gnu/openblas-serial \
         --reference /usr/lib/x86_64-linux-gnu/blas --repeats 2
 
-Each run puts the chosen directory (holding libblas.so.3 and
-liblapack.so.3) first on LD_LIBRARY_PATH, so both BLAS are measured with
-the same executable whichever the system's alternative selects. Writes
-benchmarks/effectivity/blas.csv: per run the phase times summed over the
-cycles (summary.json's timings_s), the final DoFs and epsilon.
+Each run puts the chosen directories (holding libblas.so.3 and
+liblapack.so.3; several joined by ':') first on LD_LIBRARY_PATH, so both
+BLAS are measured with the same executable whichever the system's
+alternative selects. Writes benchmarks/effectivity/blas.csv: per run the
+phase times summed over the cycles (summary.json's timings_s), the final
+DoFs and epsilon. Exits 1 when a run failed (after writing the others).
+
+    benchmarks/effectivity/run_blas_comparison.py --smoke \
+        --exe build/coulomb-adapt --openblas DIRS --reference DIRS \
+        --csv /tmp/blas.csv --outdir /tmp/blas-runs
+
+runs only the seed's first cycle with cre, once per side (a few seconds;
+ctest's benchmark.blas_comparison.run passes the reference BLAS for both
+sides, so it runs on a machine without OpenBLAS).
 """
 import argparse
 import os
@@ -31,6 +40,11 @@ RUNS = {
         "Adaptation/Minimum number of cycles=1"],
     "zz eps0=0.25%": ["Adaptation/Target error=0.25"],
 }
+# The smoke run: the seed mesh's solve and cre estimate, one cycle.
+SMOKE = {
+    "seed cre, 1 cycle": CRE + ["Adaptation/Number of cycles=1",
+                                "Adaptation/Minimum number of cycles=1"],
+}
 FIELDS = ["run", "blas", "repeat", "dofs", "cycles", "wall_s",
           "contact_solve_s", "equilibration_s", "indicator_s",
           "adapt_mesh_s", "epsilon", "load_average"]
@@ -48,14 +62,20 @@ def main():
     parser.add_argument("--reference", required=True)
     parser.add_argument("--repeats", type=int, default=2)
     parser.add_argument("--csv", default=os.path.join(HERE, "blas.csv"))
+    parser.add_argument("--outdir", default="/tmp/coulomb-bench-blas",
+                        help="the runs' output directory (overwritten)")
+    parser.add_argument("--smoke", action="store_true",
+                        help="only the seed's first cycle with cre, once")
     args = parser.parse_args()
+    args.exe = common.check_executable(args.exe)
     common.print_header(args.exe)
-    rows = []
-    for repeat in range(args.repeats):
-        for name, settings in RUNS.items():
+    runs, repeats = (SMOKE, 1) if args.smoke else (RUNS, args.repeats)
+    rows, failed = [], 0
+    for repeat in range(repeats):
+        for name, settings in runs.items():
             for blas, directory in (("reference", args.reference),
                                     ("openblas", args.openblas)):
-                out_dir = "/tmp/coulomb-bench-blas"
+                out_dir = args.outdir
                 command = common.program_command(
                     args.exe, settings + ["Output/Write VTU=false",
                                           "Output/Output directory=" + out_dir],
@@ -68,6 +88,7 @@ def main():
                 failure = result.failure()
                 if failure:
                     print("%s, %s: %s" % (name, blas, failure[1]), flush=True)
+                    failed += 1
                     continue
                 summary = common.read_summary(out_dir)
                 last = common.last_cycle(summary)
@@ -84,6 +105,8 @@ def main():
                 print(", ".join("%s %s" % (k, common.cell(row[k]))
                                 for k in FIELDS), flush=True)
     common.write_csv(args.csv, rows, FIELDS)
+    if failed:
+        sys.exit("%d run(s) failed" % failed)
 
 
 if __name__ == "__main__":
