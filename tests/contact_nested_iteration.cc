@@ -112,7 +112,7 @@ namespace
                     ConditionalOStream &out)
   {
     const std::string cycles = std::to_string(n_cycles);
-    const auto run = [&](const bool predicted) {
+    const auto        run    = [&](const bool predicted) {
       const testing::ProgramRun run(
         {{"Scene/Name", "cattaneo"},
          {"Mesh/Cell type", cell_type},
@@ -131,7 +131,7 @@ namespace
                 ExcInternalError());
     for (unsigned int c = 0; c < n_cycles; ++c)
       {
-        const auto &a = cold[c], &b = predicted[c];
+        const auto                     &a = cold[c], &b = predicted[c];
         const std::vector<unsigned int> steps_cold =
           a["newton_iterations_per_load_step"];
         const std::vector<unsigned int> steps =
@@ -141,14 +141,12 @@ namespace
                     ExcMessage("cattaneo " + cell_type + ", cycle " +
                                std::to_string(c) +
                                ": the predicted start's estimate differs"));
-        AssertThrow(steps.size() == 6 && steps_cold.size() == 6 &&
-                      steps[0] <= 4 && steps[0] < steps_cold[0] &&
-                      std::equal(steps.begin() + 1,
-                                 steps.end(),
-                                 steps_cold.begin() + 1),
-                    ExcMessage("cattaneo " + cell_type + ", cycle " +
-                               std::to_string(c) +
-                               ": unexpected Newton steps per load step"));
+        AssertThrow(
+          steps.size() == 6 && steps_cold.size() == 6 && steps[0] <= 4 &&
+            steps[0] < steps_cold[0] &&
+            std::equal(steps.begin() + 1, steps.end(), steps_cold.begin() + 1),
+          ExcMessage("cattaneo " + cell_type + ", cycle " + std::to_string(c) +
+                     ": unexpected Newton steps per load step"));
         out << "cattaneo " << cell_type << ", cycle " << c << ", "
             << b["n_dofs"] << " DoFs, "
             << (c == 0 ? "nested iteration" : "previous first-step sets")

@@ -40,8 +40,8 @@ namespace
   cre(const std::array<const ElasticBody *, 2> &bodies,
       const ContactSolver                      *solver,
       const Parameters                         &parameters,
-      const bool                                optimise_tractions = true,
-      const unsigned int                        degree_increase    = 3,
+      const bool                                optimise_tractions  = true,
+      const unsigned int                        degree_increase     = 3,
       const bool                                relax_equilibration = true)
   {
     return estimate_error_cre(bodies,
@@ -179,7 +179,7 @@ main(int argc, char **argv)
       const auto p      = testing::solve_contact(settings);
       const auto bodies = std::array<const ElasticBody *, 2>{
         {p->bodies[0].get(), p->bodies[1].get()}};
-      const ErrorEstimate   e = cre(bodies, p->solver.get(), p->parameters);
+      const ErrorEstimate e = cre(bodies, p->solver.get(), p->parameters);
       // The prolongation conditions kept: the relaxed modes only enlarge
       // the set of admissible fields the minimisation sees.
       const double kept =
@@ -198,13 +198,11 @@ main(int argc, char **argv)
           << std::setprecision(2) << e.epsilon / exact[1]
           << std::setprecision(3)
           << ", >= 1: " << (e.epsilon >= exact[1] ? "yes" : "no")
-          << "; relaxed: " << (e.relaxed_equilibration[0] &&
-                                   e.relaxed_equilibration[1] ?
-                                 "yes" :
-                                 "no")
+          << "; relaxed: "
+          << (e.relaxed_equilibration[0] && e.relaxed_equilibration[1] ? "yes" :
+                                                                         "no")
           << ", prolongation conditions kept: " << 100 * kept
-          << " %, above: " << (kept >= e.epsilon ? "yes" : "no")
-          << std::endl;
+          << " %, above: " << (kept >= e.epsilon ? "yes" : "no") << std::endl;
       AssertThrow(e.epsilon >= exact[1] && exact[1] >= exact[0] &&
                     kept >= e.epsilon && e.relaxed_equilibration[0] &&
                     e.relaxed_equilibration[1],

@@ -43,7 +43,7 @@ namespace coulomb_adapt
                 std::string("frictionless (mu = 0): no "
                             "stick/slip sets"))
           << std::endl;
-    ContactSolveOutcome outcome;
+    ContactSolveOutcome                  outcome;
     const std::vector<ContactNodeState> &previous_start =
       scene.n_load_steps() == 1 ? previous_states : first_load_step_states;
     outcome.warm_start = parameters.adaptation.warm_start &&

@@ -165,25 +165,26 @@ namespace coulomb_adapt
                           "is tighter, above all on triangles). false: the "
                           "classical choice of Ladeveze and Leguillon, the "
                           "tractions closest to the averaged FE traction.");
-        prm.declare_entry("CRE relaxed equilibration",
-                          "true",
-                          Patterns::Bool(),
-                          "true (with traction optimisation and CRE degree "
-                          "increase >= 3): the optimisation also moves the "
-                          "edge tractions that keep every element in "
-                          "equilibrium but break the prolongation "
-                          "conditions (per interior edge a linear "
-                          "tangential traction, per interior node a "
-                          "linear normal traction on its edges whose "
-                          "couples cancel in each element): sigma^ stays "
-                          "statically admissible and the estimate is much "
-                          "tighter (P1 triangles: effectivity about 0.99-1.1 "
-                          "instead of 1.6-2.1; so close to the exact error "
-                          "that the local problems' discretisation can put "
-                          "it 0.5 % below, doc/indicator.md). Only used where the scene's "
-                          "displacement data are interpolated exactly (the "
-                          "bound assumes it); the log says when it is not. "
-                          "false: the prolongation conditions are kept.");
+        prm.declare_entry(
+          "CRE relaxed equilibration",
+          "true",
+          Patterns::Bool(),
+          "true (with traction optimisation and CRE degree "
+          "increase >= 3): the optimisation also moves the "
+          "edge tractions that keep every element in "
+          "equilibrium but break the prolongation "
+          "conditions (per interior edge a linear "
+          "tangential traction, per interior node a "
+          "linear normal traction on its edges whose "
+          "couples cancel in each element): sigma^ stays "
+          "statically admissible and the estimate is much "
+          "tighter (P1 triangles: effectivity about 0.99-1.1 "
+          "instead of 1.6-2.1; so close to the exact error "
+          "that the local problems' discretisation can put "
+          "it 0.5 % below, doc/indicator.md). Only used where the scene's "
+          "displacement data are interpolated exactly (the "
+          "bound assumes it); the log says when it is not. "
+          "false: the prolongation conditions are kept.");
       }
     } // namespace
 

@@ -209,8 +209,8 @@ namespace coulomb_adapt
                                            indicator_parameters,
                                            solver_parameters,
                                            options);
-    estimate.estimator = estimator;
-    estimate.wall_time = timer.wall_time();
+    estimate.estimator     = estimator;
+    estimate.wall_time     = timer.wall_time();
     return estimate;
   }
 

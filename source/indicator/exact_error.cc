@@ -258,7 +258,7 @@ namespace coulomb_adapt
       low = high, high *= 2;
     for (unsigned int i = 0; i < 200 && high - low > 1e-15 * high; ++i)
       {
-        const double middle = (low + high) / 2;
+        const double middle          = (low + high) / 2;
         (f(middle) < 0 ? low : high) = middle;
       }
     return std::sqrt(a2 + d2 / high);

@@ -290,10 +290,9 @@ namespace coulomb_adapt
                   "kept: the relaxed modes need 'CRE relaxed "
                   "equilibration' and displacement data that the FE space "
                   "interpolates exactly")
-            << "); with the classical tractions epsilon would be "
-            << std::fixed << std::setprecision(3)
-            << 100 * e.epsilon_before_optimisation << " %" << std::defaultfloat
-            << std::endl;
+            << "); with the classical tractions epsilon would be " << std::fixed
+            << std::setprecision(3) << 100 * e.epsilon_before_optimisation
+            << " %" << std::defaultfloat << std::endl;
     auto log_epsilon = [&](const ErrorEstimate &estimate) {
       pcout << "  error indicator (" << to_string(estimate.estimator)
             << "): epsilon = " << std::fixed << std::setprecision(3)
@@ -314,15 +313,14 @@ namespace coulomb_adapt
     if (e.estimator != ErrorEstimator::cre)
       record["recovery"] = to_string(e.recovery);
     else
-      record["cre"] = {{"degree_increase", cre_degree_increase},
-                       {"node_system_defect", e.node_system_defect},
-                       {"local_problem_defect", e.local_problem_defect},
-                       {"optimisation_parameters", e.optimisation_parameters},
-                       {"relaxed_equilibration",
-                        {e.relaxed_equilibration[0],
-                         e.relaxed_equilibration[1]}},
-                       {"epsilon_classical_tractions",
-                        e.epsilon_before_optimisation}};
+      record["cre"] = {
+        {"degree_increase", cre_degree_increase},
+        {"node_system_defect", e.node_system_defect},
+        {"local_problem_defect", e.local_problem_defect},
+        {"optimisation_parameters", e.optimisation_parameters},
+        {"relaxed_equilibration",
+         {e.relaxed_equilibration[0], e.relaxed_equilibration[1]}},
+        {"epsilon_classical_tractions", e.epsilon_before_optimisation}};
     if (compared.empty())
       return;
     auto record_of = [this](const ErrorEstimate &estimate) {

@@ -129,7 +129,7 @@ namespace coulomb_adapt
      * the next cycle's start (the last step's slip zone is no guess for
      * the first step's). */
     std::vector<ContactNodeState> first_load_step_states;
-    const ConditionalOStream          &pcout;
+    const ConditionalOStream     &pcout;
   };
 } // namespace coulomb_adapt
 

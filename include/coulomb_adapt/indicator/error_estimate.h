@@ -47,8 +47,8 @@ namespace coulomb_adapt
     /** cre: the estimate with the classical edge tractions (closest to the
      * averaged traction), before its free parameters are optimised, and
      * the CG steps of that optimisation (0: not optimised). */
-    double       epsilon_before_optimisation = 0;
-    types::global_dof_index optimisation_parameters = 0;
+    double                  epsilon_before_optimisation = 0;
+    types::global_dof_index optimisation_parameters     = 0;
     /** cre, per body: whether the relaxed equilibration modes were used
      * (equilibrated_stress_errors()). */
     std::array<bool, 2> relaxed_equilibration = {{false, false}};
