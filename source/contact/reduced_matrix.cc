@@ -118,6 +118,12 @@ namespace coulomb_adapt
     Assert(std::is_sorted(explicit_local_rows.begin(),
                           explicit_local_rows.end()),
            ExcInternalError());
+    // Epetra computes the global counts and norms when first asked, with
+    // a reduction over the ranks; ML asks on each rank when that rank
+    // needs a row, which the ranks need not do together. Computed here,
+    // where every rank constructs the matrix.
+    ComputeStructureConstants();
+    ComputeNumericConstants();
   }
 
 
