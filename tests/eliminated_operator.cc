@@ -18,17 +18,23 @@
 // (Z~ = 0 there, its value in u_g). Eliminated rows of A must hold K's diagonal
 // entry only, b must be zero there. 1 and 2 ranks: on 2 the eliminated rows and
 // their K Z rows are gathered from the other rank.
+//
+// The contact solver does not store A: ReducedMatrix keeps only its rows
+// near the interface and reads the others from K^1, K^2. Its rows must be
+// the stored A's entry for entry, and its product A u~ the stored A's.
 
 #include <deal.II/base/mpi.h>
 
 #include <coulomb_adapt/bodies/elastic_bodies.h>
 #include <coulomb_adapt/contact/eliminated_operator.h>
 #include <coulomb_adapt/contact/mortar_interface.h>
+#include <coulomb_adapt/contact/reduced_matrix.h>
 #include <coulomb_adapt/scenes/scene_factory.h>
 #include <coulomb_adapt/solvers/matrix_rows.h>
 
 #include "test_utilities.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <vector>
@@ -325,6 +331,54 @@ main(int argc, char **argv)
     }
   u_difference = Utilities::MPI::max(u_difference, comm);
 
+  // The same A without a copy of K (ReducedMatrix): its rows, with their
+  // global columns, must be the stored matrix's entry for entry, and its
+  // product A u~ the stored matrix's (to round-off on 2 ranks, where the
+  // column order of a row, and so the order of the sums, is the matrix's
+  // own).
+  const std::shared_ptr<ReducedMatrix> A_rows = operator_.reduced_operator();
+  unsigned int                         n_rows_differing = 0;
+  {
+    std::vector<double> values(A_rows->MaxNumEntries());
+    std::vector<int>    columns(A_rows->MaxNumEntries());
+    for (const auto i : owned)
+      {
+        std::vector<std::pair<types::global_dof_index, double>> stored, rows;
+        for_each_entry(A,
+                       i,
+                       [&](const types::global_dof_index j, const double a) {
+                         stored.emplace_back(j, a);
+                       });
+        int n_entries = 0;
+        AssertThrow(A_rows->ExtractMyRowCopy(A_rows->RowMatrixRowMap().LID(
+                                               static_cast<int>(i)),
+                                             values.size(),
+                                             n_entries,
+                                             values.data(),
+                                             columns.data()) == 0,
+                    ExcInternalError());
+        for (int e = 0; e < n_entries; ++e)
+          rows.emplace_back(A_rows->RowMatrixColMap().GID(columns[e]),
+                            values[e]);
+        std::sort(stored.begin(), stored.end());
+        std::sort(rows.begin(), rows.end());
+        n_rows_differing += (stored != rows);
+      }
+  }
+  n_rows_differing = Utilities::MPI::sum(n_rows_differing, comm);
+  const unsigned int n_rows_stored =
+    Utilities::MPI::sum(static_cast<unsigned int>(A_rows->n_explicit_rows()),
+                        comm);
+  TrilinosWrappers::MPI::Vector Au(owned, comm), Au_rows(owned, comm);
+  A.vmult(Au, u_reduced);
+  AssertThrow(A_rows->Multiply(false,
+                               u_reduced.trilinos_vector(),
+                               Au_rows.trilinos_vector()) == 0,
+              ExcInternalError());
+  const double Au_scale = Au.linfty_norm();
+  Au_rows -= Au;
+  const double Au_difference = Au_rows.linfty_norm();
+
   unsigned int n_eliminated = all.rows.size();
   out << "blocks Q1, 2 refinements: " << n << " DoFs, "
       << mortar.slave_nodes().size() << " slave nodes: " << all.n_stick
@@ -354,4 +408,9 @@ main(int argc, char **argv)
   report("A", A_scale, A_difference);
   report("b", b_scale, b_difference);
   report("u", u_scale, u_difference);
+  out << "A from K's rows: " << n_rows_stored << " of " << n << " rows stored, "
+      << n_rows_differing << " rows differ from the matrix's" << std::endl;
+  AssertThrow(n_rows_differing == 0,
+              ExcMessage("a row of ReducedMatrix differs from A's"));
+  report("A u~ from K's rows", Au_scale, Au_difference);
 }

@@ -3,6 +3,7 @@
 #include <deal.II/lac/solver_control.h>
 
 #include <coulomb_adapt/contact/eliminated_contact_system.h>
+#include <coulomb_adapt/solvers/row_matrix_solvers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -237,11 +238,7 @@ namespace coulomb_adapt
         // hierarchy was built from it (amg_matrix keeps it then): freed
         // before the next one is built.
         reduced.reset();
-        reduced = std::make_shared<TrilinosWrappers::SparseMatrix>();
-        product.reduced_matrix(*reduced);
-        // The pattern of A, built row by row in many small blocks, is
-        // freed: its pages back before the AMG setup.
-        return_freed_heap_memory();
+        reduced = product.reduced_operator();
       }
     product.reduced_rhs(reduced_rhs);
   }
@@ -315,7 +312,7 @@ namespace coulomb_adapt
     // the Krylov solves need more iterations (doc/contact.md section 2).
     amg.reset();
     amg = std::make_unique<ElasticityAMG>();
-    amg->initialize(*reduced, near_null_space, eliminated_dofs);
+    initialize_elasticity_amg(*amg, *reduced, near_null_space, eliminated_dofs);
     amg_matrix                = reduced;
     states_at_build           = node_states;
     reduced_solution          = initial_guess;

@@ -265,6 +265,54 @@ namespace coulomb_adapt
 
 
 
+  // An eliminated component's row is decoupled: K's diagonal entry, so
+  // that the operator keeps the scale AMG's smoother expects, and zeros
+  // in the rest of its pattern.
+  void
+  EliminatedOperator::matrix_row(const types::global_dof_index row,
+                                 Entries                      &entries) const
+  {
+    reduced_row(row, entries);
+    if (!is_eliminated[row])
+      return;
+    double diagonal = 0;
+    for_each_stiffness_entry(row,
+                             [&](const types::global_dof_index l,
+                                 const double                  K_il) {
+                               if (l == row)
+                                 diagonal = K_il;
+                             });
+    bool has_diagonal = false;
+    for (auto &[column, value] : entries)
+      {
+        value        = column == row ? diagonal : 0.;
+        has_diagonal = has_diagonal || column == row;
+      }
+    Assert(has_diagonal, ExcInternalError());
+    (void)has_diagonal;
+  }
+
+
+
+  // A row of A is K's (its stored zeros left out) unless the row is
+  // eliminated, names an eliminated column with a nonzero of K, or is
+  // named by an eliminated row of Z~.
+  bool
+  EliminatedOperator::differs_from_stiffness(
+    const types::global_dof_index row) const
+  {
+    if (is_eliminated[row] || transposed.count(row) > 0)
+      return true;
+    bool differs = false;
+    for_each_stiffness_entry(
+      row, [&](const types::global_dof_index l, const double K_rl) {
+        differs = differs || (K_rl != 0 && is_eliminated[l]);
+      });
+    return differs;
+  }
+
+
+
   // Two passes over the rows, the pattern and then the values: the
   // pattern's transient is that of one matrix's indices, where the
   // products held K Z and three copies of the result at once.
@@ -290,7 +338,7 @@ namespace coulomb_adapt
 
     for (const auto i : owned)
       {
-        reduced_row(i, entries);
+        matrix_row(i, entries);
         columns.clear();
         values.clear();
         for (const auto &[column, value] : entries)
@@ -298,25 +346,22 @@ namespace coulomb_adapt
             columns.push_back(column);
             values.push_back(value);
           }
-        // An eliminated component: decoupled, with K's diagonal entry,
-        // so that the operator keeps the scale AMG's smoother expects.
-        if (is_eliminated[i])
-          {
-            std::fill(values.begin(), values.end(), 0.);
-            double diagonal = 0;
-            for_each_stiffness_entry(i,
-                                     [&](const types::global_dof_index l,
-                                         const double                  K_il) {
-                                       if (l == i)
-                                         diagonal = K_il;
-                                     });
-            const auto d = std::lower_bound(columns.begin(), columns.end(), i);
-            Assert(d != columns.end() && *d == i, ExcInternalError());
-            values[d - columns.begin()] = diagonal;
-          }
         matrix.set(i, columns.size(), columns.data(), values.data());
       }
     matrix.compress(VectorOperation::insert);
+  }
+
+
+
+  std::shared_ptr<ReducedMatrix>
+  EliminatedOperator::reduced_operator() const
+  {
+    ReducedMatrix::Rows rows;
+    for (const auto i : owned)
+      if (differs_from_stiffness(i))
+        matrix_row(i, rows[i]);
+    return std::make_shared<ReducedMatrix>(
+      K1, K2, offset, owned, communicator, rows);
   }
 
 

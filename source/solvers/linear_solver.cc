@@ -6,6 +6,7 @@
 #include <deal.II/lac/vector_memory.h>
 
 #include <coulomb_adapt/solvers/linear_solver.h>
+#include <coulomb_adapt/solvers/row_matrix_solvers.h>
 
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
@@ -70,71 +71,189 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // The owned rows of a deal.II matrix or of an Epetra row matrix.
+    unsigned int
+    n_owned_rows(const TrilinosWrappers::SparseMatrix &A)
+    {
+      return A.local_size();
+    }
+    unsigned int
+    n_owned_rows(const Epetra_RowMatrix &A)
+    {
+      return A.NumMyRows();
+    }
+    unsigned int
+    owned_row_index(const TrilinosWrappers::SparseMatrix &A,
+                    const types::global_dof_index         i)
+    {
+      Assert(A.locally_owned_range_indices().is_element(i), ExcInternalError());
+      return A.locally_owned_range_indices().index_within_set(i);
+    }
+    unsigned int
+    owned_row_index(const Epetra_RowMatrix &A, const types::global_dof_index i)
+    {
+      const int local = A.RowMatrixRowMap().LID(static_cast<int>(i));
+      Assert(local >= 0, ExcInternalError());
+      return local;
+    }
+
+
+
+    template <typename Matrix>
+    void
+    setup_elasticity_amg(
+      TrilinosWrappers::PreconditionAMG          &preconditioner,
+      const Matrix                               &A,
+      const std::vector<std::vector<double>>     &near_null_space,
+      const std::vector<types::global_dof_index> &zero_rows)
+    {
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      // Smoothed aggregation for elasticity, also for the (nearly
+      // symmetric) eliminated contact system and a pinned floating body:
+      // ML's non-symmetric variant took 2.6x longer to set up on the
+      // contact system and saved no GMRES iteration (hertz, 140,316 DoFs:
+      // 46 iterations either way).
+      data.elliptic              = true;
+      data.higher_order_elements = false;
+      data.smoother_sweeps       = 2;
+      // Drop only very weak connections when aggregating: with 0.02 the
+      // GMRES iterations on the eliminated contact system grew from 39 to
+      // 64 between 1.7e5 and 6.6e5 DoFs (blocks, mu = 0.3); with 1e-4 they
+      // are 23 and 25 (hertz at 5.6e5 DoFs: 36 instead of 70). Elasticity
+      // on uniform meshes is indifferent (15 and 13 CG iterations at 1e6
+      // DoFs either way).
+      data.aggregation_threshold = 1e-4;
+
+      // deal.II 9.4 can only hand ML constant modes; the rotation needs the
+      // mode values, so we fill ML's null space entries ourselves.
+      Teuchos::ParameterList              ml_parameters;
+      std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
+      data.set_parameters(ml_parameters, unused_constant_modes, A);
+
+      const unsigned int n_modes = near_null_space.size();
+      const unsigned int n_local = n_owned_rows(A);
+      // ML copies the mode values during the setup (its aggregation object
+      // keeps its own null space), so this buffer is needed only until the
+      // hierarchy is built.
+      std::vector<double> modes(n_modes * n_local, 0.);
+      for (unsigned int m = 0; m < n_modes; ++m)
+        {
+          AssertDimension(near_null_space[m].size(), n_local);
+          std::copy(near_null_space[m].begin(),
+                    near_null_space[m].end(),
+                    modes.begin() + m * n_local);
+          for (const auto i : zero_rows)
+            modes[m * n_local + owned_row_index(A, i)] = 0.;
+        }
+      // Aggregate the two displacement components of a node together:
+      // without this ML treats every DoF as its own PDE and its iteration
+      // count grows with refinement (benchmarks/elasticity: 41 instead of
+      // 15 iterations at 1e6 DoFs).
+      ml_parameters.set("PDE equations", 2);
+      if (n_modes > 0)
+        {
+          ml_parameters.set("null space: type", "pre-computed");
+          ml_parameters.set("null space: dimension", static_cast<int>(n_modes));
+          ml_parameters.set("null space: vectors", modes.data());
+        }
+
+      preconditioner.initialize(A, ml_parameters);
+      // The setup's products (A P, R A P, several times the size of A) are
+      // freed now: their pages back before the Krylov basis is allocated.
+      return_freed_heap_memory();
+    }
+  } // namespace
+
+
+
   void
   ElasticityAMG::initialize(
     const TrilinosWrappers::SparseMatrix       &A,
     const std::vector<std::vector<double>>     &near_null_space,
     const std::vector<types::global_dof_index> &zero_rows)
   {
-    TrilinosWrappers::PreconditionAMG::AdditionalData data;
-    // Smoothed aggregation for elasticity, also for the (nearly
-    // symmetric) eliminated contact system and a pinned floating body:
-    // ML's non-symmetric variant took 2.6x longer to set up on the
-    // contact system and saved no GMRES iteration (hertz, 140,316 DoFs:
-    // 46 iterations either way).
-    data.elliptic              = true;
-    data.higher_order_elements = false;
-    data.smoother_sweeps       = 2;
-    // Drop only very weak connections when aggregating: with 0.02 the
-    // GMRES iterations on the eliminated contact system grew from 39 to
-    // 64 between 1.7e5 and 6.6e5 DoFs (blocks, mu = 0.3); with 1e-4 they
-    // are 23 and 25 (hertz at 5.6e5 DoFs: 36 instead of 70). Elasticity
-    // on uniform meshes is indifferent (15 and 13 CG iterations at 1e6
-    // DoFs either way).
-    data.aggregation_threshold = 1e-4;
-
-    // deal.II 9.4 can only hand ML constant modes; the rotation needs the
-    // mode values, so we fill ML's null space entries ourselves.
-    Teuchos::ParameterList              ml_parameters;
-    std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
-    data.set_parameters(ml_parameters, unused_constant_modes, A);
-
-    const unsigned int n_modes = near_null_space.size();
-    const unsigned int n_local = A.local_size();
-    // ML copies the mode values during the setup (its aggregation object
-    // keeps its own null space), so this buffer is needed only until the
-    // hierarchy is built.
-    std::vector<double> modes(n_modes * n_local, 0.);
-    const IndexSet      owned = A.locally_owned_range_indices();
-    for (unsigned int m = 0; m < n_modes; ++m)
-      {
-        AssertDimension(near_null_space[m].size(), n_local);
-        std::copy(near_null_space[m].begin(),
-                  near_null_space[m].end(),
-                  modes.begin() + m * n_local);
-        for (const auto i : zero_rows)
-          {
-            Assert(owned.is_element(i), ExcInternalError());
-            modes[m * n_local + owned.index_within_set(i)] = 0.;
-          }
-      }
-    // Aggregate the two displacement components of a node together:
-    // without this ML treats every DoF as its own PDE and its iteration
-    // count grows with refinement (benchmarks/elasticity: 41 instead of
-    // 15 iterations at 1e6 DoFs).
-    ml_parameters.set("PDE equations", 2);
-    if (n_modes > 0)
-      {
-        ml_parameters.set("null space: type", "pre-computed");
-        ml_parameters.set("null space: dimension", static_cast<int>(n_modes));
-        ml_parameters.set("null space: vectors", modes.data());
-      }
-
-    preconditioner.initialize(A, ml_parameters);
-    // The setup's products (A P, R A P, several times the size of A) are
-    // freed now: their pages back before the Krylov basis is allocated.
-    return_freed_heap_memory();
+    setup_elasticity_amg(preconditioner, A, near_null_space, zero_rows);
   }
+
+
+
+  void
+  initialize_elasticity_amg(
+    ElasticityAMG                              &amg,
+    const Epetra_RowMatrix                     &A,
+    const std::vector<std::vector<double>>     &near_null_space,
+    const std::vector<types::global_dof_index> &zero_rows)
+  {
+    setup_elasticity_amg(amg.preconditioner, A, near_null_space, zero_rows);
+  }
+
+
+
+  namespace
+  {
+    // An Epetra operator as deal.II's solvers take a matrix.
+    struct EpetraProduct
+    {
+      void
+      vmult(TrilinosWrappers::MPI::Vector       &dst,
+            const TrilinosWrappers::MPI::Vector &src) const
+      {
+        const int error = A.Apply(src.trilinos_vector(), dst.trilinos_vector());
+        AssertThrow(error == 0, ExcTrilinosError(error));
+      }
+
+      const Epetra_Operator &A;
+    };
+
+
+
+    template <typename Matrix>
+    LinearSolverReport
+    krylov(const Matrix                             &A,
+           TrilinosWrappers::MPI::Vector            &x,
+           const TrilinosWrappers::MPI::Vector      &b,
+           const TrilinosWrappers::PreconditionBase &preconditioner,
+           const parameters::LinearSolver           &settings,
+           const bool                                symmetric)
+    {
+      SolverControl control(settings.max_iterations,
+                            settings.relative_tolerance * b.l2_norm());
+      // The solvers take their vectors from deal.II's static pool, which
+      // keeps them after the solve: GMRES's Krylov basis (one vector per
+      // iteration) would stay allocated through the next Newton step's
+      // matrix products, where the contact solve has its peak. Returned
+      // when the solver is done with them.
+      const auto release_vectors = [] {
+        GrowingVectorMemory<
+          TrilinosWrappers::MPI::Vector>::release_unused_memory();
+        return_freed_heap_memory();
+      };
+      if (symmetric)
+        {
+          {
+            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+            cg.solve(A, x, b, preconditioner);
+          }
+          release_vectors();
+          return {"cg+amg", control.last_step()};
+        }
+      // Right preconditioning: GMRES then stops on the true residual. With
+      // left preconditioning it stopped on the preconditioned one, and on
+      // the contact system the true residual stayed large enough to leave
+      // the complementarity residual at 3e-4 (hertz, 3.6e4 DoFs).
+      {
+        SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+          control,
+          SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
+            100, /*right_preconditioning=*/true));
+        gmres.solve(A, x, b, preconditioner);
+      }
+      release_vectors();
+      return {"gmres+amg", control.last_step()};
+    }
+  } // namespace
 
 
 
@@ -146,40 +265,20 @@ namespace coulomb_adapt
                const parameters::LinearSolver           &settings,
                const bool                                symmetric)
   {
-    SolverControl control(settings.max_iterations,
-                          settings.relative_tolerance * b.l2_norm());
-    // The solvers take their vectors from deal.II's static pool, which
-    // keeps them after the solve: GMRES's Krylov basis (one vector per
-    // iteration) would stay allocated through the next Newton step's
-    // matrix products, where the contact solve has its peak. Returned
-    // when the solver is done with them.
-    const auto release_vectors = [] {
-      GrowingVectorMemory<
-        TrilinosWrappers::MPI::Vector>::release_unused_memory();
-      return_freed_heap_memory();
-    };
-    if (symmetric)
-      {
-        {
-          SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-          cg.solve(A, x, b, preconditioner);
-        }
-        release_vectors();
-        return {"cg+amg", control.last_step()};
-      }
-    // Right preconditioning: GMRES then stops on the true residual. With
-    // left preconditioning it stopped on the preconditioned one, and on
-    // the contact system the true residual stayed large enough to leave
-    // the complementarity residual at 3e-4 (hertz, 3.6e4 DoFs).
-    {
-      SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
-        control,
-        SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(
-          100, /*right_preconditioning=*/true));
-      gmres.solve(A, x, b, preconditioner);
-    }
-    release_vectors();
-    return {"gmres+amg", control.last_step()};
+    return krylov(A, x, b, preconditioner, settings, symmetric);
+  }
+
+
+
+  LinearSolverReport
+  solve_krylov(const Epetra_Operator                    &A,
+               TrilinosWrappers::MPI::Vector            &x,
+               const TrilinosWrappers::MPI::Vector      &b,
+               const TrilinosWrappers::PreconditionBase &preconditioner,
+               const parameters::LinearSolver           &settings,
+               const bool                                symmetric)
+  {
+    return krylov(EpetraProduct{A}, x, b, preconditioner, settings, symmetric);
   }
 
 

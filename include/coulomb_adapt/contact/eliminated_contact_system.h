@@ -132,11 +132,13 @@ namespace coulomb_adapt
     /** The rows of Z, Z~ and u_g of this step's eliminated components
      * that this rank owns; the identity (and zero) elsewhere. */
     EliminatedRows eliminated;
-    /** Shared with the AMG hierarchy built from it: ML applies the
-     * matrix it was built from in its V-cycles, so a reused hierarchy
-     * keeps that matrix alive after the next Newton step replaced it. */
-    std::shared_ptr<TrilinosWrappers::SparseMatrix> reduced;
-    TrilinosWrappers::MPI::Vector                   reduced_rhs;
+    /** A, its rows away from the interface read from K^1, K^2
+     * (ReducedMatrix). Shared with the AMG hierarchy built from it: ML
+     * applies the matrix it was built from in its V-cycles, so a reused
+     * hierarchy keeps that matrix alive after the next Newton step
+     * replaced it. */
+    std::shared_ptr<ReducedMatrix> reduced;
+    TrilinosWrappers::MPI::Vector  reduced_rhs;
     /** Owned indices of the components eliminated in this step. */
     std::vector<types::global_dof_index> eliminated_dofs;
 
@@ -151,8 +153,8 @@ namespace coulomb_adapt
      * changed nodes only (measurements in doc/contact.md section 2). */
     static constexpr unsigned int max_changed_nodes_for_reuse = 4;
 
-    std::shared_ptr<const TrilinosWrappers::SparseMatrix> amg_matrix;
-    std::unique_ptr<ElasticityAMG>                        amg;
+    std::shared_ptr<const ReducedMatrix> amg_matrix;
+    std::unique_ptr<ElasticityAMG>       amg;
     /** Krylov iterations of the first solve with the current hierarchy,
      * and of the last solve. */
     unsigned int fresh_iterations = 0;

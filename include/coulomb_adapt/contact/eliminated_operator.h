@@ -7,8 +7,11 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <coulomb_adapt/contact/reduced_matrix.h>
+
 #include <array>
 #include <map>
+#include <memory>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -75,6 +78,12 @@ namespace coulomb_adapt
     void
     reduced_matrix(TrilinosWrappers::SparseMatrix &matrix) const;
 
+    /** The same A without a copy of K: its rows that differ from K's
+     * stored, the others read from K^1, K^2 (ReducedMatrix), which must
+     * outlive it. */
+    std::shared_ptr<ReducedMatrix>
+    reduced_operator() const;
+
     /** b in @p rhs (reinitialised), zero at the eliminated components. */
     void
     reduced_rhs(TrilinosWrappers::MPI::Vector &rhs) const;
@@ -101,6 +110,13 @@ namespace coulomb_adapt
     /** Row @p row of A (owned), summed, ascending columns. */
     void
     reduced_row(const types::global_dof_index row, Entries &entries) const;
+    /** Row @p row of A as the matrix holds it: reduced_row(), or for an
+     * eliminated component K's diagonal entry and zeros. */
+    void
+    matrix_row(const types::global_dof_index row, Entries &entries) const;
+    /** Whether row @p row of A is not K's row. */
+    bool
+    differs_from_stiffness(const types::global_dof_index row) const;
     /** (f - K u_g)_r of an owned row. */
     double
     residual(const types::global_dof_index row) const;
