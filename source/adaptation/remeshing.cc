@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <coulomb_adapt/adaptation/adaptation_strategy.h>
+#include <coulomb_adapt/adaptation/contact_size_cap.h>
 #include <coulomb_adapt/adaptation/gmsh_remesher.h>
 
 namespace coulomb_adapt
@@ -52,7 +53,7 @@ namespace coulomb_adapt
                            const ErrorEstimate &,
                            const OptimalSizeRatios      &ratios,
                            const parameters::Adaptation &parameters,
-                           const unsigned int,
+                           const unsigned int            degree,
                            const double,
                            MeshAdaptationReport &) const
   {
@@ -66,6 +67,9 @@ namespace coulomb_adapt
         fields[b] = nodal_size_field(*bodies[b], ratios.ratio[b], root[b]);
         bodies[b]->create_scene_coarse_mesh(geometries[b]);
       }
+    // P1's contact surfaces are polygons; P2's faces follow the curve.
+    if (degree == 1)
+      cap_master_contact_sizes(bodies, root, fields);
 
     std::array<GmshMeshing, 2> meshings;
     for (unsigned int b = 0; b < 2; ++b)
