@@ -17,8 +17,10 @@
 
 #include <coulomb_adapt/indicator/equilibrated_stress.h>
 #include <coulomb_adapt/indicator/equilibration_mesh.h>
+#include <coulomb_adapt/indicator/equilibration_node_systems.h>
 #include <coulomb_adapt/indicator/local_neumann_problem.h>
 #include <coulomb_adapt/indicator/local_problem_loads.h>
+#include <coulomb_adapt/indicator/traction_optimisation.h>
 
 #include <algorithm>
 #include <cmath>

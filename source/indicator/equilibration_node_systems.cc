@@ -4,6 +4,7 @@
 #include <deal.II/lac/lapack_full_matrix.h>
 
 #include <coulomb_adapt/indicator/equilibration_mesh.h>
+#include <coulomb_adapt/indicator/equilibration_node_systems.h>
 
 #include <algorithm>
 #include <cmath>

@@ -15,6 +15,7 @@
 
 #include <coulomb_adapt/indicator/equilibration_mesh.h>
 #include <coulomb_adapt/indicator/local_problem_loads.h>
+#include <coulomb_adapt/indicator/traction_optimisation.h>
 
 #include <algorithm>
 #include <map>

@@ -7,12 +7,7 @@
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/lac/vector.h>
-
-#include <coulomb_adapt/bodies/elastic_body.h>
-#include <coulomb_adapt/indicator/equilibrated_stress.h>
-#include <coulomb_adapt/indicator/local_neumann_problem.h>
 
 #include <array>
 #include <cmath>
@@ -20,11 +15,14 @@
 
 namespace coulomb_adapt
 {
+  using namespace dealii;
+
   /**
    * The pieces of the element equilibration technique
-   * (equilibrated_stress_errors()): the local mesh of a body seen by the
-   * node systems, the node systems themselves, and the optimisation of
-   * their free parameters.
+   * (equilibrated_stress_errors()): here the local mesh of a body seen by
+   * the node systems; the node systems (equilibration_node_systems.h) and
+   * the optimisation of their free parameters (traction_optimisation.h)
+   * work on it.
    */
   namespace equilibration
   {
@@ -116,37 +114,6 @@ namespace coulomb_adapt
       const Tensor<1, 2> d = face.v1 - face.v0;
       return (x - face.v0) * d / d.norm_square();
     }
-
-
-    /** Step 3: the node systems of every node of a locally owned cell,
-     * in least squares closest to the averaged moments; the moments of the
-     * faces are set, and the free parameter of each system (its null
-     * vector) is stored in FaceData::kernel. */
-    void
-    solve_node_systems(const std::vector<CellData> &cells,
-                       std::vector<FaceData>       &faces,
-                       const unsigned int           n_nodes,
-                       EquilibratedStressErrors    &result);
-
-    class LocalProblemLoads;
-
-    /** Steps 5 and 6: the free parameters that minimise the estimate (see
-     * the .cc; the faces' edge bubbles of degree p + 1 among them when
-     * @p with_bubbles, and the modes that relax the prolongation
-     * conditions when @p relaxed), cell by cell on the threads deal.II may use (with a
-     * copy of @p local each), and the errors at the minimum in @p result
-     * (error_squared, sum_norm_squared and the classical estimate). The
-     * faces keep the classical moments. */
-    void
-    optimise_free_parameters(const ElasticBody                   &body,
-                             const std::vector<CellData>         &cells,
-                             const std::vector<FaceData>         &faces,
-                             const LocalNeumannProblem           &local,
-                             const TrilinosWrappers::MPI::Vector &u_kinematic,
-                             const LocalProblemLoads             &loads,
-                             const bool                           with_bubbles,
-                             const bool                           relaxed,
-                             EquilibratedStressErrors            &result);
   } // namespace equilibration
 } // namespace coulomb_adapt
 

@@ -1,0 +1,39 @@
+#ifndef coulomb_adapt_indicator_traction_optimisation_h
+#define coulomb_adapt_indicator_traction_optimisation_h
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/indicator/equilibrated_stress.h>
+#include <coulomb_adapt/indicator/equilibration_mesh.h>
+#include <coulomb_adapt/indicator/local_neumann_problem.h>
+
+#include <vector>
+
+namespace coulomb_adapt
+{
+  namespace equilibration
+  {
+    class LocalProblemLoads;
+
+    /** Steps 5 and 6: the free parameters that minimise the estimate (see
+     * the .cc; the faces' edge bubbles of degree p + 1 among them when
+     * @p with_bubbles, and the modes that relax the prolongation
+     * conditions when @p relaxed), cell by cell on the threads deal.II may use (with a
+     * copy of @p local each), and the errors at the minimum in @p result
+     * (error_squared, sum_norm_squared and the classical estimate). The
+     * faces keep the classical moments. */
+    void
+    optimise_free_parameters(const ElasticBody                   &body,
+                             const std::vector<CellData>         &cells,
+                             const std::vector<FaceData>         &faces,
+                             const LocalNeumannProblem           &local,
+                             const TrilinosWrappers::MPI::Vector &u_kinematic,
+                             const LocalProblemLoads             &loads,
+                             const bool                           with_bubbles,
+                             const bool                           relaxed,
+                             EquilibratedStressErrors            &result);
+  } // namespace equilibration
+} // namespace coulomb_adapt
+
+#endif
