@@ -3,7 +3,6 @@
 #include <deal.II/lac/solver_control.h>
 
 #include <coulomb_adapt/contact/eliminated_contact_system.h>
-#include <coulomb_adapt/solvers/row_matrix_solvers.h>
 
 #include <algorithm>
 #include <cmath>

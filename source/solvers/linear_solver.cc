@@ -6,9 +6,10 @@
 #include <deal.II/lac/vector_memory.h>
 
 #include <coulomb_adapt/solvers/linear_solver.h>
-#include <coulomb_adapt/solvers/row_matrix_solvers.h>
 
 #include <Epetra_MultiVector.h>
+#include <Epetra_Operator.h>
+#include <Epetra_RowMatrix.h>
 #include <Teuchos_ParameterList.hpp>
 
 #ifdef __GLIBC__

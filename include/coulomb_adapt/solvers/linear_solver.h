@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+class Epetra_Operator;
+class Epetra_RowMatrix;
+
 namespace coulomb_adapt
 {
   /** What a linear solve did, for the log and summary.json. */
@@ -86,6 +89,28 @@ namespace coulomb_adapt
    */
   LinearSolverReport
   solve_krylov(const TrilinosWrappers::SparseMatrix     &A,
+               TrilinosWrappers::MPI::Vector            &x,
+               const TrilinosWrappers::MPI::Vector      &b,
+               const TrilinosWrappers::PreconditionBase &preconditioner,
+               const parameters::LinearSolver           &settings,
+               const bool                                symmetric);
+
+  /* The same solvers for a matrix that is not stored as a deal.II matrix
+   * but given by its rows and its product (ReducedMatrix, the eliminated
+   * contact system's A read from the bodies' K): the same settings, so
+   * the same hierarchy and iterates for the same entries. */
+
+  /** ElasticityAMG::initialize() for @p A given by its rows. */
+  void
+  initialize_elasticity_amg(
+    ElasticityAMG                              &amg,
+    const Epetra_RowMatrix                     &A,
+    const std::vector<std::vector<double>>     &near_null_space,
+    const std::vector<types::global_dof_index> &zero_rows);
+
+  /** solve_krylov() for @p A given by its product. */
+  LinearSolverReport
+  solve_krylov(const Epetra_Operator                    &A,
                TrilinosWrappers::MPI::Vector            &x,
                const TrilinosWrappers::MPI::Vector      &b,
                const TrilinosWrappers::PreconditionBase &preconditioner,
