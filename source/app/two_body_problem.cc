@@ -3,6 +3,7 @@
 
 #include <coulomb_adapt/app/finiteness.h>
 #include <coulomb_adapt/app/preflight_checks.h>
+#include <coulomb_adapt/app/target_claim.h>
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/bodies/elasticity_errors.h>
 #include <coulomb_adapt/core/parameter_error.h>
@@ -413,9 +414,22 @@ namespace coulomb_adapt
     if (a.target_error > 0 && error_estimate &&
         error_estimate->epsilon <= a.target_error &&
         cycle + 1 >= a.min_cycles && !over_refined)
-      s << "target reached: epsilon = " << std::setprecision(4)
-        << 100 * error_estimate->epsilon
-        << " % <= epsilon_0 = " << 100 * a.target_error << " %";
+      {
+        const TargetClaim claim =
+          make_target_claim(error_estimate->estimator,
+                            parameters.contact.friction_coefficient,
+                            cycle_report->exact_error());
+        s << "target reached: epsilon = " << std::setprecision(4)
+          << 100 * error_estimate->epsilon
+          << " % <= epsilon_0 = " << 100 * a.target_error << " %"
+          << claim.qualifier(a.target_error);
+        nlohmann::json entry = {{"estimate", claim.kind_of_estimate},
+                                {"upper_bound", claim.is_upper_bound}};
+        if (claim.epsilon_exact)
+          entry["met_by_exact_error"] =
+            claim.met_by_exact_error(a.target_error);
+        cycle_report->set_run_entry("target_claim", entry);
+      }
     else if (cycle + 1 >= a.n_cycles)
       {
         s << "maximum number of cycles (" << a.n_cycles << ") reached";

@@ -136,6 +136,17 @@ namespace coulomb_adapt
 
 
 
+  std::optional<double>
+  CycleReport::exact_error() const
+  {
+    for (const char *key : {"epsilon_exact_extrapolated", "epsilon_exact"})
+      if (record.contains(key))
+        return record[key].get<double>();
+    return std::nullopt;
+  }
+
+
+
   void
   CycleReport::record_contact_solve(const ContactSolveOutcome &outcome)
   {

@@ -21,6 +21,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -104,6 +105,13 @@ namespace coulomb_adapt
     /** Both bodies' DoFs in this cycle (after record_meshes()). */
     types::global_dof_index
     n_dofs() const;
+
+    /** This cycle's exact error of the driving estimate, where it was
+     * computed: extrapolated over the reference's levels where they
+     * allowed it (record_reference_solution), else against the reference
+     * or the exact solution. */
+    std::optional<double>
+    exact_error() const;
 
     void
     record_contact_solve(const ContactSolveOutcome &outcome);

@@ -1,0 +1,47 @@
+#ifndef coulomb_adapt_app_target_claim_h
+#define coulomb_adapt_app_target_claim_h
+
+#include <coulomb_adapt/core/error_estimator.h>
+
+#include <optional>
+#include <string>
+
+namespace coulomb_adapt
+{
+  /**
+   * What a "target reached" rests on. An adaptive run stops when the
+   * estimate epsilon is below epsilon_0; whether the error itself is below
+   * epsilon_0 depends on the estimator (theory.md sections 7 and 8):
+   * the recovery estimates (zz, spr) are not bounds and underestimate at
+   * singular points on coarse meshes (effectivity 0.6-0.8 on the seed's
+   * example), cre is an upper bound for frictionless contact, and for
+   * mu > 0 its effectivity is measured near 1 but not proven >= 1. Where
+   * the run also computed the exact error of the cycle, that decides.
+   */
+  struct TargetClaim
+  {
+    /** "recovery estimate, not a bound", "upper bound (mu = 0)", ... */
+    std::string kind_of_estimate;
+    /** Whether the estimate bounds the error from above. */
+    bool is_upper_bound = false;
+    /** The cycle's exact error, where computed (extrapolated if the
+     * reference's levels allowed it). */
+    std::optional<double> epsilon_exact;
+
+    /** Whether the exact error, where known, is at most @p target. */
+    bool
+    met_by_exact_error(const double target) const;
+
+    /** The words that follow "target reached: epsilon = ... <=
+     * epsilon_0 = ... %" in the log and in summary.json's stop_reason. */
+    std::string
+    qualifier(const double target) const;
+  };
+
+  TargetClaim
+  make_target_claim(const ErrorEstimator         estimator,
+                    const double                 friction_coefficient,
+                    const std::optional<double> &epsilon_exact);
+} // namespace coulomb_adapt
+
+#endif
