@@ -88,6 +88,36 @@ namespace coulomb_adapt
            "moduli closer to each other";
       throw ParameterError(s.str());
     }
+
+
+
+    // lambda / mu = 2 nu / (1 - 2 nu) is the ratio of the stiffness's
+    // volumetric part to its shear part. Above 1e8 the shear response, the
+    // one contact and the indicator need, is below the round-off of the
+    // volumetric terms (as with the moduli above), and the Newton
+    // iteration fails with a diagnosis about the contact sets that has
+    // nothing to do with the cause (nu = 0.49999999999999994: "tips over an
+    // edge" under a uniform pressure).
+    void
+    check_compressibility(const BodyDescription &body)
+    {
+      const double nu               = body.material.poissons_ratio;
+      const double volumetric_ratio = 2 * nu / (1 - 2 * nu);
+      const double largest_ratio    = 1e8;
+      const double largest_poisson  = largest_ratio / (2 * (1 + largest_ratio));
+      if (volumetric_ratio <= largest_ratio)
+        return;
+      std::ostringstream s;
+      s << std::setprecision(17) << body.name << "'s Poisson's ratio " << nu
+        << std::setprecision(3) << " makes lambda / mu = " << volumetric_ratio
+        << ": its shear stiffness would be below the round-off of the "
+           "volumetric one above a ratio of 1e8, and the displacement "
+           "formulation (no mixed pressure here) would lose every digit of "
+           "the response contact needs. Allowed: Poisson's ratio at most "
+        << std::setprecision(10) << largest_poisson
+        << " (and with degree 1 below about 0.49: linear elements lock)";
+      throw ParameterError(s.str());
+    }
   } // namespace
 
 
@@ -106,13 +136,16 @@ namespace coulomb_adapt
     const BodyDescription body_1 = scene.describe_body(0);
     const BodyDescription body_2 = scene.describe_body(1);
     check_stiffness_ratio(body_1, body_2);
+    check_compressibility(body_1);
+    check_compressibility(body_2);
     // Nearly incompressible bodies lock with P1 elements: the displacement
     // comes out too small and the indicator measures the locked solution.
     for (const BodyDescription *d : {&body_1, &body_2})
       if (d->material.poissons_ratio > 0.49 &&
           parameters.finite_elements.degree == 1)
         pcout << "warning: " << d->name << " has Poisson's ratio "
-              << d->material.poissons_ratio
+              << std::setprecision(10) << d->material.poissons_ratio
+              << std::setprecision(6)
               << ": nearly incompressible, it locks with linear elements "
                  "(displacements too small, stresses oscillating); use "
                  "'Finite elements/Polynomial degree' = 2"
