@@ -7,7 +7,7 @@ the eliminated contact system with Krylov + AMG); --direct adds the
 direct solver (MUMPS, row-replacing system) at the smallest size.
 
   benchmarks/adaptive_run/run_memory.py [--exe build/coulomb-adapt]
-      [--build NAME] [--direct] [--csv FILE]
+      [--build NAME] [--direct] [--smoke] [--csv FILE]
 
 The peak is the process's maximum resident set (getrusage of the child,
 the kernel's VmHWM when it ends), which is not noise-sensitive;
@@ -15,6 +15,12 @@ summary.json's peak_memory_MiB (VmHWM at the end of the cycle) is
 recorded beside it. kB_per_dof = (peak - peak of the empty run with the
 same output setting) * 1024 / DoFs. Rows are appended to memory.csv
 beside this script (or --csv).
+
+--smoke (for ctest) runs the empty run and the seed's mesh with 2 global
+refinements (a few thousand DoFs), with and without the fields, to check
+that the script runs; it writes a CSV only when --csv is given. A run
+that fails or writes no summary.json ends the script with a non-zero
+exit code.
 """
 
 import argparse
@@ -38,6 +44,7 @@ SIZES = [("empty", ["Mesh/Global refinements=0"]),
          ("2.6e5", ["Mesh/Global refinements=5"] + FINE),
          ("4.2e5", ["Mesh/Global refinements=6"]),
          ("1.0e6", ["Mesh/Global refinements=6"] + FINE)]
+SMOKE_SIZES = [SIZES[0], ("smoke", ["Mesh/Global refinements=2"])]
 COMMON = ["Mesh/Cell type=quadrilateral", "Adaptation/Strategy=refine",
           "Adaptation/Number of cycles=1",
           "Adaptation/Minimum number of cycles=1"]
@@ -66,9 +73,14 @@ def one_run(build, exe, size, settings, solver, output):
     args = common.program_command(
         exe, COMMON + settings + extra + ["Output/Output directory=" + out_dir],
         prm=os.path.join(common.PRM_DIR, "blocks.prm"))
-    wall, peak = peak_run(args, common.program_env(exe))
-    cycle = common.last_cycle(common.read_summary(out_dir))
-    shutil.rmtree(out_dir, ignore_errors=True)
+    try:
+        wall, peak = peak_run(args, common.program_env(exe))
+        cycle = common.last_cycle(common.read_summary(out_dir))
+    finally:
+        shutil.rmtree(out_dir, ignore_errors=True)
+    if cycle is None:
+        raise SystemExit("%s wrote no summary.json with a cycle"
+                         % common.shell_command(args))
     return dict(build=build, size=size, solver=solver,
                 output="on" if output else "off", dofs=cycle["n_dofs"],
                 newton=cycle.get("newton_iterations", ""), wall_s=wall,
@@ -81,13 +93,19 @@ def main():
     parser.add_argument("--exe", default=common.DEFAULT_EXE)
     parser.add_argument("--build", default="this")
     parser.add_argument("--direct", action="store_true")
-    parser.add_argument("--csv", default=os.path.join(HERE, "memory.csv"))
+    parser.add_argument("--smoke", action="store_true",
+                        help="tiny sizes only, to check that the script runs")
+    parser.add_argument("--csv", help="default: memory.csv beside this "
+                        "script (with --smoke: none)")
     a = parser.parse_args()
+    if a.csv is None and not a.smoke:
+        a.csv = os.path.join(HERE, "memory.csv")
     a.exe = common.check_executable(a.exe)
     rows, empty = [], {}
-    runs = [(s, st, "auto", o) for s, st in SIZES for o in (True, False)]
+    sizes = SMOKE_SIZES if a.smoke else SIZES
+    runs = [(s, st, "auto", o) for s, st in sizes for o in (True, False)]
     if a.direct:
-        runs.append(("2.6e5", SIZES[1][1], "direct", False))
+        runs.append((sizes[1][0], sizes[1][1], "direct", False))
     for size, settings, solver, output in runs:
         row = one_run(a.build, a.exe, size, settings, solver, output)
         if size == "empty":
@@ -98,6 +116,8 @@ def main():
         print("%-6s %-6s output %-3s %8d DoFs  peak %7.1f MiB  %.2f kB/DoF"
               % (size, solver, row["output"], row["dofs"], row["peak_MiB"],
                  row["kB_per_dof"]), flush=True)
+    if a.csv is None:
+        return
     old = common.read_csv(a.csv, text=("build", "size", "solver", "output",
                                        "command"), ints=("dofs", "newton"))
     old = [r for r in old if r.get("build") != a.build]

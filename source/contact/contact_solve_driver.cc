@@ -8,6 +8,37 @@
 
 namespace coulomb_adapt
 {
+  namespace
+  {
+    // Why the nested iteration does not run on @p n_levels coarser
+    // meshes (@p graded: the scene's coarser gradings, else fewer global
+    // refinements) for @p n_dofs fine DoFs; empty if it runs.
+    std::string
+    nested_iteration_skipped(const parameters::Contact    &c,
+                             const types::global_dof_index n_dofs,
+                             const bool                    graded,
+                             const unsigned int            n_levels)
+    {
+      if (c.nested_iteration_levels == 0)
+        return "switched off ('Contact/Nested iteration levels' = 0)";
+      if (n_levels == 0)
+        return "no coarser mesh ('Mesh/Global refinements' = 0 and the "
+               "scene grades no mesh)";
+      // A graded mesh resolves the contact zone much finer than the
+      // bodies: many nodes across the zone, which the cold start's Newton
+      // iteration releases a band at a time, so its step count grows with
+      // them at every size. The DoF threshold is for global refinements
+      // only.
+      if (!graded && n_dofs <= c.nested_iteration_min_dofs)
+        return std::to_string(n_dofs) +
+               " DoFs <= 'Contact/Nested iteration minimum DoFs' (" +
+               std::to_string(c.nested_iteration_min_dofs) + ")";
+      return "";
+    }
+  } // namespace
+
+
+
   ContactSolveDriver::ContactSolveDriver(
     const MPI_Comm                      mpi_communicator,
     const Scene                        &scene,
@@ -158,19 +189,7 @@ namespace coulomb_adapt
       graded ?
         c.nested_iteration_levels :
         std::min(c.nested_iteration_levels, parameters.mesh.global_refinements);
-    if (c.nested_iteration_levels == 0)
-      record.skipped = "switched off ('Contact/Nested iteration levels' = 0)";
-    else if (n_levels == 0)
-      record.skipped = "no coarser mesh ('Mesh/Global refinements' = 0 and "
-                       "the scene grades no mesh)";
-    // A graded mesh resolves the contact zone much finer than the bodies:
-    // many nodes across the zone, which the cold start's Newton iteration
-    // releases a band at a time, so its step count grows with them at
-    // every size. The DoF threshold is for global refinements only.
-    else if (!graded && n_dofs <= c.nested_iteration_min_dofs)
-      record.skipped = std::to_string(n_dofs) +
-                       " DoFs <= 'Contact/Nested iteration minimum DoFs' (" +
-                       std::to_string(c.nested_iteration_min_dofs) + ")";
+    record.skipped = nested_iteration_skipped(c, n_dofs, graded, n_levels);
     if (!record.skipped.empty())
       {
         pcout << "  contact: nested iteration skipped: " << record.skipped

@@ -93,6 +93,17 @@ namespace coulomb_adapt
     , placeholder(placeholder)
     , is_eliminated(owned.size(), false)
   {
+    gather_eliminated_rows(rows);
+    gather_kz_rows(rows);
+  }
+
+
+
+  // Every rank's eliminated rows in all_rows, their membership in
+  // is_eliminated, and Z~ transposed at the owned columns.
+  void
+  EliminatedOperator::gather_eliminated_rows(const EliminatedRows &rows)
+  {
     std::vector<types::global_dof_index> indices;
     std::vector<double>                  values;
     for (const auto &[k, row] : rows)
@@ -131,12 +142,18 @@ namespace coulomb_adapt
           if (z[1] != 0 && owned.is_element(column))
             transposed[column].emplace_back(k, z[1]);
       }
+  }
 
-    // The rows of K Z and the residual at the eliminated components,
-    // which other ranks' rows of A and b may name.
-    indices.clear();
-    values.clear();
-    Entries entries;
+
+
+  // The rows of K Z and the residual at the eliminated components,
+  // which other ranks' rows of A and b may name.
+  void
+  EliminatedOperator::gather_kz_rows(const EliminatedRows &rows)
+  {
+    std::vector<types::global_dof_index> indices;
+    std::vector<double>                  values;
+    Entries                              entries;
     for (const auto &[k, row] : rows)
       {
         entries.clear();

@@ -38,6 +38,58 @@ namespace coulomb_adapt
 
   namespace
   {
+    // The kinematic side is the seed's corrected solution (the FE solution
+    // when its reactions are in the Coulomb cone); the static side is
+    // equilibrated from the solution under the consistent contact load,
+    // whose Neumann data R_c lies in the cone between the nodes. (The
+    // mortar load's dual-basis traction does not: at the ends of the
+    // contact zone it changes sign between two nodes.) Returns the static
+    // side; the kinematic side and the contact term go to @p estimate, the
+    // static side's contact tractions to @p contact.
+    CorrectedContactSolution
+    correct_contact_solutions(const std::array<const ElasticBody *, 2> &bodies,
+                              const ContactSolution          *contact_solver,
+                              const double                    mu,
+                              const parameters::LinearSolver &solver_parameters,
+                              const ErrorEstimateOptions     &options,
+                              ErrorEstimate                  &estimate,
+                              std::array<ContactTractionData, 2> &contact)
+    {
+      CorrectedContactSolution equilibrium;
+      if (estimate.has_contact)
+        {
+          {
+            const OptionalTimerSection section(options.timer,
+                                               "error indicator: correction");
+            estimate.correction = corrected_contact_fields(
+              bodies, *contact_solver, mu, solver_parameters, options);
+            equilibrium = correct_contact_solution(*bodies[0],
+                                                   *bodies[1],
+                                                   *contact_solver,
+                                                   mu,
+                                                   solver_parameters,
+                                                   ContactLoadForm::consistent);
+          }
+          const OptionalTimerSection section(options.timer,
+                                             "error indicator: contributions");
+          estimate.contact =
+            integrate_contact_error(contact_solver->mortar_interface(),
+                                    estimate.correction.fields,
+                                    mu);
+          contact = contact_traction_data(contact_solver->mortar_interface(),
+                                          equilibrium.fields);
+        }
+      else
+        {
+          estimate.correction.fe_displacement = {
+            {&bodies[0]->solution(), &bodies[1]->solution()}};
+          equilibrium.fe_displacement = estimate.correction.fe_displacement;
+        }
+      return equilibrium;
+    }
+
+
+
     // Body @p b's cell errors, defects and optimisation figures into
     // @p estimate; returns the body's sum of the cell errors (every rank).
     double
@@ -74,42 +126,14 @@ namespace coulomb_adapt
     estimate.estimator   = ErrorEstimator::cre;
     estimate.has_contact = (contact_solver != nullptr);
     std::array<ContactTractionData, 2> contact;
-    // The kinematic side is the seed's corrected solution (the FE solution
-    // when its reactions are in the Coulomb cone); the static side is
-    // equilibrated from the solution under the consistent contact load,
-    // whose Neumann data R_c lies in the cone between the nodes. (The
-    // mortar load's dual-basis traction does not: at the ends of the
-    // contact zone it changes sign between two nodes.)
-    CorrectedContactSolution equilibrium;
-    if (estimate.has_contact)
-      {
-        {
-          const OptionalTimerSection section(options.timer,
-                                             "error indicator: correction");
-          estimate.correction = corrected_contact_fields(
-            bodies, *contact_solver, mu, solver_parameters, options);
-          equilibrium = correct_contact_solution(*bodies[0],
-                                                 *bodies[1],
-                                                 *contact_solver,
-                                                 mu,
-                                                 solver_parameters,
-                                                 ContactLoadForm::consistent);
-        }
-        const OptionalTimerSection section(options.timer,
-                                           "error indicator: contributions");
-        estimate.contact =
-          integrate_contact_error(contact_solver->mortar_interface(),
-                                  estimate.correction.fields,
-                                  mu);
-        contact = contact_traction_data(contact_solver->mortar_interface(),
-                                        equilibrium.fields);
-      }
-    else
-      {
-        estimate.correction.fe_displacement = {
-          {&bodies[0]->solution(), &bodies[1]->solution()}};
-        equilibrium.fe_displacement = estimate.correction.fe_displacement;
-      }
+    const CorrectedContactSolution     equilibrium =
+      correct_contact_solutions(bodies,
+                                contact_solver,
+                                mu,
+                                solver_parameters,
+                                options,
+                                estimate,
+                                contact);
 
     std::array<double, 2> volume_squared;
     double                normalisation_squared = 0, before_squared = 0;

@@ -419,6 +419,21 @@ namespace coulomb_adapt
       result.error_squared_before_optimisation =
         Utilities::MPI::sum(result.error_squared.l1_norm(), comm);
     }
+
+
+
+    // @p v with the ghost entries of @p body's locally relevant DoFs.
+    TrilinosWrappers::MPI::Vector
+    ghosted_copy(const ElasticBody                   &body,
+                 const TrilinosWrappers::MPI::Vector &v)
+    {
+      TrilinosWrappers::MPI::Vector ghosted(
+        body.locally_owned_dof_set(),
+        body.locally_relevant_dof_set(),
+        body.triangulation().get_communicator());
+      ghosted = v;
+      return ghosted;
+    }
   } // namespace
 
 
@@ -436,12 +451,9 @@ namespace coulomb_adapt
     // Ghosted copies: the node systems read the ghost cells too (the
     // corrected solutions come without ghost entries).
     const MPI_Comm comm = body.triangulation().get_communicator();
-    TrilinosWrappers::MPI::Vector u(body.locally_owned_dof_set(),
-                                    body.locally_relevant_dof_set(),
-                                    comm);
-    TrilinosWrappers::MPI::Vector u_kinematic(u);
-    u                            = u_equilibrium;
-    u_kinematic                  = u_kinematic_in;
+    const TrilinosWrappers::MPI::Vector u = ghosted_copy(body, u_equilibrium);
+    const TrilinosWrappers::MPI::Vector u_kinematic =
+      ghosted_copy(body, u_kinematic_in);
     const FiniteElement<2> &base = body.dof_handler().get_fe().base_element(0);
     const unsigned int      p    = base.degree;
 

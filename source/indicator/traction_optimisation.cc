@@ -469,6 +469,27 @@ namespace coulomb_adapt
           }
         return n_parameters;
       }
+
+
+
+      // FormInputs::couple_allowed: per vertex of the faces (named by its
+      // x DoF), whether every face through it has unknown tractions in
+      // both components.
+      std::map<types::global_dof_index, bool>
+      vertices_with_couple_mode(const std::vector<FaceData> &faces)
+      {
+        std::map<types::global_dof_index, bool> couple_allowed;
+        for (const FaceData &face : faces)
+          for (unsigned int k = 0; k < face.nodes.size(); ++k)
+            if (face.s[k] == 0 || face.s[k] == 1)
+              {
+                auto [entry, inserted] =
+                  couple_allowed.emplace(face.nodes[k], true);
+                entry->second =
+                  entry->second && face.unknown[0] && face.unknown[1];
+              }
+        return couple_allowed;
+      }
     } // namespace
 
 
@@ -500,15 +521,7 @@ namespace coulomb_adapt
       const ParameterNames names(body, relaxed);
       std::map<types::global_dof_index, bool> couple_allowed;
       if (relaxed)
-        for (const FaceData &face : faces)
-          for (unsigned int k = 0; k < face.nodes.size(); ++k)
-            if (face.s[k] == 0 || face.s[k] == 1)
-              {
-                auto [entry, inserted] =
-                  couple_allowed.emplace(face.nodes[k], true);
-                entry->second =
-                  entry->second && face.unknown[0] && face.unknown[1];
-              }
+        couple_allowed = vertices_with_couple_mode(faces);
       DynamicSparsityPattern dsp(names.relevant);
       DoFTools::make_sparsity_pattern(names.dof_handler, dsp);
       SparsityTools::distribute_sparsity_pattern(dsp,

@@ -271,27 +271,23 @@ namespace coulomb_adapt
 
 
 
+  // The cre estimator's equilibration in the log: the degree, the
+  // defects, and what the optimisation of the edge tractions gained.
   void
-  CycleReport::record_error_estimate(
-    const ErrorEstimate                      &e,
-    const std::vector<const ErrorEstimate *> &compared,
-    const unsigned int                        cre_degree_increase)
+  CycleReport::log_equilibration(const ErrorEstimate &e,
+                                 const unsigned int   cre_degree_increase) const
   {
-    if (e.has_contact)
-      record_correction(e.correction);
-    if (e.estimator == ErrorEstimator::cre)
-      pcout << "  cre: equilibrated stress of degree p + "
-            << cre_degree_increase
-            << (e.has_contact ? " from the solution under the consistent "
-                                "contact load (solved: the mortar's "
-                                "dual-basis traction is not in the cone "
-                                "between the nodes)" :
-                                "")
-            << "; node systems' defect " << std::scientific
-            << std::setprecision(1) << e.node_system_defect
-            << ", local problems' rigid-motion load " << e.local_problem_defect
-            << std::defaultfloat << std::endl;
-    if (e.estimator == ErrorEstimator::cre && e.optimisation_parameters > 0)
+    pcout << "  cre: equilibrated stress of degree p + " << cre_degree_increase
+          << (e.has_contact ? " from the solution under the consistent "
+                              "contact load (solved: the mortar's "
+                              "dual-basis traction is not in the cone "
+                              "between the nodes)" :
+                              "")
+          << "; node systems' defect " << std::scientific
+          << std::setprecision(1) << e.node_system_defect
+          << ", local problems' rigid-motion load " << e.local_problem_defect
+          << std::defaultfloat << std::endl;
+    if (e.optimisation_parameters > 0)
       pcout << "  cre: edge tractions optimised (" << e.optimisation_parameters
             << " parameters; prolongation conditions "
             << (e.relaxed_equilibration[0] && e.relaxed_equilibration[1] ?
@@ -304,6 +300,20 @@ namespace coulomb_adapt
             << "); with the classical tractions epsilon would be " << std::fixed
             << std::setprecision(3) << 100 * e.epsilon_before_optimisation
             << " %" << std::defaultfloat << std::endl;
+  }
+
+
+
+  void
+  CycleReport::record_error_estimate(
+    const ErrorEstimate                      &e,
+    const std::vector<const ErrorEstimate *> &compared,
+    const unsigned int                        cre_degree_increase)
+  {
+    if (e.has_contact)
+      record_correction(e.correction);
+    if (e.estimator == ErrorEstimator::cre)
+      log_equilibration(e, cre_degree_increase);
     auto log_epsilon = [&](const ErrorEstimate &estimate) {
       pcout << "  error indicator (" << to_string(estimate.estimator)
             << "): epsilon = " << std::fixed << std::setprecision(3)

@@ -98,6 +98,14 @@ namespace coulomb_adapt
   private:
     using Entries = std::vector<std::pair<types::global_dof_index, double>>;
 
+    /** All ranks' eliminated rows (this rank's are @p rows): all_rows,
+     * is_eliminated and transposed. */
+    void
+    gather_eliminated_rows(const EliminatedRows &rows);
+    /** All ranks' (K Z)_k and (f - K u_g)_k of the eliminated rows k
+     * (this rank's are @p rows): eliminated_kz_rows. */
+    void
+    gather_kz_rows(const EliminatedRows &rows);
     /** f(column, value) for the entries of row @p row of K = diag(K^1,
      * K^2) in the combined index space (an owned row). */
     template <typename Function>

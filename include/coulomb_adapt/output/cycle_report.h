@@ -178,6 +178,11 @@ namespace coulomb_adapt
   private:
     void
     record_correction(const CorrectedContactSolution &correction);
+    /** The log lines of the cre estimator's equilibration and edge
+     * traction optimisation (@p e is a cre estimate). */
+    void
+    log_equilibration(const ErrorEstimate &e,
+                      const unsigned int   cre_degree_increase) const;
 
     const MPI_Comm            mpi_communicator;
     const ConditionalOStream &pcout;
