@@ -5,6 +5,7 @@
 
 #include <coulomb_adapt/adaptation/boundary_curves.h>
 #include <coulomb_adapt/adaptation/gmsh_remesher.h>
+#include <coulomb_adapt/scenes/curve_manifold.h>
 
 #include <gmsh.h>
 
@@ -65,20 +66,13 @@ namespace coulomb_adapt
     // arcs must be shorter than pi: split at coarse vertices into arcs of
     // at most a quarter circle.
     std::vector<int>
-    add_circle_arcs(const Triangulation<2> &geometry,
-                    const Curve            &curve,
-                    const std::string      &body_name,
-                    GmshPoints             &point)
+    add_circle_arcs(const Triangulation<2>     &geometry,
+                    const Curve                &curve,
+                    const SphericalManifold<2> &sphere,
+                    GmshPoints                 &point)
     {
-      const auto &vertices = geometry.get_vertices();
-      const auto *sphere   = dynamic_cast<const SphericalManifold<2> *>(
-        &geometry.get_manifold(curve.manifold_id));
-      AssertThrow(sphere != nullptr,
-                  ExcMessage("remeshing " + body_name +
-                             ": a curved boundary that is not a "
-                             "circle (SphericalManifold) is not "
-                             "supported"));
-      const Point<2> centre = sphere->center;
+      const auto    &vertices = geometry.get_vertices();
+      const Point<2> centre   = sphere.center;
       const int      centre_tag =
         gmsh::model::geo::addPoint(centre[0], centre[1], 0);
       std::vector<int> tags;
@@ -99,6 +93,83 @@ namespace coulomb_adapt
           first = last;
         }
       return tags;
+    }
+
+
+
+    // A curve on a sampled curve of the scene (CurveManifold: a spline of
+    // its .geo) as gmsh splines through points of that curve, from the
+    // run's first vertex to its last at the manifold's sample spacing (8
+    // to 1024 intervals). A run around a whole closed curve is split at
+    // its middle vertex: a gmsh spline needs two distinct ends. gmsh's
+    // spline (Catmull-Rom) is within a fraction of the spacing squared of
+    // the curve; put_nodes_on_curves() then moves the nodes gmsh puts on
+    // it onto the curve itself.
+    std::vector<int>
+    add_curve_splines(const Triangulation<2> &geometry,
+                      const Curve            &curve,
+                      const CurveManifold    &manifold,
+                      GmshPoints             &point)
+    {
+      const auto &vertices = geometry.get_vertices();
+      // The run's arc lengths, continued across the start of a closed
+      // curve.
+      std::vector<double> s;
+      for (const unsigned int v : curve.vertices)
+        {
+          double next = manifold.pull_back(vertices[v])[0];
+          if (!s.empty() && manifold.is_closed())
+            next += manifold.length() *
+                    std::round((s.back() - next) / manifold.length());
+          s.push_back(next);
+        }
+      const std::size_t        n    = curve.vertices.size();
+      std::vector<std::size_t> ends = {0, n - 1};
+      if (curve.vertices.front() == curve.vertices.back())
+        ends = {0, (n - 1) / 2, n - 1};
+      const double     spacing = manifold.length() / manifold.n_intervals();
+      std::vector<int> tags;
+      for (std::size_t k = 0; k + 1 < ends.size(); ++k)
+        {
+          const double       s_a = s[ends[k]], s_b = s[ends[k + 1]];
+          const unsigned int n_steps =
+            std::clamp<unsigned int>(std::ceil(std::abs(s_b - s_a) / spacing),
+                                     8,
+                                     1024);
+          std::vector<int> points = {point(curve.vertices[ends[k]])};
+          for (unsigned int j = 1; j < n_steps; ++j)
+            {
+              const Point<2> x = manifold.push_forward(
+                Point<1>(s_a + (s_b - s_a) * j / n_steps));
+              points.push_back(gmsh::model::geo::addPoint(x[0], x[1], 0));
+            }
+          points.push_back(point(curve.vertices[ends[k + 1]]));
+          tags.push_back(gmsh::model::geo::addSpline(points));
+        }
+      return tags;
+    }
+
+
+
+    // A curved run of boundary faces as gmsh curves, by its manifold.
+    std::vector<int>
+    add_curved(const Triangulation<2> &geometry,
+               const Curve            &curve,
+               const std::string      &body_name,
+               GmshPoints             &point)
+    {
+      const Manifold<2> &manifold = geometry.get_manifold(curve.manifold_id);
+      if (const auto *sphere =
+            dynamic_cast<const SphericalManifold<2> *>(&manifold))
+        return add_circle_arcs(geometry, curve, *sphere, point);
+      if (const auto *sampled = dynamic_cast<const CurveManifold *>(&manifold))
+        return add_curve_splines(geometry, curve, *sampled, point);
+      AssertThrow(false,
+                  ExcMessage("remeshing " + body_name +
+                             ": a curved boundary that is neither a circle "
+                             "(SphericalManifold) nor a sampled curve of the "
+                             "scene (CurveManifold) is not supported"));
+      return {};
     }
 
 
@@ -131,7 +202,7 @@ namespace coulomb_adapt
               gmsh::model::geo::addLine(point(curve.vertices.front()),
                                         point(curve.vertices.back())));
           else
-            tags = add_circle_arcs(geometry, curve, body_name, point);
+            tags = add_curved(geometry, curve, body_name, point);
           for (const int t : tags)
             {
               loop_tags[boundary.loop_of_curve(c)].push_back(t);
@@ -323,6 +394,33 @@ namespace coulomb_adapt
 
 
 
+    // gmsh's nodes on the splines of add_curve_splines() lie on gmsh's
+    // interpolation of points of the curve: each node inside a run on a
+    // CurveManifold (on two of its lines) goes onto the curve itself. The
+    // ends of a run, which other curves share, are old vertices, on it.
+    void
+    put_nodes_on_curves(const Triangulation<2> &geometry, CoarseMeshData &mesh)
+    {
+      std::map<std::pair<unsigned int, types::manifold_id>, unsigned int>
+        lines_at;
+      for (const auto &line : mesh.boundary_lines.boundary_lines)
+        if (line.manifold_id != numbers::flat_manifold_id &&
+            dynamic_cast<const CurveManifold *>(
+              &geometry.get_manifold(line.manifold_id)) != nullptr)
+          for (const unsigned int v : line.vertices)
+            ++lines_at[{v, line.manifold_id}];
+      for (const auto &[vertex_and_id, n_lines] : lines_at)
+        if (n_lines == 2)
+          {
+            const auto &[v, id] = vertex_and_id;
+            mesh.vertices[v] =
+              static_cast<const CurveManifold &>(geometry.get_manifold(id))
+                .project(mesh.vertices[v]);
+          }
+    }
+
+
+
     // Mesh in gmsh; the elements and the boundary lines of each curve.
     CoarseMeshData
     mesh_in_gmsh(const Triangulation<2>                     &geometry,
@@ -360,6 +458,7 @@ namespace coulomb_adapt
           line.boundary_id   = curve.boundary_id;
           line.manifold_id   = curve.manifold_id;
         }
+      put_nodes_on_curves(geometry, mesh);
       return mesh;
     }
 

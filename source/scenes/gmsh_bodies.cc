@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <string>
 
 namespace coulomb_adapt
 {
@@ -65,6 +66,7 @@ namespace coulomb_adapt
       check_two_dimensional();
       read_nodes();
       read_circle_arcs();
+      read_sampled_curves();
       groups = physical_groups_by_name(file_name);
       read_bodies(use);
     }
@@ -171,6 +173,169 @@ namespace coulomb_adapt
           circle_centres.emplace(id, centre);
           for (const auto &line : elements_of_entities(1, {tag}, file_name))
             curved_edges[edge_of(line[0], line[1])] = id;
+        }
+    }
+
+
+
+    namespace
+    {
+      // gmsh's types of the smooth curves that are sampled: a .geo's
+      // Spline, BSpline, Bezier and Nurbs (gmsh 4.8 calls all of its own
+      // kernel's "Nurb"), the OpenCASCADE kernel's B-splines and Bezier
+      // curves, and ellipse arcs of either kernel.
+      bool
+      is_sampled_type(const std::string &type)
+      {
+        return type == "Nurb" || type == "BSpline" || type == "Bezier" ||
+               type == "Ellipse";
+      }
+
+
+
+      // gmsh's points and derivatives of curve @p tag at @p parameters.
+      void
+      evaluate(const int                  tag,
+               const std::vector<double> &parameters,
+               std::vector<Point<2>>     &points,
+               std::vector<Tensor<1, 2>> &derivatives)
+      {
+        std::vector<double> xyz, d;
+        gmsh::model::getValue(1, tag, parameters, xyz);
+        gmsh::model::getDerivative(1, tag, parameters, d);
+        points.resize(parameters.size());
+        derivatives.resize(parameters.size());
+        for (std::size_t i = 0; i < parameters.size(); ++i)
+          {
+            points[i]      = Point<2>(xyz[3 * i], xyz[3 * i + 1]);
+            derivatives[i] = Tensor<1, 2>({d[3 * i], d[3 * i + 1]});
+          }
+      }
+
+
+
+      // Curve @p tag sampled so that the cubic Hermite interpolation of
+      // the samples (CurveManifold) is the curve to @p tolerance: 64
+      // intervals of gmsh's parameter, then every interval whose
+      // interpolant is farther than @p tolerance from the curve at a
+      // quarter, the middle or three quarters of it is halved, until none
+      // is (at most 16384 samples). On a smooth piece the error falls as
+      // h^4; around a knot of a spline where the second derivative jumps
+      // (gmsh's Spline is C1), as h^2, so the halving concentrates there.
+      CurveSamples
+      sample_curve(const int tag, const double tolerance)
+      {
+        std::vector<double> low, high;
+        gmsh::model::getParametrizationBounds(1, tag, low, high);
+        struct Sample
+        {
+          Point<2>     point;
+          Tensor<1, 2> derivative;
+        };
+        std::map<double, Sample> samples;
+        std::vector<double>      first;
+        const unsigned int       n_first = 64;
+        for (unsigned int i = 0; i <= n_first; ++i)
+          first.push_back(
+            i == n_first ? high[0] : low[0] + (high[0] - low[0]) * i / n_first);
+        std::vector<Point<2>>     points;
+        std::vector<Tensor<1, 2>> derivatives;
+        evaluate(tag, first, points, derivatives);
+        std::vector<double> to_check;
+        for (unsigned int i = 0; i <= n_first; ++i)
+          {
+            samples[first[i]] = {points[i], derivatives[i]};
+            if (i < n_first)
+              to_check.push_back(first[i]);
+          }
+
+        const std::size_t max_samples = 16384;
+        const double      fractions[] = {0.25, 0.5, 0.75};
+        while (!to_check.empty() && samples.size() < max_samples)
+          {
+            std::vector<double> tests;
+            for (const double t : to_check)
+              {
+                const double next = std::next(samples.find(t))->first;
+                for (const double q : fractions)
+                  tests.push_back(t + q * (next - t));
+              }
+            evaluate(tag, tests, points, derivatives);
+            std::vector<std::size_t> halved;
+            for (std::size_t i = 0; i < to_check.size(); ++i)
+              {
+                const auto   a       = samples.find(to_check[i]);
+                const auto   b       = std::next(a);
+                const double h       = b->first - a->first;
+                bool         too_far = false;
+                for (unsigned int k = 0; k < 3; ++k)
+                  too_far =
+                    too_far || cubic_hermite(a->second.point,
+                                             a->second.derivative,
+                                             b->second.point,
+                                             b->second.derivative,
+                                             h,
+                                             fractions[k])
+                                   .distance(points[3 * i + k]) > tolerance;
+                if (too_far)
+                  halved.push_back(i);
+              }
+            to_check.clear();
+            if (samples.size() + halved.size() > max_samples)
+              break;
+            for (const std::size_t i : halved)
+              {
+                const double middle = tests[3 * i + 1];
+                samples[middle] = {points[3 * i + 1], derivatives[3 * i + 1]};
+                to_check.push_back(std::prev(samples.find(middle))->first);
+                to_check.push_back(middle);
+              }
+          }
+
+        CurveSamples result;
+        for (const auto &[t, sample] : samples)
+          {
+            result.parameters.push_back(t);
+            result.points.push_back(sample.point);
+            result.derivatives.push_back(sample.derivative);
+          }
+        // A closed curve ends where it starts.
+        if (result.points.front().distance(result.points.back()) <= tolerance)
+          {
+            result.closed        = true;
+            result.points.back() = result.points.front();
+          }
+        return result;
+      }
+    } // namespace
+
+
+
+    // The other smooth curves of the geometry (splines, B-splines, Bezier
+    // curves, ellipses): sampled through gmsh's parametrisation while gmsh
+    // has the model (CurveSamples), each with its own manifold id after
+    // those of the circles, to 1e-10 of the model's size.
+    void
+    GmshBodies::read_sampled_curves()
+    {
+      gmsh::vectorpair curves;
+      gmsh::model::getEntities(curves, 1);
+      types::manifold_id next_id = 0;
+      for (const auto &[id, centre] : circle_centres)
+        next_id = std::max<types::manifold_id>(next_id, id + 1);
+      for (const auto &[dim, tag] : curves)
+        {
+          std::string type;
+          gmsh::model::getType(dim, tag, type);
+          if (!is_sampled_type(type))
+            continue;
+          const auto lines = elements_of_entities(1, {tag}, file_name);
+          if (lines.empty())
+            continue;
+          sampled_curves.emplace(next_id, sample_curve(tag, 1e-10 * extent));
+          for (const auto &line : lines)
+            curved_edges[edge_of(line[0], line[1])] = next_id;
+          ++next_id;
         }
     }
 

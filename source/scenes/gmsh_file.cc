@@ -590,6 +590,7 @@ namespace coulomb_adapt
     {
       geometry.meshes[body].create_triangulation(tria);
       attach_circle_manifolds(geometry.circle_centres, tria);
+      attach_curve_manifolds(geometry.sampled_curves, tria);
     }
   } // namespace scenes
 } // namespace coulomb_adapt

@@ -89,6 +89,7 @@ namespace coulomb_adapt
                                            bodies.file_name,
                                            bodies.curved_edges);
       result.circle_centres = bodies.circle_centres;
+      result.sampled_curves = bodies.sampled_curves;
       return result;
     }
 

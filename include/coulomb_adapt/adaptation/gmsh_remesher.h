@@ -23,7 +23,9 @@ namespace coulomb_adapt
    * @p size_field (a PostView background field, linear in each triangle).
    * The boundary is rebuilt as gmsh curves: maximal runs of boundary faces
    * with the same boundary id and manifold id that are straight (flat
-   * manifold) or lie on one SphericalManifold (circle arcs); boundary ids
+   * manifold) or lie on one SphericalManifold (circle arcs) or on one
+   * CurveManifold (a sampled spline of the scene: gmsh splines through
+   * points of it, the new boundary nodes then moved onto it); boundary ids
    * and manifold ids are carried over. Rank 0 of @p comm meshes, every
    * rank receives the mesh. @p body_name is for messages; @p algorithm is
    * gmsh's 2D algorithm.

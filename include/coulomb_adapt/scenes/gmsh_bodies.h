@@ -20,12 +20,12 @@ namespace coulomb_adapt
 
     /**
      * The two bodies of a gmsh file, read with gmsh (on one rank) and
-     * checked: the nodes (in the x-y plane), the circle arcs of the
-     * geometry, the physical groups and each body's elements (from the
-     * surfaces GmshGroupUse::body_surfaces names, none in both bodies).
-     * The curve groups are then looked up through it: the contact pair
-     * and the condition groups (gmsh_two_body_reader.cc). Errors are
-     * ParameterErrors that name the file, the group and the entry.
+     * checked: the nodes (in the x-y plane), the circle arcs and the
+     * other smooth curves (sampled) of the geometry, the physical groups and
+     * each body's elements (from the surfaces GmshGroupUse::body_surfaces
+     * names, none in both bodies). The curve groups are then looked up through
+     * it: the contact pair and the condition groups (gmsh_two_body_reader.cc).
+     * Errors are ParameterErrors that name the file, the group and the entry.
      */
     class GmshBodies
     {
@@ -68,6 +68,7 @@ namespace coulomb_adapt
       std::map<std::size_t, Point<2>>            nodes;
       std::map<Edge, types::manifold_id>         curved_edges;
       CircleCentres                              circle_centres;
+      SampledCurves                              sampled_curves;
       std::map<std::string, std::pair<int, int>> groups;
       /** Each body's elements as corner node tags, and its boundary. */
       std::array<std::vector<std::vector<std::size_t>>, 2> body_elements;
@@ -83,6 +84,8 @@ namespace coulomb_adapt
       read_nodes();
       void
       read_circle_arcs();
+      void
+      read_sampled_curves();
       void
       read_bodies(const GmshGroupUse &use);
       void

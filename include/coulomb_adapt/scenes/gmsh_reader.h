@@ -7,6 +7,7 @@
 #include <deal.II/grid/tria_description.h>
 
 #include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/scenes/curve_manifold.h>
 
 #include <array>
 #include <map>
@@ -44,7 +45,8 @@ namespace coulomb_adapt
    * boundary id; only lines that are boundary edges of these elements are
    * kept. @p file_name is for messages. A boundary edge in
    * @p curved_edges (an edge of two node tags, the smaller first) lies on a
-   * circle of the geometry and gets its manifold id, with boundary id 0
+   * circle or another smooth curve of the geometry and gets its manifold
+   * id, with boundary id 0
    * (free) if no group names it.
    */
   CoarseMeshData
@@ -130,12 +132,17 @@ namespace coulomb_adapt
     /** The circles of the geometry: the boundary lines on one have its
      * manifold id (attach_circle_manifolds() gives the manifolds). */
     CircleCentres circle_centres;
+    /** The other smooth curves of the geometry (splines, B-splines, Bezier
+     * curves, ellipses), sampled: the boundary lines on one have its
+     * manifold id (attach_curve_manifolds() gives the manifolds). */
+    SampledCurves sampled_curves;
 
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &meshes &groups_of_boundary_id &point_supports &circle_centres;
+      archive &meshes &groups_of_boundary_id &point_supports &circle_centres
+        &sampled_curves;
     }
   };
 
