@@ -269,6 +269,10 @@ namespace coulomb_adapt
                 body->setup_system();
                 body->assemble_system();
               }
+            if (parameters.contact.load_step_predictor &&
+                scene.load_increment_ratio(step) > 0)
+              outcome.solver->predict_next_load_step(
+                scene.load_increment_ratio(step));
           }
         for (unsigned int attempt = 0;; ++attempt)
           try
@@ -300,6 +304,8 @@ namespace coulomb_adapt
                            restart.from_predicted_sets ? &predicted_sets :
                                                          nullptr);
             }
+        outcome.newton_iterations_of_stopped_starts +=
+          outcome.report.newton_iterations_of_stopped_prediction;
         total_newton_iterations += outcome.report.newton_iterations;
         outcome.newton_iterations_per_load_step.push_back(
           outcome.report.newton_iterations);

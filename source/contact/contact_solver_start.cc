@@ -42,6 +42,10 @@ namespace coulomb_adapt
         states[j].weight            = D[j];
         states[j].held_tangentially = condensation.fixed_component[j] >= 0;
       }
+    if (first_step)
+      load_step_start.clear();
+    else
+      load_step_start = states;
     support.reinit(slave, states);
     master_gram = master.support_gram(Point<2>());
     if (first_step)
@@ -86,6 +90,38 @@ namespace coulomb_adapt
         states[j].status    = initial_status(touching, mu);
         states[j].slip_sign = 1;
       }
+  }
+
+
+
+  // The continuation predictor of a load path (predict_next_load_step):
+  // the state at the end of the last load step moved on by the ratio
+  // times its increments in that step, and the sets the active set rule
+  // reads off it. A stick node whose tangential traction grows out of the
+  // cone over the next increment starts slipping, so the slip front
+  // starts where the load moves it instead of where it was, which the
+  // Newton iteration would otherwise move a band of nodes per step.
+  unsigned int
+  ContactSolver::predict_sets()
+  {
+    std::vector<ContactNodeState> predicted = states;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      {
+        const Increment &d = last_increments[j];
+        predicted[j].pressure += predictor_ratio * d.pressure;
+        predicted[j].tangential_traction +=
+          predictor_ratio * d.tangential_traction;
+        predicted[j].gap += predictor_ratio * d.gap;
+        predicted[j].slip += predictor_ratio * d.slip;
+      }
+    const unsigned int n_changed =
+      update_sets(rule, previous_weighted_slip, predicted);
+    for (unsigned int j = 0; j < states.size(); ++j)
+      {
+        states[j].status    = predicted[j].status;
+        states[j].slip_sign = predicted[j].slip_sign;
+      }
+    return n_changed;
   }
 
 

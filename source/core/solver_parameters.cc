@@ -154,6 +154,19 @@ namespace coulomb_adapt
                           "use their coarser gradings at every size: their "
                           "many nodes across the contact zone cost the cold "
                           "start 7 or more Newton steps even when small.");
+        prm.declare_entry("Load step predictor",
+                          "true",
+                          Patterns::Bool(),
+                          "On a load path whose scene says that a load step "
+                          "moves the loads on as the step before did "
+                          "(cattaneo's tangential steps after the first), "
+                          "start the step's Newton iteration from the sets "
+                          "of the last step's state extrapolated by its "
+                          "increments (multipliers, gaps, slips), instead of "
+                          "from the last step's sets; if that start stops "
+                          "with a diagnosis, the step is solved again from "
+                          "the last step's sets. Fewer Newton steps; the "
+                          "solution is the same.");
       }
       prm.leave_subsection();
     }
@@ -172,6 +185,7 @@ namespace coulomb_adapt
         nested_iteration_levels = prm.get_integer("Nested iteration levels");
         nested_iteration_min_dofs =
           prm.get_integer("Nested iteration minimum DoFs");
+        load_step_predictor = prm.get_bool("Load step predictor");
         require_parameter(complementarity_scale > 0,
                           "Contact/Complementarity scale",
                           complementarity_scale,

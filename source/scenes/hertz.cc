@@ -283,6 +283,14 @@ namespace coulomb_adapt
 
 
 
+    double
+    Hertz::load_increment_ratio(const unsigned int step) const
+    {
+      return (cattaneo && step >= 3) ? 1. : 0.;
+    }
+
+
+
     void
     Hertz::create_coarse_mesh(const unsigned int body,
                               const CellType     cell_type,

@@ -205,6 +205,14 @@ namespace coulomb_adapt
 
 
 
+  double
+  ScaledScene::load_increment_ratio(const unsigned int step) const
+  {
+    return scene->load_increment_ratio(step);
+  }
+
+
+
   std::unique_ptr<Scene>
   ScaledScene::with_coarser_graded_meshes(const unsigned int k) const
   {

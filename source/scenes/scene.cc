@@ -84,6 +84,14 @@ namespace coulomb_adapt
 
 
 
+  double
+  Scene::load_increment_ratio(const unsigned int) const
+  {
+    return 0;
+  }
+
+
+
   std::unique_ptr<Scene>
   Scene::with_coarser_graded_meshes(const unsigned int) const
   {

@@ -40,6 +40,12 @@ namespace coulomb_adapt
      * (residual_round_off_floor()); convergence accepts a residual up to
      * max(Contact/Tolerance, this). */
     double residual_round_off_floor = 0;
+    /** Nodes whose sets the load step predictor changed from the previous
+     * load step's (predict_next_load_step; 0 without prediction). */
+    unsigned int n_predicted_changes = 0;
+    /** Newton steps of a predicted start that stopped with a diagnosis,
+     * before the step was solved again from the previous step's sets. */
+    unsigned int newton_iterations_of_stopped_prediction = 0;
     /** Krylov solves repeated with a tighter tolerance because unchanged
      * sets missed Contact/Tolerance (0 or 1). */
     unsigned int n_tighter_linear_solves = 0;
@@ -102,6 +108,22 @@ namespace coulomb_adapt
     void
     warm_start_from(const std::vector<ContactNodeState> &previous);
 
+    /**
+     * Start the next load step (the next solve() on the same meshes) from
+     * sets predicted for its loads, the continuation predictor of a
+     * proportional load path: each slave node's multipliers, gap and slip
+     * go on by @p increment_ratio times their increments in the last load
+     * step, and the active set rule reads the sets off that state. With
+     * the sets fixed a Newton step's solution depends on the sets alone,
+     * so the prediction is one of the sets; the converged solution does
+     * not depend on it (the iteration runs to its own convergence). If
+     * the predicted start stops with a diagnosis, the step is solved again
+     * from the sets of the step before. Without a last increment (the
+     * first two load steps on these meshes) it does nothing.
+     */
+    void
+    predict_next_load_step(const double increment_ratio);
+
     /** The last linear solve of the Newton iteration. */
     const LinearSolverReport &
     last_linear_solver_report() const;
@@ -134,6 +156,13 @@ namespace coulomb_adapt
     setup_states();
     void
     initialize_sets();
+    /** The sets of predict_next_load_step() in the states; returns the
+     * number of nodes whose sets it changed. */
+    unsigned int
+    predict_sets();
+    /** The Newton iteration of one load step from the current sets. */
+    void
+    iterate(ContactSolverReport &report);
     void
     transfer_warm_start_sets();
     /** Whether set changes may be restricted when the iteration stalls:
@@ -239,6 +268,19 @@ namespace coulomb_adapt
     std::vector<ContactNodeState> warm_start_states;
     /** Weighted tangential jump at the end of the previous load step. */
     std::vector<double> previous_weighted_slip;
+    /** The converged states of the previous load step on these meshes
+     * (empty in the first): the start of this step's increments, and of
+     * its solve again if a predicted start stops. */
+    std::vector<ContactNodeState> load_step_start;
+    /** Each node's change of pressure, tangential traction, gap and slip
+     * in the last load step (empty until a load step had a start). */
+    struct Increment
+    {
+      double pressure, tangential_traction, gap, slip;
+    };
+    std::vector<Increment> last_increments;
+    /** predict_next_load_step()'s ratio for the next solve (0: none). */
+    double predictor_ratio = 0;
   };
 } // namespace coulomb_adapt
 

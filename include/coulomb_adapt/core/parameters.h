@@ -88,6 +88,9 @@ namespace coulomb_adapt
       unsigned int nested_iteration_levels;
       /** Nested iteration only for problems with more DoFs than this. */
       unsigned int nested_iteration_min_dofs;
+      /** Later load steps of a proportional load path start from sets
+       * extrapolated from the last step's increments. */
+      bool load_step_predictor;
 
       static void
       declare_parameters(ParameterHandler &prm);

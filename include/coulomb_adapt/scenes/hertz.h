@@ -71,6 +71,11 @@ namespace coulomb_adapt
       void
       set_load_step(const unsigned int step) const override;
 
+      /** cattaneo: 1 from step 3 on (equal tangential increments); step 2,
+       * the first tangential one, follows the normal step. */
+      double
+      load_increment_ratio(const unsigned int step) const override;
+
       /** The same contact with `Contact mesh size` times 2^k (its own
        * gmsh meshes). */
       std::unique_ptr<Scene>

@@ -71,6 +71,9 @@ namespace coulomb_adapt
     void
     set_load_step(const unsigned int step) const override;
 
+    double
+    load_increment_ratio(const unsigned int step) const override;
+
     std::unique_ptr<Scene>
     with_coarser_graded_meshes(const unsigned int k) const override;
 

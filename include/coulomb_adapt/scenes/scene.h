@@ -190,6 +190,15 @@ namespace coulomb_adapt
     virtual void
     set_load_step(const unsigned int step) const;
 
+    /** The load increment of step @p step (2 ... n_load_steps()) as a
+     * multiple of the increment of step @p step - 1, when the two are
+     * proportional (the same loads moving on in the same direction): the
+     * contact solver then predicts the sets of the step from the last
+     * step's increments. 0 (the default) when they are not, or the scene
+     * does not say: the step starts from the sets of the step before. */
+    virtual double
+    load_increment_ratio(const unsigned int step) const;
+
     /** The same scene with initial meshes @p 2^k times coarser where the
      * scene grades them (towards the contact zone), for nested iteration
      * when the first meshes are not uniform refinements of coarser ones;
