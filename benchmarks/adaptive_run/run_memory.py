@@ -17,7 +17,7 @@ same output setting) * 1024 / DoFs. Rows are appended to memory.csv
 beside this script (or --csv).
 
 --smoke (for ctest) runs the empty run and the seed's mesh with 2 global
-refinements (a few thousand DoFs), with and without the fields, to check
+refinements (1,788 DoFs), with and without the fields, to check
 that the script runs; it writes a CSV only when --csv is given. A run
 that fails or writes no summary.json ends the script with a non-zero
 exit code.
