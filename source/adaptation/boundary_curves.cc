@@ -1,6 +1,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <coulomb_adapt/adaptation/boundary_curves.h>
+#include <coulomb_adapt/scenes/curve_manifold.h>
 
 #include <algorithm>
 #include <cmath>
@@ -277,6 +278,34 @@ namespace coulomb_adapt
       result.first_curve_of_loop.push_back(result.curves.size());
       result.parts = connected_parts(result.loop_polygons);
       return result;
+    }
+
+
+
+    // gmsh's nodes on the splines of gmsh_remesher.cc's add_curve_splines()
+    // lie on gmsh's interpolation of points of the curve: each node inside
+    // a run on a CurveManifold (on two of its lines) goes onto the curve
+    // itself. The ends of a run, which other curves share, are old
+    // vertices, on it.
+    void
+    put_nodes_on_curves(const Triangulation<2> &geometry, CoarseMeshData &mesh)
+    {
+      std::map<std::pair<unsigned int, types::manifold_id>, unsigned int>
+        lines_at;
+      for (const auto &line : mesh.boundary_lines.boundary_lines)
+        if (line.manifold_id != numbers::flat_manifold_id &&
+            dynamic_cast<const CurveManifold *>(
+              &geometry.get_manifold(line.manifold_id)) != nullptr)
+          for (const unsigned int v : line.vertices)
+            ++lines_at[{v, line.manifold_id}];
+      for (const auto &[vertex_and_id, n_lines] : lines_at)
+        if (n_lines == 2)
+          {
+            const auto &[v, id] = vertex_and_id;
+            mesh.vertices[v] =
+              static_cast<const CurveManifold &>(geometry.get_manifold(id))
+                .project(mesh.vertices[v]);
+          }
     }
   } // namespace boundary_geometry
 } // namespace coulomb_adapt

@@ -39,58 +39,6 @@ namespace coulomb_adapt
   // complementarity residual is below the tolerance. SetChangeControl
   // guards the iteration against cycles and stagnation; the diagnoses
   // name what went wrong when it fails.
-  //
-  // A load step with predicted sets (predict_next_load_step) that stops
-  // with a diagnosis is solved again from the previous step's sets: the
-  // prediction is a guess, and a wrong guess is not the problem's failure.
-  ContactSolverReport
-  ContactSolver::solve()
-  {
-    setup();
-    // The near null space depends on the meshes only: once per load step,
-    // and only for the AMG path.
-    near_null_space =
-      iterative ? rigid_body_modes() : std::vector<std::vector<double>>();
-
-    const bool predicted = predictor_ratio > 0 && !load_step_start.empty() &&
-                           last_increments.size() == states.size();
-    ContactSolverReport report;
-    if (predicted)
-      {
-        report.n_predicted_changes = predict_sets();
-        pcout << "  contact: sets predicted from the last load step's "
-                 "increments: "
-              << report.n_predicted_changes << " nodes changed" << std::endl;
-      }
-    predictor_ratio = 0;
-    try
-      {
-        iterate(report);
-      }
-    catch (const ContactDiagnosis &e)
-      {
-        if (!predicted)
-          throw;
-        pcout << "  contact: the predicted sets stopped after "
-              << e.newton_steps << " Newton steps ("
-              << std::string(e.what()).substr(0, 160)
-              << " ...); solving the load step again from the sets of the "
-                 "step before"
-              << std::endl;
-        const unsigned int n_stopped           = e.newton_steps;
-        states                                 = load_step_start;
-        const unsigned int n_predicted_changes = report.n_predicted_changes;
-        report                                 = ContactSolverReport();
-        report.n_predicted_changes             = n_predicted_changes;
-        report.newton_iterations_of_stopped_prediction = n_stopped;
-        iterate(report);
-      }
-    finish_load_step(report);
-    return report;
-  }
-
-
-
   void
   ContactSolver::iterate(ContactSolverReport &report)
   {
@@ -474,42 +422,6 @@ namespace coulomb_adapt
 
 
 
-  // The increments of this load step are those the next one's predictor
-  // extrapolates; the first load step on these meshes has none (its
-  // start is no converged state).
-  void
-  ContactSolver::finish_load_step(ContactSolverReport &report)
-  {
-    for (unsigned int j = 0; j < states.size(); ++j)
-      {
-        states[j].slip_increment =
-          slip_increment(states[j], previous_weighted_slip[j]);
-        previous_weighted_slip[j] = states[j].slip * states[j].weight;
-      }
-    last_increments.clear();
-    if (load_step_start.size() == states.size())
-      for (unsigned int j = 0; j < states.size(); ++j)
-        last_increments.push_back(
-          {states[j].pressure - load_step_start[j].pressure,
-           states[j].tangential_traction -
-             load_step_start[j].tangential_traction,
-           states[j].gap - load_step_start[j].gap,
-           states[j].slip_increment});
-    for (const auto &s : states)
-      {
-        const Tensor<1, 2> force =
-          -s.weight *
-          (s.pressure * s.normal + s.tangential_traction * s.tangent);
-        report.contact_force += force;
-        report.contact_moment +=
-          s.position[0] * force[1] - s.position[1] * force[0];
-        report.max_contact_pressure =
-          std::max(report.max_contact_pressure, s.pressure);
-      }
-  }
-
-
-
   // The complementarity residual's counterpart of multiplier_round_off:
   // normalised by the largest pressure, as the residual is.
   double
@@ -573,14 +485,6 @@ namespace coulomb_adapt
         modes.push_back(std::move(slide));
       }
     return modes;
-  }
-
-
-
-  void
-  ContactSolver::predict_next_load_step(const double increment_ratio)
-  {
-    predictor_ratio = increment_ratio;
   }
 
 

@@ -88,6 +88,58 @@ namespace coulomb_adapt
 
 
 
+    namespace
+    {
+      // Where the Newton iteration of a contact solve starts when no
+      // previous cycle gives its sets: coarser meshes first (nested
+      // iteration), or along a load path the last step's state moved on.
+      void
+      declare_start_entries(ParameterHandler &prm)
+      {
+        prm.declare_entry("Nested iteration levels",
+                          "3",
+                          Patterns::Integer(0),
+                          "Contact without a previous cycle's sets (for a "
+                          "load path, its first load step): "
+                          "solve the same problem first on up to this many "
+                          "meshes with fewer uniform refinements (at most "
+                          "'Mesh/Global refinements' of them; with none, a "
+                          "scene that grades its meshes, hertz and cattaneo, "
+                          "gives meshes with a 2, 4, 8 ... times coarser "
+                          "contact zone instead), each starting "
+                          "from the sets of the one before, and start the "
+                          "Newton iteration from the last one's sets. Fewer "
+                          "Newton steps on the fine mesh (hertz, 1.4e5 DoFs: "
+                          "3 instead of 11); the solution is the same. 0 "
+                          "switches it off.");
+        prm.declare_entry("Nested iteration minimum DoFs",
+                          "20000",
+                          Patterns::Integer(0),
+                          "Nested iteration over global refinements only "
+                          "when both bodies together have more DoFs than "
+                          "this: below, a few extra Newton steps cost less "
+                          "than the coarser solves. A scene's graded meshes "
+                          "use their coarser gradings at every size: their "
+                          "many nodes across the contact zone cost the cold "
+                          "start 7 or more Newton steps even when small.");
+        prm.declare_entry("Load step predictor",
+                          "true",
+                          Patterns::Bool(),
+                          "On a load path whose scene says that a load step "
+                          "moves the loads on as the step before did "
+                          "(cattaneo's tangential steps after the first), "
+                          "start the step's Newton iteration from the sets "
+                          "of the last step's state extrapolated by its "
+                          "increments (multipliers, gaps, slips), instead of "
+                          "from the last step's sets; if that start stops "
+                          "with a diagnosis, the step is solved again from "
+                          "the last step's sets. Fewer Newton steps; the "
+                          "solution is the same.");
+      }
+    } // namespace
+
+
+
     void
     Contact::declare_parameters(ParameterHandler &prm)
     {
@@ -128,45 +180,7 @@ namespace coulomb_adapt
                           "largest contact pressure, is below this "
                           "(0 ... 1e-6; 0 accepts the round-off floor "
                           "only).");
-        prm.declare_entry("Nested iteration levels",
-                          "3",
-                          Patterns::Integer(0),
-                          "Contact without a previous cycle's sets (for a "
-                          "load path, its first load step): "
-                          "solve the same problem first on up to this many "
-                          "meshes with fewer uniform refinements (at most "
-                          "'Mesh/Global refinements' of them; with none, a "
-                          "scene that grades its meshes, hertz and cattaneo, "
-                          "gives meshes with a 2, 4, 8 ... times coarser "
-                          "contact zone instead), each starting "
-                          "from the sets of the one before, and start the "
-                          "Newton iteration from the last one's sets. Fewer "
-                          "Newton steps on the fine mesh (hertz, 1.4e5 DoFs: "
-                          "3 instead of 11); the solution is the same. 0 "
-                          "switches it off.");
-        prm.declare_entry("Nested iteration minimum DoFs",
-                          "20000",
-                          Patterns::Integer(0),
-                          "Nested iteration over global refinements only "
-                          "when both bodies together have more DoFs than "
-                          "this: below, a few extra Newton steps cost less "
-                          "than the coarser solves. A scene's graded meshes "
-                          "use their coarser gradings at every size: their "
-                          "many nodes across the contact zone cost the cold "
-                          "start 7 or more Newton steps even when small.");
-        prm.declare_entry("Load step predictor",
-                          "true",
-                          Patterns::Bool(),
-                          "On a load path whose scene says that a load step "
-                          "moves the loads on as the step before did "
-                          "(cattaneo's tangential steps after the first), "
-                          "start the step's Newton iteration from the sets "
-                          "of the last step's state extrapolated by its "
-                          "increments (multipliers, gaps, slips), instead of "
-                          "from the last step's sets; if that start stops "
-                          "with a diagnosis, the step is solved again from "
-                          "the last step's sets. Fewer Newton steps; the "
-                          "solution is the same.");
+        declare_start_entries(prm);
       }
       prm.leave_subsection();
     }

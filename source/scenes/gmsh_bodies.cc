@@ -214,6 +214,37 @@ namespace coulomb_adapt
 
 
 
+      struct CurveSample
+      {
+        Point<2>     point;
+        Tensor<1, 2> derivative;
+      };
+
+
+
+      // The samples in the order of gmsh's parameter; a closed curve (its
+      // ends within @p tolerance) ends exactly where it starts.
+      CurveSamples
+      ordered_samples(const std::map<double, CurveSample> &samples,
+                      const double                         tolerance)
+      {
+        CurveSamples result;
+        for (const auto &[t, sample] : samples)
+          {
+            result.parameters.push_back(t);
+            result.points.push_back(sample.point);
+            result.derivatives.push_back(sample.derivative);
+          }
+        if (result.points.front().distance(result.points.back()) <= tolerance)
+          {
+            result.closed        = true;
+            result.points.back() = result.points.front();
+          }
+        return result;
+      }
+
+
+
       // Curve @p tag sampled so that the cubic Hermite interpolation of
       // the samples (CurveManifold) is the curve to @p tolerance: 64
       // intervals of gmsh's parameter, then every interval whose
@@ -227,14 +258,9 @@ namespace coulomb_adapt
       {
         std::vector<double> low, high;
         gmsh::model::getParametrizationBounds(1, tag, low, high);
-        struct Sample
-        {
-          Point<2>     point;
-          Tensor<1, 2> derivative;
-        };
-        std::map<double, Sample> samples;
-        std::vector<double>      first;
-        const unsigned int       n_first = 64;
+        std::map<double, CurveSample> samples;
+        std::vector<double>           first;
+        const unsigned int            n_first = 64;
         for (unsigned int i = 0; i <= n_first; ++i)
           first.push_back(
             i == n_first ? high[0] : low[0] + (high[0] - low[0]) * i / n_first);
@@ -292,20 +318,7 @@ namespace coulomb_adapt
               }
           }
 
-        CurveSamples result;
-        for (const auto &[t, sample] : samples)
-          {
-            result.parameters.push_back(t);
-            result.points.push_back(sample.point);
-            result.derivatives.push_back(sample.derivative);
-          }
-        // A closed curve ends where it starts.
-        if (result.points.front().distance(result.points.back()) <= tolerance)
-          {
-            result.closed        = true;
-            result.points.back() = result.points.front();
-          }
-        return result;
+        return ordered_samples(samples, tolerance);
       }
     } // namespace
 

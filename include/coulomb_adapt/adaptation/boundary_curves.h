@@ -5,6 +5,8 @@
 
 #include <deal.II/grid/tria.h>
 
+#include <coulomb_adapt/scenes/gmsh_reader.h>
+
 #include <array>
 #include <set>
 #include <string>
@@ -87,6 +89,11 @@ namespace coulomb_adapt
     loop_curves(const Triangulation<2>       &geometry,
                 const std::string            &body_name,
                 const std::set<unsigned int> &corners);
+    /** Each vertex of @p mesh inside a run of boundary lines on a
+     * CurveManifold of @p geometry moved onto that curve (gmsh's nodes
+     * lie on its spline through points of the curve, not on the curve). */
+    void
+    put_nodes_on_curves(const Triangulation<2> &geometry, CoarseMeshData &mesh);
   } // namespace boundary_geometry
 } // namespace coulomb_adapt
 
