@@ -4,6 +4,13 @@
 #define coulomb_adapt_tests_lame_press_fit_h
 
 #include <deal.II/base/numbers.h>
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
 
 namespace coulomb_adapt
 {
@@ -95,6 +102,51 @@ namespace coulomb_adapt
                 b * (1 / (a0 * a0) - 1 / (b * b)));
       }
     };
+
+    /** The slave nodes' pressures of one cycle against Lame's p. */
+    struct SlavePressures
+    {
+      unsigned int n_nodes = 0;
+      /** max |p_j - p| / p over the slave nodes. */
+      double largest_deviation = 0;
+      /** sum w_j p_j / sum w_j (w_j the mortar weights). */
+      double mean = 0;
+    };
+
+    /** Read cycle @p cycle's contact CSV in @p directory (x, y, normal_x,
+     * normal_y, weight, contact_pressure, ...). */
+    inline SlavePressures
+    read_slave_pressures(const std::string &directory,
+                         const unsigned int cycle,
+                         const double       p)
+    {
+      std::ifstream file(directory + "/contact_" +
+                         dealii::Utilities::int_to_string(cycle, 3) + ".csv");
+      std::string   line;
+      std::getline(file, line);
+      SlavePressures result;
+      double         force = 0, length = 0;
+      while (std::getline(file, line))
+        {
+          std::istringstream row(line);
+          std::string        field;
+          double             weight = 0;
+          for (unsigned int k = 0; k < 6; ++k)
+            {
+              std::getline(row, field, ',');
+              if (k == 4)
+                weight = std::stod(field);
+            }
+          const double pressure = std::stod(field);
+          result.largest_deviation =
+            std::max(result.largest_deviation, std::abs(pressure - p) / p);
+          force += pressure * weight;
+          length += weight;
+          ++result.n_nodes;
+        }
+      result.mean = length > 0 ? force / length : 0;
+      return result;
+    }
   } // namespace testing
 } // namespace coulomb_adapt
 

@@ -64,24 +64,12 @@ main(int argc, char *argv[])
         {
           const unsigned int c       = cycle["cycle"].get<unsigned int>();
           const double       overlap = cycle["initial_overlap"].get<double>();
-          // The slave nodes' pressures: the cycle's contact file.
-          std::ifstream file(run.parameters.output.directory + "/contact_00" +
-                             std::to_string(c) + ".csv");
-          std::string   line;
-          std::getline(file, line);
-          double       deviation = 0;
-          unsigned int n_nodes   = 0;
-          while (std::getline(file, line))
-            {
-              // x, y, normal_x, normal_y, weight, contact_pressure, ...
-              std::istringstream row(line);
-              std::string        field;
-              for (unsigned int k = 0; k < 6; ++k)
-                std::getline(row, field, ',');
-              deviation =
-                std::max(deviation, std::abs(std::stod(field) - p) / p);
-              ++n_nodes;
-            }
+          const testing::SlavePressures pressures =
+            testing::read_slave_pressures(run.parameters.output.directory,
+                                          c,
+                                          p);
+          const double       deviation = pressures.largest_deviation;
+          const unsigned int n_nodes   = pressures.n_nodes;
           const unsigned int active = cycle["active_nodes"].get<unsigned int>();
           const double       tolerance =
             c == 0 ? test.first_tolerance : test.adapted_tolerance;

@@ -19,8 +19,10 @@ namespace coulomb_adapt
         // theory.md section 7: sigma^ statically admissible, so the CRE
         // bounds the error of frictionless contact (up to the local
         // problems' discretisation, measured below 0.5 %).
-        claim.kind_of_estimate = "an upper bound for mu = 0";
-        claim.is_upper_bound   = true;
+        claim.kind_of_estimate =
+          "an upper bound for mu = 0, up to its local problems' "
+          "discretisation";
+        claim.is_upper_bound = true;
       }
     else
       claim.kind_of_estimate = "equilibrated, not a proven bound for mu > 0";

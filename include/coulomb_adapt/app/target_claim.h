@@ -20,7 +20,7 @@ namespace coulomb_adapt
    */
   struct TargetClaim
   {
-    /** "recovery estimate, not a bound", "upper bound (mu = 0)", ... */
+    /** "recovery estimate, not a bound", "an upper bound for mu = 0, ...", ... */
     std::string kind_of_estimate;
     /** Whether the estimate bounds the error from above. */
     bool is_upper_bound = false;
