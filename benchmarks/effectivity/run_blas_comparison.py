@@ -14,6 +14,14 @@ alternative selects. Writes benchmarks/effectivity/blas.csv: per run the
 phase times summed over the cycles (summary.json's timings_s), the final
 DoFs and epsilon. Exits 1 when a run failed (after writing the others).
 
+The same comparison serves two builds of the library: give each side the
+directory holding its libcoulomb_adapt.so (the executable's RUNPATH gives
+way to LD_LIBRARY_PATH) and name the sides with --labels, e.g.
+
+    benchmarks/effectivity/run_blas_comparison.py --exe build/coulomb-adapt \
+        --reference /tmp/old-lib --openblas /tmp/new-lib \
+        --labels amesos-lu,mumps-ldlt --csv benchmarks/effectivity/ldlt.csv
+
     benchmarks/effectivity/run_blas_comparison.py --smoke \
         --exe build/coulomb-adapt --openblas DIRS --reference DIRS \
         --csv /tmp/blas.csv --outdir /tmp/blas-runs
@@ -64,17 +72,24 @@ def main():
     parser.add_argument("--csv", default=os.path.join(HERE, "blas.csv"))
     parser.add_argument("--outdir", default="/tmp/coulomb-bench-blas",
                         help="the runs' output directory (overwritten)")
+    parser.add_argument("--labels", default="reference,openblas",
+                        help="the two sides' names in the CSV "
+                        "(--reference's first)")
     parser.add_argument("--smoke", action="store_true",
                         help="only the seed's first cycle with cre, once")
     args = parser.parse_args()
     args.exe = common.check_executable(args.exe)
     common.print_header(args.exe)
     runs, repeats = (SMOKE, 1) if args.smoke else (RUNS, args.repeats)
+    labels = args.labels.split(",")
+    if len(labels) != 2:
+        sys.exit("--labels: two names separated by a comma, got '%s'"
+                 % args.labels)
     rows, failed = [], 0
     for repeat in range(repeats):
         for name, settings in runs.items():
-            for blas, directory in (("reference", args.reference),
-                                    ("openblas", args.openblas)):
+            for blas, directory in zip(labels, (args.reference,
+                                                args.openblas)):
                 out_dir = args.outdir
                 command = common.program_command(
                     args.exe, settings + ["Output/Write VTU=false",
