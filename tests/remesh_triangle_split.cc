@@ -77,9 +77,9 @@ namespace
 
   struct Conformity
   {
-    bool   conforming = true;
-    long   euler      = 0; // V - E + F
-    double area       = 0;
+    bool                                 conforming = true;
+    long                                 euler      = 0; // V - E + F
+    double                               area       = 0;
     std::map<types::boundary_id, double> lengths;
   };
 
@@ -100,8 +100,8 @@ namespace
                                mesh.vertices[cell.vertices[0]],
                            w = mesh.vertices[cell.vertices[2]] -
                                mesh.vertices[cell.vertices[0]];
-        const double area    = 0.5 * (u[0] * w[1] - u[1] * w[0]);
-        result.conforming    = result.conforming && area > 0;
+        const double area = 0.5 * (u[0] * w[1] - u[1] * w[0]);
+        result.conforming = result.conforming && area > 0;
         result.area += area;
       }
     std::set<Edge> boundary;
@@ -113,8 +113,8 @@ namespace
             mesh.vertices[line.vertices[1]]);
       }
     for (const auto &[e, n] : n_cells_at)
-      result.conforming = result.conforming && n <= 2 &&
-                          (n == 1) == (boundary.count(e) > 0);
+      result.conforming =
+        result.conforming && n <= 2 && (n == 1) == (boundary.count(e) > 0);
     result.conforming =
       result.conforming &&
       boundary.size() == mesh.boundary_lines.boundary_lines.size() &&
@@ -151,33 +151,35 @@ namespace
       if (line.manifold_id != numbers::flat_manifold_id)
         for (const unsigned int v : line.vertices)
           {
-            const Point<2>    &x        = mesh.vertices[v];
-            const Manifold<2> &manifold = geometry.get_manifold(line.manifold_id);
+            const Point<2>    &x = mesh.vertices[v];
+            const Manifold<2> &manifold =
+              geometry.get_manifold(line.manifold_id);
             if (const auto *sphere =
                   dynamic_cast<const SphericalManifold<2> *>(&manifold))
               {
                 double nearest = std::numeric_limits<double>::max();
                 for (const double r : radii.at(line.manifold_id))
-                  nearest = std::min(
-                    nearest, std::abs(sphere->center.distance(x) / r - 1));
+                  nearest =
+                    std::min(nearest,
+                             std::abs(sphere->center.distance(x) / r - 1));
                 largest = std::max(largest, nearest);
               }
             else
-              largest = std::max(
-                largest,
-                dynamic_cast<const CurveManifold &>(manifold).project(x).distance(
-                  x));
+              largest = std::max(largest,
+                                 dynamic_cast<const CurveManifold &>(manifold)
+                                   .project(x)
+                                   .distance(x));
           }
     return largest;
   }
 
   void
-  check_split(const std::string     &title,
+  check_split(const std::string       &title,
               const testing::Settings &settings,
-              const std::string     &parameter_file,
-              const unsigned int     b,
-              const double           ratio,
-              const unsigned int     k)
+              const std::string       &parameter_file,
+              const unsigned int       b,
+              const double             ratio,
+              const unsigned int       k)
   {
     ParameterHandler prm;
     const Parameters parameters =
@@ -192,11 +194,11 @@ namespace
                      parameters.finite_elements);
     body.setup_system();
     Vector<double> ratios(body.triangulation().n_active_cells());
-    ratios           = ratio;
-    const auto field = nodal_size_field(body, ratios);
+    ratios                 = ratio;
+    const auto       field = nodal_size_field(body, ratios);
     Triangulation<2> geometry;
     body.create_scene_coarse_mesh(geometry);
-    const auto &description = body.description();
+    const auto          &description = body.description();
     const CoarseMeshData unsplit =
       remesh_with_gmsh(geometry,
                        field,
@@ -210,7 +212,7 @@ namespace
 
     out << title << ", " << body.name() << ", k = " << k << ":" << std::endl;
     const unsigned int n_children = std::pow(4, k);
-    const bool         counted = mesh.cells.size() == n_children * unsplit.cells.size();
+    const bool counted = mesh.cells.size() == n_children * unsplit.cells.size();
     out << "  " << n_children << " x " << unsplit.cells.size()
         << " cells: " << (counted ? "yes" : "no") << std::endl;
 
@@ -226,8 +228,8 @@ namespace
         << std::endl;
 
     // Lengths and area: equal where straight; on curves, growing.
-    bool   curved        = false;
-    bool   lengths_agree = true;
+    bool curved        = false;
+    bool lengths_agree = true;
     for (const auto &line : unsplit.boundary_lines.boundary_lines)
       curved = curved || line.manifold_id != numbers::flat_manifold_id;
     out << "  boundary lengths";
@@ -236,19 +238,17 @@ namespace
         const double split_length = after.lengths.at(id);
         out << ", id " << int(id) << ": " << std::setprecision(8)
             << split_length;
-        lengths_agree =
-          lengths_agree &&
-          (curved ? split_length >= length * (1 - 1e-12) :
-                    std::abs(split_length / length - 1) < 1e-12);
+        lengths_agree = lengths_agree &&
+                        (curved ? split_length >= length * (1 - 1e-12) :
+                                  std::abs(split_length / length - 1) < 1e-12);
       }
-    const bool area_agrees =
-      curved ? after.area >= before.area * (1 - 1e-12) :
-               std::abs(after.area / before.area - 1) < 1e-12;
+    const bool area_agrees = curved ?
+                               after.area >= before.area * (1 - 1e-12) :
+                               std::abs(after.area / before.area - 1) < 1e-12;
     out << (curved ? " (curved: not shorter than gmsh's): " :
                      " (gmsh's to 1e-12): ")
-        << (lengths_agree ? "yes" : "no") << "; area "
-        << std::setprecision(8) << after.area << ": "
-        << (area_agrees ? "yes" : "no") << std::endl;
+        << (lengths_agree ? "yes" : "no") << "; area " << std::setprecision(8)
+        << after.area << ": " << (area_agrees ? "yes" : "no") << std::endl;
 
     double curve_distance = 0;
     if (curved)
@@ -296,9 +296,9 @@ namespace
     bool features_kept = true;
     for (const auto &line : description.interior_lines())
       {
-        const Tensor<1, 2> t      = line[1] - line[0];
-        const double       length = t.norm();
-        const auto on_line = [&](const Point<2> &x) {
+        const Tensor<1, 2> t       = line[1] - line[0];
+        const double       length  = t.norm();
+        const auto         on_line = [&](const Point<2> &x) {
           const Tensor<1, 2> d = x - line[0];
           return std::abs(d[0] * t[1] - d[1] * t[0]) < 1e-12 * length * length;
         };
@@ -314,10 +314,9 @@ namespace
         double covered = 0;
         for (const auto &[a, c] : edges)
           covered += mesh.vertices[a].distance(mesh.vertices[c]);
-        features_kept =
-          features_kept && std::abs(covered / length - 1) < 1e-12;
-        out << "  interior line of " << length << " mm: edges of "
-            << covered << " mm on it" << std::endl;
+        features_kept = features_kept && std::abs(covered / length - 1) < 1e-12;
+        out << "  interior line of " << length << " mm: edges of " << covered
+            << " mm on it" << std::endl;
       }
     for (const auto &p : description.support_points)
       features_kept =
@@ -327,8 +326,8 @@ namespace
                     [&](const Point<2> &x) { return x.distance(p) < 1e-12; });
     if (!description.support_points.empty())
       out << "  " << description.support_points.size()
-          << " point supports are vertices: "
-          << (features_kept ? "yes" : "no") << std::endl;
+          << " point supports are vertices: " << (features_kept ? "yes" : "no")
+          << std::endl;
 
     AssertThrow(counted && conforming && lengths_agree && area_agrees &&
                   curve_distance < 1e-9 && angles_kept && features_kept,
@@ -348,21 +347,21 @@ namespace
     const double            p = press_fit.pressure();
     testing::ProgramRun     run(
       {{"Scene/Gmsh/Mesh file",
-        testing::example_file("meshes/press_fit_quarter.geo")},
-       {"Finite elements/Polynomial degree", "1"},
-       {"Adaptation/Strategy", "remesh"},
-       {"Adaptation/Target error", "0.5"},
-       {"Adaptation/Number of cycles", "2"},
-       {"Adaptation/Remeshing split above cells", "1000"},
-       {"Output/Write VTU", "false"},
-       {"Output/Output directory", "remesh_triangle_split_press_fit"}},
+            testing::example_file("meshes/press_fit_quarter.geo")},
+           {"Finite elements/Polynomial degree", "1"},
+           {"Adaptation/Strategy", "remesh"},
+           {"Adaptation/Target error", "0.5"},
+           {"Adaptation/Number of cycles", "2"},
+           {"Adaptation/Remeshing split above cells", "1000"},
+           {"Output/Write VTU", "false"},
+           {"Output/Output directory", "remesh_triangle_split_press_fit"}},
       testing::example_file("press_fit_quarter.prm"));
     const auto &cycles = run.summary["cycles"];
     AssertThrow(cycles.size() == 2,
                 ExcMessage("the remeshed cycle did not run: " +
                            run.summary["stop_reason"].get<std::string>()));
-    const auto  &cycle = cycles[1];
-    const auto   splits =
+    const auto &cycle = cycles[1];
+    const auto  splits =
       cycle["adaptation"]["triangle_splits"].get<std::vector<unsigned int>>();
     const double overlap = cycle["initial_overlap"].get<double>();
     const testing::SlavePressures pressures =
@@ -375,9 +374,9 @@ namespace
         << (std::abs(overlap / press_fit.delta - 1) < 1e-9 ? "below 1e-9" :
                                                              "ABOVE 1e-9")
         << ", largest deviation from p " << std::setprecision(3)
-        << 100 * pressures.largest_deviation
-        << " % (within 1 %: " << (pressures.largest_deviation < 0.01 ? "yes" : "no")
-        << ")" << std::endl;
+        << 100 * pressures.largest_deviation << " % (within 1 %: "
+        << (pressures.largest_deviation < 0.01 ? "yes" : "no") << ")"
+        << std::endl;
     AssertThrow(splits[0] + splits[1] > 0 &&
                   std::abs(overlap / press_fit.delta - 1) < 1e-9 &&
                   active == pressures.n_nodes && pressures.n_nodes > 0 &&
@@ -395,15 +394,15 @@ namespace
   check_blocks_run()
   {
     auto                out = testing::root_output();
-    testing::ProgramRun run(
-      {{"Adaptation/Target error", "2"},
-       {"Adaptation/Number of cycles", "3"},
-       {"Adaptation/Remeshing split above cells", "300"},
-       {"Output/Write VTU", "false"},
-       {"Output/Output directory", "remesh_triangle_split_blocks"}},
-      testing::example_file("blocks.prm"));
-    const auto  &cycles = run.summary["cycles"];
-    const double load   = 100 * 10; // N/mm on the upper block's top
+    testing::ProgramRun run({{"Adaptation/Target error", "2"},
+                             {"Adaptation/Number of cycles", "3"},
+                             {"Adaptation/Remeshing split above cells", "300"},
+                             {"Output/Write VTU", "false"},
+                             {"Output/Output directory",
+                              "remesh_triangle_split_blocks"}},
+                            testing::example_file("blocks.prm"));
+    const auto         &cycles = run.summary["cycles"];
+    const double        load   = 100 * 10; // N/mm on the upper block's top
     for (const auto &cycle : cycles)
       {
         const unsigned int c = cycle["cycle"].get<unsigned int>();
@@ -458,12 +457,7 @@ main(int argc, char *argv[])
               0,
               0.5,
               2);
-  check_split("blocks",
-              {},
-              testing::example_file("blocks.prm"),
-              1,
-              0.5,
-              1);
+  check_split("blocks", {}, testing::example_file("blocks.prm"), 1, 0.5, 1);
   for (unsigned int b = 0; b < 2; ++b)
     check_split("quarter press fit (circles)",
                 {{"Scene/Gmsh/Mesh file",

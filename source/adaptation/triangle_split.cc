@@ -69,10 +69,10 @@ namespace coulomb_adapt
     double
     signed_area(const std::vector<Point<2>> &vertices, const CellData<2> &cell)
     {
-      const Tensor<1, 2> u =
-                           vertices[cell.vertices[1]] - vertices[cell.vertices[0]],
-                         v =
-                           vertices[cell.vertices[2]] - vertices[cell.vertices[0]];
+      const Tensor<1, 2> u = vertices[cell.vertices[1]] -
+                             vertices[cell.vertices[0]],
+                         v = vertices[cell.vertices[2]] -
+                             vertices[cell.vertices[0]];
       return 0.5 * (u[0] * v[1] - u[1] * v[0]);
     }
 
@@ -89,8 +89,8 @@ namespace coulomb_adapt
       // the order of the cells.
       std::unordered_map<std::uint64_t, unsigned int> midpoint;
       midpoint.reserve(3 * mesh.cells.size() / 2 + lines.size());
-      const auto add_midpoint = [&](const unsigned int a,
-                                    const unsigned int b,
+      const auto add_midpoint = [&](const unsigned int       a,
+                                    const unsigned int       b,
                                     const types::manifold_id manifold_id) {
         const auto [it, added] =
           midpoint.emplace(edge_key(a, b), vertices.size());

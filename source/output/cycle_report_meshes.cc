@@ -49,8 +49,7 @@ namespace coulomb_adapt
     if (r.n_triangle_splits[0] + r.n_triangle_splits[1] > 0)
       pcout << "; gmsh meshed at 2^k times the sizes, each triangle split "
                "into 4 k times (k = "
-            << r.n_triangle_splits[0] << ", " << r.n_triangle_splits[1]
-            << ")";
+            << r.n_triangle_splits[0] << ", " << r.n_triangle_splits[1] << ")";
     pcout << std::endl;
   }
 
