@@ -8,10 +8,12 @@ the cycles; the wall time is the process's.
 
   benchmarks/adaptive_run/run_adaptive_run.py [--exe build/coulomb-adapt]
       [--baseline EXE] [--repeat N] [--ranks 1,2] [--targets 0.25,1]
-      [--variants vtu,...] [--csv results.csv]
+      [--variants vtu,...] [--set "Path/Entry=value" ...] [--csv results.csv]
 
 --baseline runs an older executable (e.g. a copy of main's build) with the
-variant 'vtu' only (older builds know no Output/Format). --ranks runs each
+variant 'vtu' only (older builds know no Output/Format). --set adds a
+setting (as -s) to every run of --exe, not of --baseline (e.g.
+"Adaptation/Remeshing split above cells=0"). --ranks runs each
 case on each number of MPI ranks (mpirun; the phase times are rank 0's).
 Writes results.csv (or --csv) beside this script and prints a Markdown
 table. The machine is shared:
@@ -43,11 +45,12 @@ FIELDS = (["build", "ranks", "target_percent", "variant", "cycles", "dofs", "eps
              "command"])
 
 
-def one_run(build, exe, target, variant, ranks):
+def one_run(build, exe, target, variant, ranks, settings=()):
     out_dir = tempfile.mkdtemp(prefix="coulomb-bench-")
     args = common.program_command(
         exe, ["Adaptation/Target error=" + target]
-        + VARIANTS[variant] + ["Output/Output directory=" + out_dir],
+        + VARIANTS[variant] + list(settings)
+        + ["Output/Output directory=" + out_dir],
         prm=os.path.join(common.PRM_DIR, "blocks.prm"), ranks=ranks)
     run = common.run(args, 1800, common.program_env(exe))
     summary = common.read_summary(out_dir)
@@ -82,6 +85,9 @@ def main():
                         help="comma-separated numbers of MPI ranks")
     parser.add_argument("--targets", default=",".join(TARGETS))
     parser.add_argument("--variants", default=",".join(VARIANTS))
+    parser.add_argument("--set", action="append", default=[],
+                        metavar="PATH=VALUE",
+                        help="a setting for the runs of --exe (repeatable)")
     parser.add_argument("--csv", default="results.csv")
     args = parser.parse_args()
     ranks = [int(r) for r in args.ranks.split(",")]
@@ -91,18 +97,20 @@ def main():
         if v not in VARIANTS:
             raise SystemExit("--variants: '%s' is not one of %s"
                              % (v, ", ".join(VARIANTS)))
-    builds = [("this", common.check_executable(args.exe), variants)]
+    builds = [("this", common.check_executable(args.exe), variants,
+               args.set)]
     if args.baseline:
         builds.insert(0, ("baseline", common.check_executable(args.baseline),
-                          [v for v in variants if v == "vtu"]))
+                          [v for v in variants if v == "vtu"], []))
     common.print_header(builds[-1][1])
     rows = []
     for _ in range(args.repeat):
         for target in targets:
             for n in ranks:
-                for build, exe, build_variants in builds:
+                for build, exe, build_variants, settings in builds:
                     for variant in build_variants:
-                        rows.append(one_run(build, exe, target, variant, n))
+                        rows.append(one_run(build, exe, target, variant, n,
+                                            settings))
                         common.write_csv(os.path.join(HERE, args.csv),
                                          rows, FIELDS)
     print("| build | ranks | eps0 % | output | cycles | DoFs | wall s | output s "

@@ -5,6 +5,7 @@
 
 #include <coulomb_adapt/adaptation/boundary_curves.h>
 #include <coulomb_adapt/adaptation/gmsh_remesher.h>
+#include <coulomb_adapt/adaptation/triangle_split.h>
 #include <coulomb_adapt/scenes/curve_manifold.h>
 
 #include <gmsh.h>
@@ -502,7 +503,8 @@ namespace coulomb_adapt
     const std::string                          &body_name,
     const RemeshingAlgorithm                    algorithm,
     const std::vector<std::array<Point<2>, 2>> &interior_lines,
-    const std::vector<Point<2>>                &support_points)
+    const std::vector<Point<2>>                &support_points,
+    const unsigned int                          n_splits)
   {
     // gmsh's Mesh.Algorithm numbers.
     const int algorithm_number =
@@ -513,12 +515,14 @@ namespace coulomb_adapt
     gmsh::option::setNumber("General.Verbosity", 0);
     try
       {
-        result.packed_mesh = pack(mesh_in_gmsh(geometry,
-                                               size_field,
-                                               body_name,
-                                               algorithm_number,
-                                               interior_lines,
-                                               support_points));
+        CoarseMeshData mesh = mesh_in_gmsh(geometry,
+                                           size_field,
+                                           body_name,
+                                           algorithm_number,
+                                           interior_lines,
+                                           support_points);
+        split_triangles(mesh, geometry, n_splits);
+        result.packed_mesh = pack(mesh);
       }
     catch (const std::exception &e)
       {

@@ -3,6 +3,7 @@
 #include <coulomb_adapt/adaptation/adaptation_strategy.h>
 #include <coulomb_adapt/adaptation/contact_size_cap.h>
 #include <coulomb_adapt/adaptation/gmsh_remesher.h>
+#include <coulomb_adapt/adaptation/triangle_split.h>
 
 namespace coulomb_adapt
 {
@@ -48,6 +49,11 @@ namespace coulomb_adapt
   // triangulations) comes before or after all the gmsh calls, so that no
   // rank waits in one while another meshes. The field does not depend on
   // the rank it is gathered on, so the meshes are those of one rank.
+  //
+  // A body whose field asks for more than 'Remeshing split above cells'
+  // cells is meshed by gmsh with 2^k times the sizes and split k times
+  // (triangle_split.h), on the rank that meshes it, before the broadcast.
+  // The contact size cap is a cap on the final sizes: it comes first.
   void
   Remeshing::change_meshes(const std::array<ElasticBody *, 2> &bodies,
                            const ErrorEstimate &,
@@ -55,7 +61,7 @@ namespace coulomb_adapt
                            const parameters::Adaptation &parameters,
                            const unsigned int            degree,
                            const double,
-                           MeshAdaptationReport &) const
+                           MeshAdaptationReport &report) const
   {
     std::array<unsigned int, 2>                   root;
     std::array<std::vector<SizeFieldTriangle>, 2> fields;
@@ -71,27 +77,37 @@ namespace coulomb_adapt
     if (degree == 1)
       cap_master_contact_sizes(bodies, root, fields);
 
-    std::array<GmshMeshing, 2> meshings;
+    // A large body is meshed by gmsh 2^k times coarser and split k times
+    // (triangle_split.h): gmsh's time is per triangle.
+    std::array<GmshMeshing, 2>  meshings;
+    std::array<unsigned int, 2> n_splits = {{0, 0}};
     for (unsigned int b = 0; b < 2; ++b)
       if (Utilities::MPI::this_mpi_process(
             bodies[b]->dof_handler().get_communicator()) == root[b])
         {
+          n_splits[b] =
+            n_triangle_splits(size_field_cell_count(fields[b]),
+                              parameters.remeshing_split_above_cells);
+          coarsen_size_field(fields[b], n_splits[b]);
           meshings[b] =
             mesh_with_gmsh_here(geometries[b],
                                 fields[b],
                                 bodies[b]->name(),
                                 parameters.remeshing_algorithm,
                                 bodies[b]->description().interior_lines(),
-                                bodies[b]->description().support_points);
+                                bodies[b]->description().support_points,
+                                n_splits[b]);
           fields[b] = {};
         }
 
     for (unsigned int b = 0; b < 2; ++b)
-      bodies[b]->replace_mesh(
-        share_gmsh_mesh(meshings[b],
-                        bodies[b]->name(),
-                        bodies[b]->dof_handler().get_communicator(),
-                        root[b]));
+      {
+        const MPI_Comm comm = bodies[b]->dof_handler().get_communicator();
+        bodies[b]->replace_mesh(
+          share_gmsh_mesh(meshings[b], bodies[b]->name(), comm, root[b]));
+        report.n_triangle_splits[b] =
+          Utilities::MPI::broadcast(comm, n_splits[b], root[b]);
+      }
   }
 
 

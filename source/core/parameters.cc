@@ -423,6 +423,18 @@ namespace coulomb_adapt
                           "triangles) or delaunay (about half the meshing "
                           "time, slightly more cells for the same size "
                           "field).");
+        prm.declare_entry("Remeshing split above cells",
+                          "20000",
+                          Patterns::Integer(0),
+                          "For 'Strategy = remesh': a body whose size field "
+                          "asks for more cells than this is meshed by gmsh "
+                          "with 2^k times the sizes (about 4^k times fewer "
+                          "triangles, gmsh's time is per triangle) and each "
+                          "triangle is then split into 4 at its edges' "
+                          "midpoints, k times (red refinement: the angles "
+                          "stay gmsh's, midpoints on curved boundaries go "
+                          "onto the curve); k is the smallest with at most "
+                          "this many cells for gmsh. 0: never split.");
         prm.declare_entry("Warm start",
                           "true",
                           Patterns::Bool(),
@@ -466,6 +478,8 @@ namespace coulomb_adapt
         warm_start       = prm.get_bool("Warm start");
         remeshing_algorithm =
           parse_option<RemeshingAlgorithm>(prm.get("Remeshing algorithm"));
+        remeshing_split_above_cells =
+          prm.get_integer("Remeshing split above cells");
         require_parameter(refine_fraction + coarsen_fraction <= 1,
                           path + "Refine fraction",
                           refine_fraction,

@@ -46,6 +46,10 @@ namespace coulomb_adapt
             << " for coarsening";
     if (r.strategy == AdaptationStrategy::uniform)
       pcout << "every cell refined once";
+    if (r.n_triangle_splits[0] + r.n_triangle_splits[1] > 0)
+      pcout << "; gmsh meshed at 2^k times the sizes, each triangle split "
+               "into 4 k times (k = "
+            << r.n_triangle_splits[0] << ", " << r.n_triangle_splits[1] << ")";
     pcout << std::endl;
   }
 
@@ -94,6 +98,8 @@ namespace coulomb_adapt
                                 {"singular_cells", a.n_singular_cells},
                                 {"limited_by_max_dofs", a.limited_by_max_dofs}};
       }
+    if (a.n_triangle_splits[0] + a.n_triangle_splits[1] > 0)
+      record["adaptation"]["triangle_splits"] = a.n_triangle_splits;
     if (a.strategy == AdaptationStrategy::refine)
       {
         record["adaptation"]["refine_flags"]  = a.n_refine_flags;

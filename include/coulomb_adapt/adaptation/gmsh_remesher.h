@@ -61,7 +61,10 @@ namespace coulomb_adapt
    * the same time on different ranks: mesh_with_gmsh_here() runs gmsh on
    * the calling process only (its own gmsh::initialize() and finalize();
    * not collective, no MPI call), with the arguments of
-   * remesh_with_gmsh(); share_gmsh_mesh() is collective over @p comm and
+   * remesh_with_gmsh(), and splits gmsh's mesh @p n_splits times into 4
+   * (split_triangles(), before it is packed: the caller has scaled
+   * @p size_field by 2^n_splits); share_gmsh_mesh() is collective over
+   * @p comm and
    * gives every rank the mesh made on rank @p root, or throws gmsh's error
    * on every rank.
    */
@@ -72,7 +75,8 @@ namespace coulomb_adapt
     const std::string                          &body_name,
     const RemeshingAlgorithm                    algorithm,
     const std::vector<std::array<Point<2>, 2>> &interior_lines,
-    const std::vector<Point<2>>                &support_points = {});
+    const std::vector<Point<2>>                &support_points = {},
+    const unsigned int                          n_splits       = 0);
 
   CoarseMeshData
   share_gmsh_mesh(const GmshMeshing &meshing,

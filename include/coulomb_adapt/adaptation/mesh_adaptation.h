@@ -30,6 +30,9 @@ namespace coulomb_adapt
     bool limited_by_max_dofs = false;
     /** Cells flagged (refine strategy). */
     unsigned int n_refine_flags = 0, n_coarsen_flags = 0;
+    /** remesh: how many times each body's gmsh mesh was split into 4
+     * (triangle_split.h; 0: gmsh meshed the planned size). */
+    std::array<unsigned int, 2> n_triangle_splits = {{0, 0}};
   };
 
   /**

@@ -158,6 +158,9 @@ namespace coulomb_adapt
       /** gmsh's 2D algorithm for remesh. */
       RemeshingAlgorithm remeshing_algorithm =
         RemeshingAlgorithm::frontal_delaunay;
+      /** remesh: a body planned for more cells than this is meshed by gmsh
+       * 2^k times coarser and split k times (red refinement); 0: never. */
+      unsigned int remeshing_split_above_cells = 0;
 
       static void
       declare_parameters(ParameterHandler &prm);
