@@ -104,6 +104,14 @@ def main():
     p.add_argument("--timeout", type=float, default=300)
     p.add_argument("-s", dest="settings", action="append", default=[])
     p.add_argument("--csv", default=os.path.join(HERE, "newton_steps.csv"))
+    p.add_argument("--cases", default="",
+                   help="scene:cell:r,... instead of the sweep, e.g. "
+                   "hertz:triangle:1 (with --baseline: the timing table)")
+    p.add_argument("--baseline", default="",
+                   help="an older executable run on each case right "
+                   "before this one (build name --baseline-build), so that "
+                   "both see the same load on a shared machine")
+    p.add_argument("--baseline-build", default="before")
     p.add_argument("--smoke", action="store_true",
                    help="hertz and punch, P1, refinements 0 only")
     a = p.parse_args()
@@ -112,7 +120,23 @@ def main():
     exe = os.path.abspath(a.exe)
     common.check_executable(exe)
     rows = []
-    for scene in a.scenes.split(","):
+    for case in [c for c in a.cases.split(",") if c]:
+        scene, cell, r = case.split(":")
+        pairs = ([(os.path.abspath(a.baseline), a.baseline_build)]
+                 if a.baseline else []) + [(exe, a.build)]
+        for e, build in pairs:
+            row = one_run(e, build, scene, cell, int(r), a.settings,
+                          a.timeout)
+            rows.append(row)
+            print("  %-8s %-18s %-13s r=%s %7s DoFs  Newton %-14s "
+                  "solve %s s, cpu %s s, other %s s" % (
+                      build, scene, cell, r, row.get("dofs", "-"),
+                      row.get("newton_per_load_step", "-"),
+                      common.cell(row.get("contact_solve_s", ""), "%.3g"),
+                      common.cell(row.get("cpu_s", ""), "%.3g"),
+                      common.cell(row.get("other_cpu_s", ""), "%.3g")),
+                  flush=True)
+    for scene in ([] if a.cases else a.scenes.split(",")):
         for cell in a.cells.split(","):
             for r in [int(x) for x in a.refinements.split(",")]:
                 row = one_run(exe, a.build, scene, cell, r, a.settings,
