@@ -69,6 +69,10 @@ namespace
        {"Scene/Cattaneo/Tangential displacement", tangential_displacement},
        {"Scene/Cattaneo/Tangential load steps", tangential_steps},
        {"Adaptation/Number of cycles", "1"},
+       // The load steps from the step before's sets, where the damping is
+       // needed: started from the coarser meshes' path (nested iteration,
+       // the default) the sets do not cycle and c is not reduced.
+       {"Contact/Nested iteration levels", "0"},
        {"Output/Write VTU", "false"},
        {"Output/Output directory", output_directory}});
     prepare_output_directory(output_directory, MPI_COMM_WORLD);

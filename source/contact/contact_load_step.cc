@@ -14,22 +14,28 @@ namespace coulomb_adapt
   // increments along a proportional load path), the iteration itself
   // (ContactSolver::iterate), and what the step leaves for the next one.
 
-  // A load step with predicted sets (predict_next_load_step) that stops
+  // A load step with predicted sets (predict_next_load_step, or a later
+  // load step's sets from a coarser mesh, warm_start_from) that stops
   // with a diagnosis is solved again from the previous step's sets: the
   // prediction is a guess, and a wrong guess is not the problem's failure.
   ContactSolverReport
   ContactSolver::solve()
   {
+    // A later load step (the states of the one before exist) with sets
+    // from a coarser mesh (warm_start_from) is predicted as well.
+    const bool transferred = !warm_start_states.empty() && !states.empty();
     setup();
     // The near null space depends on the meshes only: once per load step,
     // and only for the AMG path.
     near_null_space =
       iterative ? rigid_body_modes() : std::vector<std::vector<double>>();
 
-    const bool predicted = predictor_ratio > 0 && !load_step_start.empty() &&
-                           last_increments.size() == states.size();
+    const bool extrapolated = !transferred && predictor_ratio > 0 &&
+                              !load_step_start.empty() &&
+                              last_increments.size() == states.size();
+    const bool          predicted = extrapolated || transferred;
     ContactSolverReport report;
-    if (predicted)
+    if (extrapolated)
       {
         report.n_predicted_changes = predict_sets();
         pcout << "  contact: sets predicted from the last load step's "

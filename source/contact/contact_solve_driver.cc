@@ -22,8 +22,8 @@ namespace coulomb_adapt
       if (c.nested_iteration_levels == 0)
         return "switched off ('Contact/Nested iteration levels' = 0)";
       if (n_levels == 0)
-        return "no coarser mesh ('Mesh/Global refinements' = 0 and the "
-               "scene grades no mesh)";
+        return "no coarser mesh ('Mesh/Global refinements' = 0, and the "
+               "scene neither grades its meshes nor meshes a .geo file)";
       // A graded mesh resolves the contact zone much finer than the
       // bodies: many nodes across the zone, which the cold start's Newton
       // iteration releases a band at a time, so its step count grows with
@@ -83,6 +83,7 @@ namespace coulomb_adapt
     if (outcome.warm_start)
       predicted_sets = previous_start;
     bool nested = false;
+    coarser_load_path.clear();
     if (!outcome.warm_start && first_meshes)
       {
         outcome.nested_iteration.emplace();
@@ -176,14 +177,17 @@ namespace coulomb_adapt
   bool
   ContactSolveDriver::start_from_coarser_meshes(
     std::vector<ContactNodeState> &predicted_sets,
-    NestedIterationRecord         &record) const
+    NestedIterationRecord         &record)
   {
     const auto                   &c = parameters.contact;
     const types::global_dof_index n_dofs =
       bodies[0]->dof_handler().n_dofs() + bodies[1]->dof_handler().n_dofs();
     // Without global refinements, a scene that grades its meshes (hertz)
-    // offers coarser gradings of the same geometry instead.
-    const bool graded = parameters.mesh.global_refinements == 0 &&
+    // or meshes a .geo file offers coarser meshes of the same geometry
+    // instead (asked for only if nested iteration is on: a .geo file is
+    // meshed to answer).
+    const bool graded = c.nested_iteration_levels > 0 &&
+                        parameters.mesh.global_refinements == 0 &&
                         scene.with_coarser_graded_meshes(1) != nullptr;
     const unsigned int n_levels =
       graded ?
@@ -199,25 +203,46 @@ namespace coulomb_adapt
 
     try
       {
-        predicted_sets = graded ? predict_contact_sets_on_coarser_graded_meshes(
-                                    mpi_communicator,
-                                    scene,
-                                    parameters.mesh.cell_type,
-                                    n_levels,
-                                    parameters.finite_elements,
-                                    parameters.contact,
-                                    parameters.linear_solver,
-                                    record.levels) :
-                                  predict_contact_sets_on_coarser_meshes(
-                                    mpi_communicator,
-                                    scene,
-                                    parameters.mesh.cell_type,
-                                    parameters.mesh.global_refinements,
-                                    n_levels,
-                                    parameters.finite_elements,
-                                    parameters.contact,
-                                    parameters.linear_solver,
-                                    record.levels);
+        // A load path: the whole path on the coarser meshes, whose sets
+        // start each of the fine mesh's load steps.
+        if (scene.n_load_steps() > 1)
+          {
+            coarser_load_path = predict_load_path_on_coarser_meshes(
+              mpi_communicator,
+              scene,
+              parameters.mesh.cell_type,
+              parameters.mesh.global_refinements,
+              n_levels,
+              graded,
+              parameters.finite_elements,
+              parameters.contact,
+              parameters.linear_solver,
+              record.levels);
+            predicted_sets = coarser_load_path.empty() ?
+                               std::vector<ContactNodeState>() :
+                               coarser_load_path.front();
+          }
+        else
+          predicted_sets = graded ?
+                             predict_contact_sets_on_coarser_graded_meshes(
+                               mpi_communicator,
+                               scene,
+                               parameters.mesh.cell_type,
+                               n_levels,
+                               parameters.finite_elements,
+                               parameters.contact,
+                               parameters.linear_solver,
+                               record.levels) :
+                             predict_contact_sets_on_coarser_meshes(
+                               mpi_communicator,
+                               scene,
+                               parameters.mesh.cell_type,
+                               parameters.mesh.global_refinements,
+                               n_levels,
+                               parameters.finite_elements,
+                               parameters.contact,
+                               parameters.linear_solver,
+                               record.levels);
       }
     catch (const std::exception &e)
       {
@@ -229,18 +254,32 @@ namespace coulomb_adapt
               << what << std::endl;
         record.levels.clear();
         record.skipped = "a coarser solve failed: " + what;
+        coarser_load_path.clear();
         return false;
       }
     for (const NestedIterationLevel &l : record.levels)
-      pcout << "  contact: nested iteration, "
-            << (l.coarsening > 0 ?
-                  "graded zone " + std::to_string(1u << l.coarsening) +
-                    "x coarser" :
-                  std::to_string(l.global_refinements) + " global refinements")
-            << ": " << l.n_dofs << " DoFs, " << l.newton_iterations
-            << " Newton steps, " << l.n_active << " active nodes, "
-            << std::setprecision(3) << l.wall_time << " s" << std::endl;
-    return true;
+      {
+        pcout << "  contact: nested iteration, "
+              << (l.coarsening > 0 ?
+                    "graded zone " + std::to_string(1u << l.coarsening) +
+                      "x coarser" :
+                    std::to_string(l.global_refinements) +
+                      " global refinements")
+              << ": " << l.n_dofs << " DoFs, ";
+        if (l.newton_iterations_per_load_step.empty())
+          pcout << l.newton_iterations;
+        else
+          for (unsigned int i = 0; i < l.newton_iterations_per_load_step.size();
+               ++i)
+            pcout << (i > 0 ? " " : "") << l.newton_iterations_per_load_step[i];
+        pcout << " Newton steps"
+              << (l.newton_iterations_per_load_step.empty() ?
+                    "" :
+                    " (per load step)")
+              << ", " << l.n_active << " active nodes, " << std::setprecision(3)
+              << l.wall_time << " s" << std::endl;
+      }
+    return !predicted_sets.empty() || !record.levels.empty();
   }
 
 
@@ -269,8 +308,12 @@ namespace coulomb_adapt
                 body->setup_system();
                 body->assemble_system();
               }
-            if (parameters.contact.load_step_predictor &&
-                scene.load_increment_ratio(step) > 0)
+            // Nested iteration along the path: the same load step's sets
+            // on the finest coarser mesh; else the load-step predictor.
+            if (coarser_load_path.size() == n_steps)
+              outcome.solver->warm_start_from(coarser_load_path[step - 1]);
+            else if (parameters.contact.load_step_predictor &&
+                     scene.load_increment_ratio(step) > 0)
               outcome.solver->predict_next_load_step(
                 scene.load_increment_ratio(step));
           }

@@ -49,11 +49,13 @@ namespace coulomb_adapt
     support.reinit(slave, states);
     master_gram = master.support_gram(Point<2>());
     if (first_step)
-      {
-        initialize_sets();
-        if (!warm_start_states.empty())
-          transfer_warm_start_sets();
-      }
+      initialize_sets();
+    // A later load step starts from the sets of the step before, unless
+    // the same load step on a coarser mesh gave its sets (nested iteration
+    // along a load path): only the sets are taken over, the history (the
+    // tangential jump at the end of the step before) is this mesh's own.
+    if (!warm_start_states.empty())
+      transfer_warm_start_sets();
   }
 
 

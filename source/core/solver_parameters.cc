@@ -99,29 +99,35 @@ namespace coulomb_adapt
         prm.declare_entry("Nested iteration levels",
                           "3",
                           Patterns::Integer(0),
-                          "Contact without a previous cycle's sets (for a "
-                          "load path, its first load step): "
+                          "Contact without a previous cycle's sets: "
                           "solve the same problem first on up to this many "
                           "meshes with fewer uniform refinements (at most "
-                          "'Mesh/Global refinements' of them; with none, a "
-                          "scene that grades its meshes, hertz and cattaneo, "
-                          "gives meshes with a 2, 4, 8 ... times coarser "
-                          "contact zone instead), each starting "
+                          "'Mesh/Global refinements' of them), each starting "
                           "from the sets of the one before, and start the "
-                          "Newton iteration from the last one's sets. Fewer "
-                          "Newton steps on the fine mesh (hertz, 1.4e5 DoFs: "
-                          "3 instead of 11); the solution is the same. 0 "
+                          "Newton iteration from the last one's sets. Where "
+                          "that reaches the scene's own meshes, a scene that "
+                          "grades them (hertz, cattaneo: a 2, 4, 8 ... times "
+                          "coarser contact zone) or meshes a .geo file (its "
+                          "'Mesh size factor' times 2, 4, 8 ...) gives this "
+                          "many coarser meshes below them. A load path is "
+                          "solved on the coarser meshes too, and each of its "
+                          "load steps starts from the same step's sets "
+                          "there. Fewer Newton steps on the fine mesh "
+                          "(hertz, 1.4e5 DoFs: 3 instead of 11; cattaneo's "
+                          "tangential steps at 1.4e5 DoFs: at most 4 "
+                          "instead of 6); the solution is the same. 0 "
                           "switches it off.");
         prm.declare_entry("Nested iteration minimum DoFs",
-                          "20000",
+                          "0",
                           Patterns::Integer(0),
                           "Nested iteration over global refinements only "
                           "when both bodies together have more DoFs than "
-                          "this: below, a few extra Newton steps cost less "
-                          "than the coarser solves. A scene's graded meshes "
-                          "use their coarser gradings at every size: their "
-                          "many nodes across the contact zone cost the cold "
-                          "start 7 or more Newton steps even when small.");
+                          "this (0: at every size). Below 2e4 DoFs the "
+                          "cold start took up to 9 Newton steps (hertz P1, "
+                          "15,742 DoFs; punch P1, 7,764 DoFs: 6) and the "
+                          "coarser solves cost less than the steps they "
+                          "save. A scene's graded meshes use their coarser "
+                          "gradings at every size.");
         prm.declare_entry("Load step predictor",
                           "true",
                           Patterns::Bool(),

@@ -158,13 +158,19 @@ namespace coulomb_adapt
         if (!outcome.nested_iteration->skipped.empty())
           nested["skipped"] = outcome.nested_iteration->skipped;
         for (const NestedIterationLevel &l : outcome.nested_iteration->levels)
-          nested["levels"].push_back(
-            {{"global_refinements", l.global_refinements},
-             {"graded_zone_coarsening", l.coarsening},
-             {"n_dofs", l.n_dofs},
-             {"newton_iterations", l.newton_iterations},
-             {"active_nodes", l.n_active},
-             {"wall_time_s", l.wall_time}});
+          {
+            nlohmann::json level = {{"global_refinements",
+                                     l.global_refinements},
+                                    {"graded_zone_coarsening", l.coarsening},
+                                    {"n_dofs", l.n_dofs},
+                                    {"newton_iterations", l.newton_iterations},
+                                    {"active_nodes", l.n_active},
+                                    {"wall_time_s", l.wall_time}};
+            if (!l.newton_iterations_per_load_step.empty())
+              level["newton_iterations_per_load_step"] =
+                l.newton_iterations_per_load_step;
+            nested["levels"].push_back(level);
+          }
         record["nested_iteration"] = nested;
       }
     for (const std::string &key : outcome.restarts)

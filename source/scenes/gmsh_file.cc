@@ -4,6 +4,8 @@
 #include <coulomb_adapt/scenes/gmsh_file.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
+#include <cmath>
+#include <filesystem>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -309,14 +311,16 @@ namespace coulomb_adapt
                                "the gmsh scene needs a .geo or .msh file");
         // gmsh reads a factor of 0 as "no factor" (1): refuse it rather
         // than mesh at a size the user did not ask for.
-        const double size_factor = prm.get_double("Mesh size factor");
+        size_factor = prm.get_double("Mesh size factor");
         require_parameter(size_factor > 0,
                           scene_path + "/Mesh size factor",
                           size_factor,
                           "a factor > 0 on the element sizes of the .geo "
                           "file (gmsh ignores 0 and meshes with factor 1)");
         // The program runs on MPI_COMM_WORLD: rank 0 reads the file.
-        geometry = read_two_body_gmsh_geometry(
+        this->requested_cell_type = requested_cell_type;
+        group_use                 = use;
+        geometry                  = read_two_body_gmsh_geometry(
           file, requested_cell_type, size_factor, use, MPI_COMM_WORLD);
         check_point_supports();
         check_shared_groups();
@@ -579,6 +583,42 @@ namespace coulomb_adapt
     GmshFile::set_load_step(const unsigned int step) const
     {
       load_fraction = double(step) / n_steps;
+    }
+
+
+
+    std::unique_ptr<Scene>
+    GmshFile::with_coarser_graded_meshes(const unsigned int k) const
+    {
+      const std::string extension =
+        std::filesystem::path(mesh_file).extension().string();
+      if (extension == ".msh" || extension == ".MSH")
+        return nullptr;
+      auto &coarser_geometry = coarser_geometries[k];
+      if (!coarser_geometry)
+        {
+          // A size the file's geometry cannot be meshed with (dovetail's
+          // quadrangles at 8x: "gmsh cannot read it") is no coarser mesh.
+          // The reader's errors reach every rank alike.
+          try
+            {
+              coarser_geometry = std::make_shared<const TwoBodyGmshMeshes>(
+                read_two_body_gmsh_geometry(mesh_file,
+                                            requested_cell_type,
+                                            size_factor * std::pow(2., k),
+                                            group_use,
+                                            MPI_COMM_WORLD));
+            }
+          catch (const std::exception &)
+            {
+              return nullptr;
+            }
+        }
+      auto coarser         = std::make_unique<GmshFile>(*this);
+      coarser->size_factor = size_factor * std::pow(2., k);
+      coarser->geometry    = *coarser_geometry;
+      coarser->coarser_geometries.clear();
+      return coarser;
     }
 
 

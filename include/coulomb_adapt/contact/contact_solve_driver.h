@@ -111,7 +111,7 @@ namespace coulomb_adapt
      * @p predicted_sets and true, or false with the reason in @p record. */
     bool
     start_from_coarser_meshes(std::vector<ContactNodeState> &predicted_sets,
-                              NestedIterationRecord         &record) const;
+                              NestedIterationRecord         &record);
     /** The load steps of the scene, each restarted as @p restarts allow. */
     void
     solve_load_steps(const std::vector<Restart>          &restarts,
@@ -129,7 +129,11 @@ namespace coulomb_adapt
      * the next cycle's start (the last step's slip zone is no guess for
      * the first step's). */
     std::vector<ContactNodeState> first_load_step_states;
-    const ConditionalOStream     &pcout;
+    /** A load path's sets at the end of each load step on the finest
+     * coarser mesh of the nested iteration (first meshes only; else
+     * empty): the start of the fine mesh's load steps. */
+    std::vector<std::vector<ContactNodeState>> coarser_load_path;
+    const ConditionalOStream                  &pcout;
   };
 } // namespace coulomb_adapt
 

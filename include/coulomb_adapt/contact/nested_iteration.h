@@ -18,11 +18,15 @@ namespace coulomb_adapt
     unsigned int global_refinements = 0;
     /** For graded meshes: the level's graded zone is 2^coarsening times
      * coarser than the fine mesh's (0 for uniform refinement levels). */
-    unsigned int            coarsening        = 0;
-    types::global_dof_index n_dofs            = 0;
-    unsigned int            newton_iterations = 0;
-    unsigned int            n_active          = 0;
-    double                  wall_time         = 0;
+    unsigned int            coarsening = 0;
+    types::global_dof_index n_dofs     = 0;
+    /** Of a load path: the largest count of its load steps. */
+    unsigned int newton_iterations = 0;
+    unsigned int n_active          = 0;
+    double       wall_time         = 0;
+    /** Of a load path (predict_load_path_on_coarser_meshes()), one count
+     * per load step; empty for a static solve. */
+    std::vector<unsigned int> newton_iterations_per_load_step;
   };
 
   /**
@@ -30,7 +34,12 @@ namespace coulomb_adapt
    * with @p fine_refinements uniform refinements, from the same problem
    * solved on the @p n_levels meshes below it (nested iteration): the
    * coarsest from the initial gap, each finer one warm-started from the
-   * sets of the one before.
+   * sets of the one before. When that is the scene's own mesh
+   * (@p n_levels = @p fine_refinements) and the scene grades it, that mesh
+   * starts in turn from the scene's coarser gradings
+   * (predict_contact_sets_on_coarser_graded_meshes(), 'Contact/Nested
+   * iteration levels' of them): cold, hertz's own meshes take 7-8 Newton
+   * steps.
    *
    * Why: started from the initial gap, the active set of the first Newton
    * step is about twice the final contact zone, and the following steps
@@ -70,6 +79,39 @@ namespace coulomb_adapt
     const Scene                       &scene,
     const CellType                     cell_type,
     const unsigned int                 n_levels,
+    const parameters::FiniteElements  &fe_parameters,
+    const parameters::Contact         &contact_parameters,
+    const parameters::LinearSolver    &solver_parameters,
+    std::vector<NestedIterationLevel> &levels);
+
+  /**
+   * Nested iteration along a load path (a scene with n_load_steps() > 1,
+   * cattaneo): the whole path is solved on each coarser mesh of
+   * predict_contact_sets_on_coarser_meshes() (@p graded: of
+   * predict_contact_sets_on_coarser_graded_meshes()), coarsest first; each
+   * load step of a finer level starts from the sets of the same load step
+   * one level down (the coarsest: from its own step before, moved on by
+   * the load-step predictor where the scene allows it). Returns the sets
+   * of the finest coarser level at the end of each load step (index step
+   * - 1), the start of the fine mesh's load steps; empty, with no levels,
+   * when there is no coarser mesh.
+   *
+   * Why: a load step that moves the slip front over many nodes takes a
+   * Newton step per band of nodes from the step before's sets (cattaneo
+   * Q1, 1.4e5 DoFs: 6 in the first tangential step, 5 in the later ones
+   * with the predictor); a coarser mesh moves the front at a fraction of
+   * the cost. The history (the tangential jump at the end of the step
+   * before) stays with each mesh's own solver, so every level solves its
+   * own discrete path, and the fine one converges to the cold start's.
+   */
+  std::vector<std::vector<ContactNodeState>>
+  predict_load_path_on_coarser_meshes(
+    const MPI_Comm                     mpi_communicator,
+    const Scene                       &scene,
+    const CellType                     cell_type,
+    const unsigned int                 fine_refinements,
+    const unsigned int                 n_levels,
+    const bool                         graded,
     const parameters::FiniteElements  &fe_parameters,
     const parameters::Contact         &contact_parameters,
     const parameters::LinearSolver    &solver_parameters,

@@ -4,6 +4,8 @@
 #include <coulomb_adapt/scenes/gmsh_reader.h>
 #include <coulomb_adapt/scenes/scene.h>
 
+#include <map>
+#include <memory>
 #include <optional>
 
 namespace coulomb_adapt
@@ -62,6 +64,13 @@ namespace coulomb_adapt
       void
       set_load_step(const unsigned int step) const override;
 
+      /** The same scene with a .geo file meshed at 2^k times its
+       * `Mesh size factor` (every size of the file's size field scaled
+       * alike): the coarser meshes of the nested iteration. None for a
+       * .msh file, which brings its own mesh. */
+      std::unique_ptr<Scene>
+      with_coarser_graded_meshes(const unsigned int k) const override;
+
       /** What applies on the curves of one physical group. */
       struct GroupConditions
       {
@@ -113,8 +122,15 @@ namespace coulomb_adapt
       void
       check_shared_groups();
 
-      std::string                            mesh_file;
-      TwoBodyGmshMeshes                      geometry;
+      std::string       mesh_file;
+      CellType          requested_cell_type;
+      double            size_factor = 1;
+      GmshGroupUse      group_use;
+      TwoBodyGmshMeshes geometry;
+      /** The coarser meshings (with_coarser_graded_meshes()) by k, meshed
+       * once: the driver asks for k = 1 before it uses it. */
+      mutable std::map<unsigned int, std::shared_ptr<const TwoBodyGmshMeshes>>
+                                             coarser_geometries;
       std::map<std::string, GroupConditions> conditions;
       std::array<MaterialConstants, 2>       materials;
       std::array<BodyForce, 2>               body_forces;
