@@ -4,8 +4,6 @@
 #include <coulomb_adapt/scenes/gmsh_file.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
-#include <cmath>
-#include <filesystem>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -583,42 +581,6 @@ namespace coulomb_adapt
     GmshFile::set_load_step(const unsigned int step) const
     {
       load_fraction = double(step) / n_steps;
-    }
-
-
-
-    std::unique_ptr<Scene>
-    GmshFile::with_coarser_graded_meshes(const unsigned int k) const
-    {
-      const std::string extension =
-        std::filesystem::path(mesh_file).extension().string();
-      if (extension == ".msh" || extension == ".MSH")
-        return nullptr;
-      auto &coarser_geometry = coarser_geometries[k];
-      if (!coarser_geometry)
-        {
-          // A size the file's geometry cannot be meshed with (dovetail's
-          // quadrangles at 8x: "gmsh cannot read it") is no coarser mesh.
-          // The reader's errors reach every rank alike.
-          try
-            {
-              coarser_geometry = std::make_shared<const TwoBodyGmshMeshes>(
-                read_two_body_gmsh_geometry(mesh_file,
-                                            requested_cell_type,
-                                            size_factor * std::pow(2., k),
-                                            group_use,
-                                            MPI_COMM_WORLD));
-            }
-          catch (const std::exception &)
-            {
-              return nullptr;
-            }
-        }
-      auto coarser         = std::make_unique<GmshFile>(*this);
-      coarser->size_factor = size_factor * std::pow(2., k);
-      coarser->geometry    = *coarser_geometry;
-      coarser->coarser_geometries.clear();
-      return coarser;
     }
 
 
