@@ -35,6 +35,94 @@ namespace coulomb_adapt
                std::to_string(c.nested_iteration_min_dofs) + ")";
       return "";
     }
+
+
+
+    // The sets that start the fine solve, from the coarser meshes: for a
+    // load path (scene.n_load_steps() > 1) the whole path is solved there
+    // and @p load_path receives each step's sets (the first step's are
+    // returned); otherwise the coarser global refinements, or with
+    // @p graded the scene's coarser gradings.
+    std::vector<ContactNodeState>
+    predict_on_coarser_meshes(
+      const MPI_Comm                              mpi_communicator,
+      const Scene                                &scene,
+      const Parameters                           &parameters,
+      const unsigned int                          n_levels,
+      const bool                                  graded,
+      std::vector<std::vector<ContactNodeState>> &load_path,
+      std::vector<NestedIterationLevel>          &levels)
+    {
+      if (scene.n_load_steps() > 1)
+        {
+          load_path = predict_load_path_on_coarser_meshes(
+            mpi_communicator,
+            scene,
+            parameters.mesh.cell_type,
+            parameters.mesh.global_refinements,
+            n_levels,
+            graded,
+            parameters.finite_elements,
+            parameters.contact,
+            parameters.linear_solver,
+            levels);
+          return load_path.empty() ? std::vector<ContactNodeState>() :
+                                     load_path.front();
+        }
+      if (graded)
+        return predict_contact_sets_on_coarser_graded_meshes(
+          mpi_communicator,
+          scene,
+          parameters.mesh.cell_type,
+          n_levels,
+          parameters.finite_elements,
+          parameters.contact,
+          parameters.linear_solver,
+          levels);
+      return predict_contact_sets_on_coarser_meshes(
+        mpi_communicator,
+        scene,
+        parameters.mesh.cell_type,
+        parameters.mesh.global_refinements,
+        n_levels,
+        parameters.finite_elements,
+        parameters.contact,
+        parameters.linear_solver,
+        levels);
+    }
+
+
+
+    // One line per coarser level the nested iteration solved.
+    void
+    log_nested_iteration_levels(const ConditionalOStream                &pcout,
+                                const std::vector<NestedIterationLevel> &levels)
+    {
+      for (const NestedIterationLevel &l : levels)
+        {
+          pcout << "  contact: nested iteration, "
+                << (l.coarsening > 0 ?
+                      "graded zone " + std::to_string(1u << l.coarsening) +
+                        "x coarser" :
+                      std::to_string(l.global_refinements) +
+                        " global refinements")
+                << ": " << l.n_dofs << " DoFs, ";
+          if (l.newton_iterations_per_load_step.empty())
+            pcout << l.newton_iterations;
+          else
+            for (unsigned int i = 0;
+                 i < l.newton_iterations_per_load_step.size();
+                 ++i)
+              pcout << (i > 0 ? " " : "")
+                    << l.newton_iterations_per_load_step[i];
+          pcout << " Newton steps"
+                << (l.newton_iterations_per_load_step.empty() ?
+                      "" :
+                      " (per load step)")
+                << ", " << l.n_active << " active nodes, "
+                << std::setprecision(3) << l.wall_time << " s" << std::endl;
+        }
+    }
   } // namespace
 
 
@@ -203,46 +291,13 @@ namespace coulomb_adapt
 
     try
       {
-        // A load path: the whole path on the coarser meshes, whose sets
-        // start each of the fine mesh's load steps.
-        if (scene.n_load_steps() > 1)
-          {
-            coarser_load_path = predict_load_path_on_coarser_meshes(
-              mpi_communicator,
-              scene,
-              parameters.mesh.cell_type,
-              parameters.mesh.global_refinements,
-              n_levels,
-              graded,
-              parameters.finite_elements,
-              parameters.contact,
-              parameters.linear_solver,
-              record.levels);
-            predicted_sets = coarser_load_path.empty() ?
-                               std::vector<ContactNodeState>() :
-                               coarser_load_path.front();
-          }
-        else
-          predicted_sets = graded ?
-                             predict_contact_sets_on_coarser_graded_meshes(
-                               mpi_communicator,
-                               scene,
-                               parameters.mesh.cell_type,
-                               n_levels,
-                               parameters.finite_elements,
-                               parameters.contact,
-                               parameters.linear_solver,
-                               record.levels) :
-                             predict_contact_sets_on_coarser_meshes(
-                               mpi_communicator,
-                               scene,
-                               parameters.mesh.cell_type,
-                               parameters.mesh.global_refinements,
-                               n_levels,
-                               parameters.finite_elements,
-                               parameters.contact,
-                               parameters.linear_solver,
-                               record.levels);
+        predicted_sets = predict_on_coarser_meshes(mpi_communicator,
+                                                   scene,
+                                                   parameters,
+                                                   n_levels,
+                                                   graded,
+                                                   coarser_load_path,
+                                                   record.levels);
       }
     catch (const std::exception &e)
       {
@@ -257,28 +312,7 @@ namespace coulomb_adapt
         coarser_load_path.clear();
         return false;
       }
-    for (const NestedIterationLevel &l : record.levels)
-      {
-        pcout << "  contact: nested iteration, "
-              << (l.coarsening > 0 ?
-                    "graded zone " + std::to_string(1u << l.coarsening) +
-                      "x coarser" :
-                    std::to_string(l.global_refinements) +
-                      " global refinements")
-              << ": " << l.n_dofs << " DoFs, ";
-        if (l.newton_iterations_per_load_step.empty())
-          pcout << l.newton_iterations;
-        else
-          for (unsigned int i = 0; i < l.newton_iterations_per_load_step.size();
-               ++i)
-            pcout << (i > 0 ? " " : "") << l.newton_iterations_per_load_step[i];
-        pcout << " Newton steps"
-              << (l.newton_iterations_per_load_step.empty() ?
-                    "" :
-                    " (per load step)")
-              << ", " << l.n_active << " active nodes, " << std::setprecision(3)
-              << l.wall_time << " s" << std::endl;
-      }
+    log_nested_iteration_levels(pcout, record.levels);
     return !predicted_sets.empty() || !record.levels.empty();
   }
 

@@ -61,6 +61,53 @@ namespace coulomb_adapt
       level.wall_time         = timer.wall_time();
       return true;
     }
+
+
+
+    // Load step @p step of a coarser level's path: started from the same
+    // step's sets on the next coarser level (@p coarser_path), if any, or
+    // predicted from the level's previous step; its sets appended to
+    // @p level_path. False if the solve stopped with a diagnosis (the
+    // level is then left out, and the next finer one solves its path from
+    // its own steps, as for a static level).
+    bool
+    solve_level_load_step(
+      const Scene                                      &level_scene,
+      const ElasticBodies                              &bodies,
+      ContactSolver                                    &solver,
+      const unsigned int                                step,
+      const std::vector<std::vector<ContactNodeState>> &coarser_path,
+      const parameters::Contact                        &contact_parameters,
+      NestedIterationLevel                             &level,
+      std::vector<std::vector<ContactNodeState>>       &level_path)
+    {
+      level_scene.set_load_step(step);
+      for (auto &body : bodies)
+        {
+          body->setup_system();
+          body->assemble_system();
+        }
+      if (!coarser_path.empty())
+        solver.warm_start_from(coarser_path[step - 1]);
+      else if (step > 1 && contact_parameters.load_step_predictor &&
+               level_scene.load_increment_ratio(step) > 0)
+        solver.predict_next_load_step(level_scene.load_increment_ratio(step));
+      ContactSolverReport report;
+      try
+        {
+          report = solver.solve();
+        }
+      catch (const ContactDiagnosis &)
+        {
+          return false;
+        }
+      level_path.push_back(solver.node_states());
+      level.newton_iterations_per_load_step.push_back(report.newton_iterations);
+      level.newton_iterations =
+        std::max(level.newton_iterations, report.newton_iterations);
+      level.n_active = report.n_active;
+      return true;
+    }
   } // namespace
 
 
@@ -246,38 +293,14 @@ namespace coulomb_adapt
         std::vector<std::vector<ContactNodeState>> level_path;
         bool                                       stopped = false;
         for (unsigned int step = 1; step <= n_steps && !stopped; ++step)
-          {
-            level_scene.set_load_step(step);
-            for (auto &body : bodies)
-              {
-                body->setup_system();
-                body->assemble_system();
-              }
-            if (!path.empty())
-              solver.warm_start_from(path[step - 1]);
-            else if (step > 1 && contact_parameters.load_step_predictor &&
-                     level_scene.load_increment_ratio(step) > 0)
-              solver.predict_next_load_step(
-                level_scene.load_increment_ratio(step));
-            ContactSolverReport report;
-            try
-              {
-                report = solver.solve();
-              }
-            catch (const ContactDiagnosis &)
-              {
-                // As for a static level: left out, the next finer level
-                // solves its path from its own steps.
-                stopped = true;
-                break;
-              }
-            level_path.push_back(solver.node_states());
-            level.newton_iterations_per_load_step.push_back(
-              report.newton_iterations);
-            level.newton_iterations =
-              std::max(level.newton_iterations, report.newton_iterations);
-            level.n_active = report.n_active;
-          }
+          stopped = !solve_level_load_step(level_scene,
+                                           bodies,
+                                           solver,
+                                           step,
+                                           path,
+                                           contact_parameters,
+                                           level,
+                                           level_path);
         if (stopped)
           {
             path.clear();

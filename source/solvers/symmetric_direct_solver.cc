@@ -58,6 +58,76 @@ namespace coulomb_adapt
 
 
 
+    // A distributed vector's values on rank 0, in the order of the global
+    // indices, and how many each rank owns (rank 0 only).
+    struct RankZeroVector
+    {
+      std::vector<double> values;
+      std::vector<int>    counts;
+    };
+
+    // The ranks own consecutive ranges of rows in rank order (deal.II's
+    // DoF numbering), so rank 0 concatenates the parts.
+    RankZeroVector
+    gather_on_rank_zero(const TrilinosWrappers::MPI::Vector &v)
+    {
+      const MPI_Comm     comm       = v.get_mpi_communicator();
+      const unsigned int rank       = Utilities::MPI::this_mpi_process(comm);
+      const IndexSet     owned_rows = v.locally_owned_elements();
+      const std::vector<types::global_dof_index> rows_per_rank =
+        Utilities::MPI::all_gather(comm, owned_rows.n_elements());
+      const types::global_dof_index first_row =
+        std::accumulate(rows_per_rank.begin(),
+                        rows_per_rank.begin() + rank,
+                        types::global_dof_index(0));
+      AssertThrow(owned_rows.n_elements() == 0 ||
+                    (owned_rows.is_contiguous() &&
+                     owned_rows.nth_index_in_set(0) == first_row),
+                  ExcMessage(
+                    "solve_symmetric_positive_definite() needs the "
+                    "rows owned in consecutive ranges in rank order."));
+      const std::vector<std::vector<double>> parts =
+        Utilities::MPI::gather(comm,
+                               std::vector<double>(v.begin(), v.end()),
+                               0);
+      RankZeroVector gathered;
+      for (const auto &part : parts)
+        {
+          gathered.values.insert(gathered.values.end(),
+                                 part.begin(),
+                                 part.end());
+          gathered.counts.push_back(static_cast<int>(part.size()));
+        }
+      return gathered;
+    }
+
+
+
+    // The inverse of gather_on_rank_zero(): each rank's part into @p v.
+    void
+    scatter_from_rank_zero(const RankZeroVector          &gathered,
+                           TrilinosWrappers::MPI::Vector &v)
+    {
+      std::vector<int> starts(gathered.counts.size(), 0);
+      for (std::size_t r = 1; r < starts.size(); ++r)
+        starts[r] = starts[r - 1] + gathered.counts[r - 1];
+      std::vector<double> owned(v.locally_owned_size());
+      const int           ierr = MPI_Scatterv(gathered.values.data(),
+                                    gathered.counts.data(),
+                                    starts.data(),
+                                    MPI_DOUBLE,
+                                    owned.data(),
+                                    static_cast<int>(owned.size()),
+                                    MPI_DOUBLE,
+                                    0,
+                                    v.get_mpi_communicator());
+      AssertThrowMPI(ierr);
+      std::copy(owned.begin(), owned.end(), v.begin());
+      v.compress(VectorOperation::insert);
+    }
+
+
+
     // What a negative INFOG(1) means, for the message (MUMPS's user guide,
     // section "Error diagnostics").
     std::string
@@ -131,29 +201,9 @@ namespace coulomb_adapt
     id.jcn_loc   = const_cast<MUMPS_INT *>(lower.columns.data());
     id.a_loc     = const_cast<double *>(lower.values.data());
 
-    // b on rank 0 (centralised right hand side), solved in place. The
-    // ranks own consecutive ranges of rows in rank order (deal.II's DoF
-    // numbering), so rank 0 concatenates the parts.
-    const IndexSet owned_rows = b.locally_owned_elements();
-    const std::vector<types::global_dof_index> rows_per_rank =
-      Utilities::MPI::all_gather(comm, owned_rows.n_elements());
-    const types::global_dof_index first_row =
-      std::accumulate(rows_per_rank.begin(),
-                      rows_per_rank.begin() + rank,
-                      types::global_dof_index(0));
-    AssertThrow(owned_rows.n_elements() == 0 ||
-                  (owned_rows.is_contiguous() &&
-                   owned_rows.nth_index_in_set(0) == first_row),
-                ExcMessage("solve_symmetric_positive_definite() needs the "
-                           "rows owned in consecutive ranges in rank order."));
-    const std::vector<double>              owned_b(b.begin(), b.end());
-    const std::vector<std::vector<double>> gathered =
-      Utilities::MPI::gather(comm, owned_b, 0);
-    std::vector<double> rhs;
-    if (rank == 0)
-      for (const auto &part : gathered)
-        rhs.insert(rhs.end(), part.begin(), part.end());
-    id.rhs = rank == 0 ? rhs.data() : nullptr;
+    // b on rank 0 (MUMPS's centralised right hand side), solved in place.
+    RankZeroVector rhs = gather_on_rank_zero(b);
+    id.rhs             = rank == 0 ? rhs.values.data() : nullptr;
 
     try
       {
@@ -169,27 +219,6 @@ namespace coulomb_adapt
     id.job = -2;
     dmumps_c(&id);
 
-    // Back to the owners, in the order in which they were gathered.
-    std::vector<int> counts, starts;
-    if (rank == 0)
-      for (const auto &part : gathered)
-        {
-          starts.push_back(counts.empty() ? 0 : starts.back() + counts.back());
-          counts.push_back(static_cast<int>(part.size()));
-        }
-    std::vector<double> owned_x(owned_b.size());
-    const int           ierr = MPI_Scatterv(rhs.data(),
-                                  counts.data(),
-                                  starts.data(),
-                                  MPI_DOUBLE,
-                                  owned_x.data(),
-                                  static_cast<int>(owned_x.size()),
-                                  MPI_DOUBLE,
-                                  0,
-                                  comm);
-    AssertThrowMPI(ierr);
-    AssertThrow(owned_x.size() == x.locally_owned_size(), ExcInternalError());
-    std::copy(owned_x.begin(), owned_x.end(), x.begin());
-    x.compress(VectorOperation::insert);
+    scatter_from_rank_zero(rhs, x);
   }
 } // namespace coulomb_adapt
