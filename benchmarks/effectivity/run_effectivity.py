@@ -95,16 +95,19 @@ def main():
     parser.add_argument("--timeout", type=float, default=1800)
     args = parser.parse_args()
     common.check_executable(args.exe)
-    rows, cost = [], []
+    rows, cost, failed = [], [], 0
     for name, prm, settings in (SMOKE if args.smoke else CASES):
         print("  " + name, flush=True)
+        # The cases name their parameter files from the repository's top:
+        # ctest runs this script from the build directory.
         result, summary = common.run_program(
             args.exe, settings + ["Error indicator/Compare estimators=true",
                                   "Error indicator/Compute exact error=true"],
-            args.timeout, prm=prm)
+            args.timeout, prm=os.path.join(common.ROOT, prm))
         if result.rc != 0 or not summary:
             print("    failed: " + common.error_message(result.stderr,
                                                       result.stdout))
+            failed += 1
             continue
         for cycle in summary["cycles"]:
             estimators = cycle.get("estimators", {})
@@ -140,6 +143,8 @@ def main():
     common.write_csv(args.csv, rows, FIELDS)
     common.write_csv(args.cost_csv, cost, COST_FIELDS)
     print("wrote " + args.csv + " and " + args.cost_csv)
+    if failed:
+        sys.exit("%d run(s) failed" % failed)
 
 
 if __name__ == "__main__":
