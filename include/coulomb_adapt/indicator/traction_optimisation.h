@@ -32,7 +32,8 @@ namespace coulomb_adapt
                              const LocalProblemLoads             &loads,
                              const bool                           with_bubbles,
                              const bool                           relaxed,
-                             EquilibratedStressErrors            &result);
+                             const double              minimisation_tolerance,
+                             EquilibratedStressErrors &result);
   } // namespace equilibration
 } // namespace coulomb_adapt
 
