@@ -24,137 +24,26 @@
 //
 // The 2-rank run prints what the 1-rank run prints.
 
-#include <deal.II/base/quadrature_lib.h>
-
-#include <deal.II/distributed/tria.h>
-
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/dofs/dof_tools.h>
-
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_values.h>
-
-#include <deal.II/grid/grid_generator.h>
-
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparsity_tools.h>
-
 #include <coulomb_adapt/solvers/additive_schwarz_preconditioner.h>
 #include <coulomb_adapt/solvers/symmetric_direct_solver.h>
 #include <coulomb_adapt/solvers/truncated_minimisation.h>
 
+#include "reaction_diffusion_system.h"
 #include "test_utilities.h"
 
-#include <algorithm>
 #include <cmath>
-#include <map>
 
 using namespace coulomb_adapt;
 
 namespace
 {
   using Patches = std::vector<std::vector<types::global_dof_index>>;
-
-  struct System
-  {
-    TrilinosWrappers::SparseMatrix A;
-    TrilinosWrappers::MPI::Vector  b;
-    IndexSet                       relevant;
-    Patches                        stars, singletons, everything;
-  };
-
-  // -Laplace u + u on the unit square, P2 on 16 x 16 squares, with an
-  // irregular load; the patches: per owned vertex the unknowns of the
-  // cells around it, per owned unknown itself, and (on rank 0) all.
-  System
-  reaction_diffusion_system(const MPI_Comm comm)
-  {
-    parallel::distributed::Triangulation<2> triangulation(comm);
-    GridGenerator::hyper_cube(triangulation);
-    triangulation.refine_global(4);
-    const FE_Q<2> fe(2);
-    DoFHandler<2> dof_handler(triangulation);
-    dof_handler.distribute_dofs(fe);
-    const IndexSet owned = dof_handler.locally_owned_dofs();
-    System         system;
-    DoFTools::extract_locally_relevant_dofs(dof_handler, system.relevant);
-    DynamicSparsityPattern dsp(system.relevant);
-    DoFTools::make_sparsity_pattern(dof_handler, dsp);
-    SparsityTools::distribute_sparsity_pattern(dsp,
-                                               owned,
-                                               comm,
-                                               system.relevant);
-    system.A.reinit(owned, owned, dsp, comm);
-    system.b.reinit(owned, comm);
-    const QGauss<2>                      quadrature(3);
-    FEValues<2>                          fe_values(fe,
-                          quadrature,
-                          update_values | update_gradients |
-                            update_quadrature_points | update_JxW_values);
-    const unsigned int                   n = fe.n_dofs_per_cell();
-    FullMatrix<double>                   cell_matrix(n, n);
-    Vector<double>                       cell_rhs(n);
-    std::vector<types::global_dof_index> indices(n);
-    std::map<types::global_dof_index, std::vector<types::global_dof_index>>
-      stars;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (!cell->is_artificial())
-        {
-          cell->get_dof_indices(indices);
-          for (const unsigned int v : cell->vertex_indices())
-            if (owned.is_element(cell->vertex_dof_index(v, 0)))
-              stars[cell->vertex_dof_index(v, 0)].insert(
-                stars[cell->vertex_dof_index(v, 0)].end(),
-                indices.begin(),
-                indices.end());
-          if (!cell->is_locally_owned())
-            continue;
-          fe_values.reinit(cell);
-          cell_matrix = 0;
-          cell_rhs    = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const Point<2> &x    = fe_values.quadrature_point(q);
-              const double    load = std::sin(7 * x[0]) + x[1] * x[1] * x[0];
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  for (unsigned int j = 0; j < n; ++j)
-                    cell_matrix(i, j) +=
-                      (fe_values.shape_grad(i, q) * fe_values.shape_grad(j, q) +
-                       fe_values.shape_value(i, q) *
-                         fe_values.shape_value(j, q)) *
-                      fe_values.JxW(q);
-                  cell_rhs(i) +=
-                    load * fe_values.shape_value(i, q) * fe_values.JxW(q);
-                }
-            }
-          system.A.add(indices, cell_matrix);
-          system.b.add(indices, cell_rhs);
-        }
-    system.A.compress(VectorOperation::add);
-    system.b.compress(VectorOperation::add);
-    for (auto &[vertex, star] : stars)
-      {
-        std::sort(star.begin(), star.end());
-        star.erase(std::unique(star.begin(), star.end()), star.end());
-        system.stars.push_back(star);
-      }
-    for (const auto i : owned)
-      system.singletons.push_back({i});
-    if (Utilities::MPI::this_mpi_process(comm) == 0)
-      {
-        std::vector<types::global_dof_index> all;
-        complete_index_set(system.A.m()).fill_index_vector(all);
-        system.everything.push_back(all);
-      }
-    return system;
-  }
-
-
+  using testing::ReactionDiffusionSystem;
+  using testing::relative_difference;
 
   // J(x) = offset + x.A x - 2 b.x, recomputed from x.
   double
-  objective(const System                        &system,
+  objective(const ReactionDiffusionSystem       &system,
             const TrilinosWrappers::MPI::Vector &x,
             const double                         offset)
   {
@@ -165,14 +54,6 @@ namespace
 
 
 
-  double
-  relative_difference(const TrilinosWrappers::MPI::Vector &x,
-                      const TrilinosWrappers::MPI::Vector &y)
-  {
-    TrilinosWrappers::MPI::Vector difference(x);
-    difference -= y;
-    return difference.l2_norm() / y.l2_norm();
-  }
 } // namespace
 
 
@@ -184,7 +65,17 @@ main(int argc, char **argv)
   auto                             out  = testing::root_output();
   const MPI_Comm                   comm = MPI_COMM_WORLD;
 
-  System                        system = reaction_diffusion_system(comm);
+  ReactionDiffusionSystem system = testing::reaction_diffusion_system(comm);
+  // The other patchings: per owned unknown itself (point Jacobi), and
+  // every unknown in one patch on rank 0 (then the preconditioner is A^-1).
+  Patches singletons, everything;
+  for (const auto i : system.A.locally_owned_range_indices())
+    singletons.push_back({i});
+  if (Utilities::MPI::this_mpi_process(comm) == 0)
+    {
+      everything.emplace_back();
+      complete_index_set(system.A.m()).fill_index_vector(everything.back());
+    }
   TrilinosWrappers::MPI::Vector x_star(system.b), x(system.b);
   solve_symmetric_positive_definite(system.A, x_star, system.b);
   // J* = b.x* > 0, like an estimate.
@@ -195,7 +86,7 @@ main(int argc, char **argv)
   // The relevant set of the last patch family must hold every index.
   const IndexSet all = complete_index_set(system.A.m());
   {
-    const AdditiveSchwarzPreconditioner exact(system.A, system.everything, all);
+    const AdditiveSchwarzPreconditioner exact(system.A, everything, all);
     const auto                          result = minimise_by_truncated_cg(
       system.A, x, system.b, exact, offset, 1e-8, 1, 50);
     // The first step reaches x*; the second finds nothing left to gain,
@@ -209,7 +100,7 @@ main(int argc, char **argv)
                                             system.stars,
                                             system.relevant);
   const AdditiveSchwarzPreconditioner jacobi(system.A,
-                                             system.singletons,
+                                             singletons,
                                              system.relevant);
   out << "vertex stars: " << stars.n_patches() << " patches, mean size "
       << std::round(stars.mean_patch_size()) << std::endl;
