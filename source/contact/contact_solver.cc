@@ -135,12 +135,14 @@ namespace coulomb_adapt
         const auto [assembly_time, solve_time] =
           newton_step(k, turning, report.n_active);
 
+        // The statuses before the update, for the first step's rule only.
         std::vector<ContactStatus> before;
-        for (const auto &s : states)
-          before.push_back(s.status);
+        if (k == 1 && from_initial_gap)
+          for (const auto &s : states)
+            before.push_back(s.status);
         auto         update   = control.update_sets(k);
         unsigned int n_opened = 0;
-        if (k == 1 && from_initial_gap)
+        if (!before.empty())
           n_opened =
             close_deepest_penetration_only(before, support, states, update);
         const double residual =
@@ -388,8 +390,7 @@ namespace coulomb_adapt
 
     // IndexSet::size(): the DoFs of both bodies, the same on every rank.
     const bool use_iterative =
-      choose_contact_linear_solver(solver_parameters,
-                                   condensation.owned.size())
+      choose_contact_linear_solver(solver_parameters, condensation.owned.size())
         .iterative;
     if (!newton_system || use_iterative != iterative)
       {

@@ -421,8 +421,9 @@ namespace coulomb_adapt
       // tangential modes and bubbles of its edges, the fourth-order
       // coupling that point Jacobi misses. The stars' cells' names too
       // (patches of ~46 instead of ~20 on P1 triangles) took fewer steps
-      // but about twice the flops (measured on the relaxed system of
-      // blocks with 3 refinements, 130,275 parameters, doc/indicator.md).
+      // but about twice the flops (steps measured on the relaxed system of
+      // blocks with 3 refinements, 130,275 parameters; flops counted from
+      // the patch sizes; doc/indicator.md).
       std::vector<std::vector<types::global_dof_index>>
       vertex_patches(const ParameterNames &names)
       {

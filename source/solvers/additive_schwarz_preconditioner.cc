@@ -8,7 +8,6 @@
 #include <Epetra_Import.h>
 #include <Epetra_Map.h>
 
-#include <cmath>
 #include <memory>
 
 namespace coulomb_adapt
@@ -73,59 +72,6 @@ namespace coulomb_adapt
 
 
 
-    // The lower Cholesky factor of the dense SPD block, packed by rows
-    // (row a holds columns 0..a). Packed, because the patches' factors
-    // are what the preconditioner keeps: half the memory of full ones.
-    std::vector<double>
-    packed_cholesky(const std::vector<double> &block, const std::size_t m)
-    {
-      std::vector<double> L(m * (m + 1) / 2);
-      for (std::size_t a = 0; a < m; ++a)
-        {
-          double *row_a = &L[a * (a + 1) / 2];
-          for (std::size_t b = 0; b <= a; ++b)
-            {
-              const double *row_b = &L[b * (b + 1) / 2];
-              double        sum   = block[a * m + b];
-              for (std::size_t k = 0; k < b; ++k)
-                sum -= row_a[k] * row_b[k];
-              if (b < a)
-                row_a[b] = sum / row_b[b];
-              else
-                {
-                  AssertThrow(sum > 0,
-                              ExcMessage("additive Schwarz: a patch's block "
-                                         "is not positive definite"));
-                  row_a[a] = std::sqrt(sum);
-                }
-            }
-        }
-      return L;
-    }
-
-
-
-    // x := (L L^T)^-1 x in place, L packed by rows.
-    void
-    cholesky_solve(const std::vector<double> &L, std::vector<double> &x)
-    {
-      const std::size_t m = x.size();
-      for (std::size_t a = 0; a < m; ++a)
-        {
-          const double *row_a = &L[a * (a + 1) / 2];
-          double        sum   = x[a];
-          for (std::size_t k = 0; k < a; ++k)
-            sum -= row_a[k] * x[k];
-          x[a] = sum / row_a[a];
-        }
-      for (std::size_t a = m; a-- > 0;)
-        {
-          const double *row_a = &L[a * (a + 1) / 2];
-          x[a] /= row_a[a];
-          for (std::size_t k = 0; k < a; ++k)
-            x[k] -= row_a[k] * x[a];
-        }
-    }
   } // namespace
 
 
@@ -142,6 +88,9 @@ namespace coulomb_adapt
     const auto       rows = overlapping_rows(A, relevant);
     std::vector<int> column_position(rows->ColMap().NumMyElements(), -1);
     std::size_t      total_size = 0;
+    // Reserved: growing the vector would copy the factorised matrices,
+    // and a copy forgets its factorisation.
+    factors.reserve(patches.size());
     for (const auto &patch : patches)
       {
         // Drop the indices without an unknown (zero diagonal).
@@ -157,12 +106,15 @@ namespace coulomb_adapt
             }
         if (kept.empty())
           continue;
-        const std::size_t   m = kept.size();
-        std::vector<double> block(m * m);
+        const std::size_t m = kept.size();
+        // Factorised in place: a copy of a LAPACKFullMatrix forgets its
+        // factorisation (its state starts again as a plain matrix).
+        LAPACKFullMatrix<double> &block = factors.emplace_back(m, m);
+        block.set_property(LAPACKSupport::symmetric);
         for (std::size_t a = 0; a < m; ++a)
           for (std::size_t b = 0; b < m; ++b)
-            block[a * m + b] = full[kept_at[a] * patch.size() + kept_at[b]];
-        factors.push_back(packed_cholesky(block, m));
+            block(a, b) = full[kept_at[a] * patch.size() + kept_at[b]];
+        block.compute_cholesky_factorization();
         std::vector<unsigned int> positions(m);
         for (std::size_t a = 0; a < m; ++a)
           positions[a] = relevant.index_within_set(kept[a]);
@@ -192,14 +144,14 @@ namespace coulomb_adapt
     src_ghosted = src;
     std::vector<double> r(relevant_list.size()), z(relevant_list.size(), 0.);
     src_ghosted.extract_subvector_to(relevant_list, r);
-    std::vector<double> x;
+    Vector<double> x;
     for (std::size_t p = 0; p < patch_positions.size(); ++p)
       {
         const auto &positions = patch_positions[p];
-        x.resize(positions.size());
+        x.reinit(positions.size(), true);
         for (std::size_t a = 0; a < positions.size(); ++a)
           x[a] = r[positions[a]];
-        cholesky_solve(factors[p], x);
+        factors[p].solve(x);
         for (std::size_t a = 0; a < positions.size(); ++a)
           z[positions[a]] += x[a];
       }

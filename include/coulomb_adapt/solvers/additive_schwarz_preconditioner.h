@@ -3,7 +3,7 @@
 
 #include <deal.II/base/index_set.h>
 
-#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -60,10 +60,9 @@ namespace coulomb_adapt
     MPI_Comm                             communicator;
     std::vector<types::global_dof_index> relevant_list;
     // Per patch: its (nonzero-diagonal) indices as positions within
-    // relevant, and the Cholesky factor of A_pp, packed by rows (lower
-    // triangle).
+    // relevant, and A_pp's Cholesky factorisation.
     std::vector<std::vector<unsigned int>> patch_positions;
-    std::vector<std::vector<double>>       factors;
+    std::vector<LAPACKFullMatrix<double>>  factors;
     std::size_t                            n_global_patches = 0;
     double                                 mean_size        = 0;
   };
