@@ -11,9 +11,20 @@
 //    node-wise sets, pressure and tangential traction within 1e-8 of the
 //    largest pressure, displacements within 1e-8 relative.
 //  - The program's log states the solver and why.
+//  - The fallback: under 'auto', a Krylov solve that does not converge
+//    (here 'Maximum iterations' = 2) hands its Newton system to the direct
+//    solver, and the shared KrylovFailureRecord sends every later system
+//    there at once: over two load steps on one solver and a second solver
+//    sharing the record (the driver's restarts and cycles), exactly one
+//    failed Krylov solve, every solve then direct, the same Newton steps
+//    and the same solution as the direct solver's (sets, tractions and
+//    displacements within 1e-8). The program says so once in its log,
+//    states the reason in the next cycle's solver line, and summary.json
+//    records the failure.
 // 1 and 2 ranks (the choice is by the global number of DoFs).
 
 #include <coulomb_adapt/contact/contact_linear_solver_choice.h>
+#include <coulomb_adapt/contact/contact_solver.h>
 
 #include "contact_test_utilities.h"
 #include "program_run.h"
@@ -93,6 +104,92 @@ namespace
         << std::endl;
   }
 
+  // GMRES (mu = 0.3) stopped after 2 iterations on blocks P1 (2756 DoFs,
+  // threshold 1000).
+  void
+  check_fallback(ConditionalOStream &out)
+  {
+    const Settings settings = {{"Scene/Name", "blocks"},
+                               {"Mesh/Cell type", "triangle"},
+                               {"Mesh/Global refinements", "1"}};
+    const auto     direct =
+      testing::solve_contact(with_threshold(settings, 100000));
+    Settings failing = with_threshold(settings, 1000);
+    failing.emplace_back("Linear solver/Maximum iterations", "2");
+    auto       p      = testing::solve_contact_setup(failing);
+    const auto record = std::make_shared<KrylovFailureRecord>();
+    static const ConditionalOStream quiet(std::cout, false);
+    const auto new_solver = [&]() {
+      return std::make_unique<ContactSolver>(*p->bodies[0],
+                                             *p->bodies[1],
+                                             p->parameters.contact,
+                                             p->parameters.linear_solver,
+                                             quiet,
+                                             record);
+    };
+    p->solver = new_solver();
+    p->report = p->solver->solve();
+    const auto check = [&](const std::string &where) {
+      const std::string method = p->solver->last_linear_solver_report().method;
+      AssertThrow(record->n_failed_solves == 1 && method.find("direct") == 0,
+                  ExcMessage("fallback, " + where + ": " +
+                             std::to_string(record->n_failed_solves) +
+                             " failed Krylov solves, last solve " + method));
+      testing::assert_same_contact_solution("fallback, " + where, *direct, *p);
+    };
+    AssertThrow(p->report.newton_iterations ==
+                  direct->report.newton_iterations,
+                ExcMessage("fallback: Newton steps " +
+                           std::to_string(p->report.newton_iterations) +
+                           ", direct " +
+                           std::to_string(direct->report.newton_iterations)));
+    check("first solve");
+    p->report = p->solver->solve();
+    check("second load step");
+    p->solver = new_solver();
+    p->report = p->solver->solve();
+    check("second solver sharing the record");
+    out << "fallback, blocks P1, " << n_dofs(*p)
+        << " DoFs, threshold 1000, 2 Krylov iterations allowed: 1 failed "
+           "Krylov solve in 3 solves, then direct; "
+        << direct->report.newton_iterations
+        << " Newton steps as direct; same sets, tractions and "
+           "displacements within 1e-8"
+        << std::endl;
+
+    // The program: 2 cycles, the first one's Krylov solve fails.
+    const testing::ProgramRun run(
+      {{"Scene/Name", "blocks"},
+       {"Mesh/Cell type", "triangle"},
+       {"Mesh/Global refinements", "1"},
+       {"Adaptation/Number of cycles", "2"},
+       {"Adaptation/Minimum number of cycles", "2"},
+       {"Linear solver/Maximum DoFs for direct contact", "1000"},
+       {"Linear solver/Maximum iterations", "2"},
+       {"Output/Write VTU", "false"},
+       {"Output/Output directory", "/tmp/coulomb-adapt-test-solver-fallback"}});
+    const std::string log         = run.log.str();
+    const std::string failed      = "the Krylov solve did not converge in 2 "
+                                    "iterations";
+    const std::string later       = "but Krylov + AMG did not converge on an "
+                                    "earlier Newton system (Newton step 1, "
+                                    "2756 DoFs: stopped at 2 iterations";
+    const auto        first       = log.find(failed);
+    const bool        logged_once = first != std::string::npos &&
+                             log.find(failed, first + 1) == std::string::npos;
+    const auto &cycles = run.summary["cycles"];
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      AssertThrow(logged_once && log.find(later) != std::string::npos &&
+                    cycles.size() == 2 &&
+                    cycles[0]["linear_solver"][0].contains("krylov_failure") &&
+                    cycles[1]["linear_solver"][0]["method"] ==
+                      "direct (Amesos_Mumps)",
+                  ExcMessage("fallback: log or summary.json:\n" + log));
+    out << "fallback, program, 2 cycles: '" << failed
+        << "' once; the second cycle's solver line: '... " << later
+        << " ...'; summary.json: krylov_failure" << std::endl;
+  }
+
   void
   check_log(ConditionalOStream &out)
   {
@@ -135,4 +232,5 @@ main(int argc, char *argv[])
            {"Scene/Hertz/Hold axis", "true"}},
           out);
   check_log(out);
+  check_fallback(out);
 }

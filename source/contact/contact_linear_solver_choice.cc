@@ -7,7 +7,8 @@ namespace coulomb_adapt
   // and in the program's log, which states it once per contact solve.
   ContactLinearSolverChoice
   choose_contact_linear_solver(const parameters::LinearSolver &parameters,
-                               const types::global_dof_index   n_dofs)
+                               const types::global_dof_index   n_dofs,
+                               const KrylovFailureRecord      &record)
   {
     const std::string direct =
       "direct (" + parameters.direct_solver + ", row-replacing system)";
@@ -29,6 +30,17 @@ namespace coulomb_adapt
         case LinearSolverType::automatic:
           choice.iterative =
             n_dofs > parameters.max_dofs_for_direct_contact;
+          if (choice.iterative && record.failed())
+            {
+              choice.iterative   = false;
+              choice.description = direct + ": " + std::to_string(n_dofs) +
+                                   " DoFs > " + threshold +
+                                   ", but Krylov + AMG did not converge "
+                                   "on an earlier Newton system (" +
+                                   record.failure +
+                                   "), 'Linear solver/Type' = auto";
+              break;
+            }
           choice.description =
             (choice.iterative ? amg : direct) + ": " +
             std::to_string(n_dofs) + " DoFs " +

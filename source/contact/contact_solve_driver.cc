@@ -192,13 +192,15 @@ namespace coulomb_adapt
           << choose_contact_linear_solver(
                parameters.linear_solver,
                bodies[0]->dof_handler().n_dofs() +
-                 bodies[1]->dof_handler().n_dofs())
+                 bodies[1]->dof_handler().n_dofs(),
+               *krylov_failures)
                .description
           << std::endl;
 
     solve_load_steps(restarts(predicted_start), predicted_sets, outcome);
     measure_initial_gap(outcome);
-    outcome.linear_solver = outcome.solver->last_linear_solver_report();
+    outcome.linear_solver  = outcome.solver->last_linear_solver_report();
+    outcome.krylov_failure = krylov_failures->failure;
     return outcome;
   }
 
@@ -210,7 +212,7 @@ namespace coulomb_adapt
     const std::vector<ContactNodeState> *predicted_sets) const
   {
     auto solver = std::make_unique<ContactSolver>(
-      *bodies[0], *bodies[1], c, parameters.linear_solver, pcout);
+      *bodies[0], *bodies[1], c, parameters.linear_solver, pcout, krylov_failures);
     if (predicted_sets != nullptr)
       solver->warm_start_from(*predicted_sets);
     return solver;

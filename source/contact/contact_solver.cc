@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <sstream>
 
 namespace coulomb_adapt
 {
@@ -23,13 +24,17 @@ namespace coulomb_adapt
     ElasticBody                    &master,
     const parameters::Contact      &contact_parameters,
     const parameters::LinearSolver &solver_parameters,
-    const ConditionalOStream       &pcout)
+    const ConditionalOStream       &pcout,
+    std::shared_ptr<KrylovFailureRecord> krylov_failures)
     : slave(slave)
     , master(master)
     , contact_parameters(contact_parameters)
     , solver_parameters(solver_parameters)
     , pcout(pcout)
     , mu(contact_parameters.friction_coefficient)
+    , krylov_failures(krylov_failures ?
+                        std::move(krylov_failures) :
+                        std::make_shared<KrylovFailureRecord>())
   {}
 
 
@@ -321,7 +326,9 @@ namespace coulomb_adapt
 
     // IndexSet::size(): the DoFs of both bodies, the same on every rank.
     const bool use_iterative =
-      choose_contact_linear_solver(solver_parameters, condensation.owned.size())
+      choose_contact_linear_solver(solver_parameters,
+                                   condensation.owned.size(),
+                                   *krylov_failures)
         .iterative;
     if (!newton_system || use_iterative != iterative)
       {
@@ -358,14 +365,29 @@ namespace coulomb_adapt
                              const bool         rotation_free,
                              const unsigned int n_active)
   {
-    Timer assembly_timer;
-    newton_system->assemble(slave_node_conditions(
-      condensation, mortar, master, states, previous_weighted_slip, mu));
+    Timer      assembly_timer;
+    const auto conditions = slave_node_conditions(
+      condensation, mortar, master, states, previous_weighted_slip, mu);
+    newton_system->assemble(conditions);
     assembly_timer.stop();
     Timer solve_timer;
     try
       {
-        solve_newton_system();
+        try
+          {
+            solve_newton_system();
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            if (!iterative ||
+                solver_parameters.type != LinearSolverType::automatic)
+              throw;
+            // The same system, solved directly: the Newton iteration goes
+            // on as if the direct solver had taken it from the start.
+            switch_to_direct_solver(k, e);
+            newton_system->assemble(conditions);
+            solve_newton_system();
+          }
       }
     catch (const SolverControl::NoConvergence &e)
       {
@@ -385,6 +407,34 @@ namespace coulomb_adapt
 
 
 
+  // The Krylov solve failed on a system that the direct solver takes
+  // (the same sets): from here on, and in every solve that shares the
+  // record, the direct solver takes the Newton systems, so that an
+  // ill-conditioned problem pays for one failed Krylov solve, not one per
+  // Newton step.
+  void
+  ContactSolver::switch_to_direct_solver(const unsigned int                  k,
+                                         const SolverControl::NoConvergence &e)
+  {
+    std::ostringstream failure;
+    failure << "Newton step " << k << ", " << condensation.owned.size()
+            << " DoFs: stopped at " << e.last_step
+            << " iterations, residual " << e.last_residual;
+    krylov_failures->failure = failure.str();
+    ++krylov_failures->n_failed_solves;
+    pcout << "    the Krylov solve did not converge in " << e.last_step
+          << " iterations (residual " << e.last_residual
+          << "): this system and the following ones go to the direct "
+             "solver"
+          << std::endl;
+    iterative       = false;
+    near_null_space = std::vector<std::vector<double>>();
+    newton_system   = std::make_unique<RowReplacingContactSystem>();
+    newton_system->reinit(mortar, slave, master, condensation);
+  }
+
+
+
   // The multipliers are differences of large nodal forces (f - K u at the
   // slave rows): a Krylov solve to the usual relative tolerance leaves the
   // complementarity residual above the default Contact/Tolerance, so the
@@ -399,6 +449,11 @@ namespace coulomb_adapt
       iterative ? LinearSolverType::amg : LinearSolverType::direct;
     settings.relative_tolerance =
       std::min(settings.relative_tolerance, 1e-12) * linear_tolerance_factor;
+    // Under 'auto' a system that AMG does not solve quickly goes to the
+    // direct solver (newton_step()), and the failed attempt is cheap.
+    if (solver_parameters.type == LinearSolverType::automatic)
+      settings.max_iterations =
+        std::min(settings.max_iterations, max_krylov_iterations_under_auto);
     last_linear_solve =
       newton_system->solve(near_null_space, settings, solution);
 

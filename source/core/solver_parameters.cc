@@ -38,15 +38,20 @@ namespace coulomb_adapt
                           "crossover at about 3000 DoFs on 1 rank, and AMG "
                           "4x faster than MUMPS at 1e6 DoFs.");
         prm.declare_entry("Maximum DoFs for direct contact",
-                          "50000",
+                          "5000",
                           Patterns::Integer(0),
                           "Largest contact system (DoFs of both bodies) "
                           "that 'auto' solves directly; Krylov + AMG on the "
                           "eliminated system above. benchmarks/contact "
-                          "(README, 'Direct against Krylov + AMG') measured "
-                          "the crossover of one Newton step at about 4e4 "
-                          "DoFs on 1 rank; AMG is 1.8-3.6x faster from "
-                          "5e5 DoFs.");
+                          "(README, 'The crossover, measured again') "
+                          "measured the crossover of one Newton step at "
+                          "about 2e3 DoFs on 1 rank, AMG 1.2-1.8x faster "
+                          "from 4e3 to 1e4 DoFs and 1.3-6.7x above. Under "
+                          "'auto' a Krylov solve that does not converge "
+                          "within 200 iterations (or 'Maximum iterations') "
+                          "hands its Newton system, and every later one of "
+                          "the run, to the direct solver (the log and "
+                          "summary.json say so).");
         prm.declare_entry("Direct solver",
                           "Amesos_Mumps",
                           Patterns::Selection("Amesos_Mumps|Amesos_Klu"),
@@ -63,7 +68,9 @@ namespace coulomb_adapt
                           "1000",
                           Patterns::Integer(1),
                           "Iterative solver: iteration limit; reaching it "
-                          "is an error.");
+                          "is an error, except for the contact system "
+                          "under 'Type = auto', which then goes to the "
+                          "direct solver (at most 200 iterations there).");
       }
       prm.leave_subsection();
     }

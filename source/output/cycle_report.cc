@@ -187,6 +187,8 @@ namespace coulomb_adapt
     record["linear_solver"]     = {
           {{"method", outcome.linear_solver.method},
            {"iterations", outcome.linear_solver.n_iterations}}};
+    if (!outcome.krylov_failure.empty())
+      record["linear_solver"][0]["krylov_failure"] = outcome.krylov_failure;
     const double force[2] = {
       physical(report.contact_force[0], units::Kind::stress, "contact_force"),
       physical(report.contact_force[1], units::Kind::stress, "contact_force")};

@@ -55,6 +55,10 @@ namespace coulomb_adapt
     double             initial_overlap   = 0;
     double             initial_clearance = 0;
     LinearSolverReport linear_solver;
+    /** Under 'Linear solver/Type = auto': the failed Krylov solve of this
+     * run after which the direct solver took the Newton systems
+     * (KrylovFailureRecord; empty if none failed). */
+    std::string krylov_failure;
   };
 
   /**
@@ -134,6 +138,11 @@ namespace coulomb_adapt
      * empty): the start of the fine mesh's load steps. */
     std::vector<std::vector<ContactNodeState>> coarser_load_path;
     const ConditionalOStream                  &pcout;
+    /** Shared by every ContactSolver of the fine meshes in this run: after
+     * one failed Krylov solve under 'auto' the direct solver takes the
+     * Newton systems (the following load steps, restarts and cycles). */
+    const std::shared_ptr<KrylovFailureRecord> krylov_failures =
+      std::make_shared<KrylovFailureRecord>();
   };
 } // namespace coulomb_adapt
 

@@ -3,12 +3,14 @@
 
 #include <deal.II/base/conditional_ostream.h>
 
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 #include <coulomb_adapt/contact/active_set.h>
 #include <coulomb_adapt/contact/condensed_newton_system.h>
+#include <coulomb_adapt/contact/contact_linear_solver_choice.h>
 #include <coulomb_adapt/contact/contact_state.h>
 #include <coulomb_adapt/contact/mortar_interface.h>
 #include <coulomb_adapt/contact/set_change_control.h>
@@ -84,11 +86,15 @@ namespace coulomb_adapt
   class ContactSolver : public ContactSolution
   {
   public:
+    /** @p krylov_failures: the record of failed Krylov solves that this
+     * solver shares with others of the same run (ContactSolveDriver), or
+     * none (a record of its own). */
     ContactSolver(ElasticBody                    &slave,
                   ElasticBody                    &master,
                   const parameters::Contact      &contact_parameters,
                   const parameters::LinearSolver &solver_parameters,
-                  const ConditionalOStream       &pcout);
+                  const ConditionalOStream       &pcout,
+                  std::shared_ptr<KrylovFailureRecord> krylov_failures = {});
 
     /** Solve one load step; the bodies' solutions are set. Throws with a
      * diagnosis when the iteration does not converge. The bodies' systems
@@ -186,6 +192,12 @@ namespace coulomb_adapt
                 const unsigned int n_active);
     void
     solve_newton_system();
+    /** Under 'Linear solver/Type = auto', the Krylov solve of Newton step
+     * @p k did not converge (@p e): the failure is recorded, logged, and
+     * the direct solver's system replaces the eliminated one. */
+    void
+    switch_to_direct_solver(const unsigned int                  k,
+                            const SolverControl::NoConvergence &e);
     /** The residual and the sets of step @p k in the report. */
     void
     record_step(const unsigned int   k,
@@ -250,11 +262,14 @@ namespace coulomb_adapt
 
     /** Krylov + AMG: the Newton systems are solved with the contact
      * conditions eliminated; direct solves take the row-replacing
-     * system. Decided in setup() from 'Linear solver/Type'. The system
+     * system. Decided in setup() from 'Linear solver/Type' and
+     * @p krylov_failures, and switched to direct by a failed Krylov
+     * solve under 'auto' (switch_to_direct_solver()). The system
      * persists from one load step to the next (the eliminated one starts
      * its Krylov solves from the last solution). */
     bool                                   iterative = false;
     std::unique_ptr<CondensedNewtonSystem> newton_system;
+    std::shared_ptr<KrylovFailureRecord>   krylov_failures;
     LinearSolverReport                     last_linear_solve;
     /** rigid_body_modes() of this load step, for the AMG path; empty for
      * direct solves. */
