@@ -1,10 +1,11 @@
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/base/multithread_info.h>
 
 #include <deal.II/numerics/data_out.h>
 
 #include <coulomb_adapt/output/body_output.h>
 #include <coulomb_adapt/output/file_writer.h>
-#include <coulomb_adapt/output/stress_postprocessor.h>
+#include <coulomb_adapt/output/displacement_stress_postprocessor.h>
 
 #include <array>
 #include <string>
@@ -23,47 +24,18 @@ namespace coulomb_adapt
 
   namespace
   {
-    // The physical fields of a scaled problem, for HDF5's doubles: the
-    // displacement times D; the stresses times P, as those of the solution
-    // times P (with the scaled moduli); the smoothed stresses times P (the
-    // owned entries scaled, then the ghosts imported). With D = P one
-    // vector serves both.
-    struct ScaledFields
+    // The smoothed stresses of a scaled problem, for HDF5's doubles: times
+    // P (the owned entries scaled, then the ghosts imported).
+    std::array<RecoveredStress::VectorType, 3>
+    scaled_recovered_stress(const RecoveredStress &recovered,
+                            const double           stress_scale)
     {
-      TrilinosWrappers::MPI::Vector              solution;
-      TrilinosWrappers::MPI::Vector              stress_solution;
-      std::array<RecoveredStress::VectorType, 3> recovered;
-    };
-
-    TrilinosWrappers::MPI::Vector
-    scaled_solution(const ElasticBody &body, const double factor)
-    {
-      const MPI_Comm comm = body.triangulation().get_communicator();
-      TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(), comm);
-      owned = body.solution();
-      owned *= factor;
-      TrilinosWrappers::MPI::Vector scaled(body.locally_owned_dof_set(),
-                                           body.locally_relevant_dof_set(),
-                                           comm);
-      scaled = owned;
-      return scaled;
-    }
-
-    ScaledFields
-    scaled_fields(const ElasticBody     &body,
-                  const RecoveredStress *recovered,
-                  const units::Scales   &scales)
-    {
-      ScaledFields scaled;
-      scaled.solution = scaled_solution(body, scales.displacement);
-      if (scales.stress != scales.displacement)
-        scaled.stress_solution = scaled_solution(body, scales.stress);
-      if (recovered)
-        for (unsigned int c = 0; c < 3; ++c)
-          {
-            scaled.recovered[c] = recovered->component(c);
-            scaled.recovered[c] *= scales.stress;
-          }
+      std::array<RecoveredStress::VectorType, 3> scaled;
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          scaled[c] = recovered.component(c);
+          scaled[c] *= stress_scale;
+        }
       return scaled;
     }
 
@@ -125,29 +97,23 @@ namespace coulomb_adapt
     const Triangulation<2> &tria = body.triangulation();
     const bool scale = (scales.stress != 1 || scales.displacement != 1) &&
                        format == OutputFormat::hdf5;
-    const ScaledFields scaled =
-      scale ? scaled_fields(body, error_fields.recovered, scales) :
-              ScaledFields();
-    const TrilinosWrappers::MPI::Vector &solution =
-      scale ? scaled.solution : body.solution();
-    const TrilinosWrappers::MPI::Vector &stress_solution =
-      scale && scales.stress != scales.displacement ? scaled.stress_solution :
-                                                      solution;
+    const std::array<RecoveredStress::VectorType, 3> scaled_recovered =
+      scale && error_fields.recovered ?
+        scaled_recovered_stress(*error_fields.recovered, scales.stress) :
+        std::array<RecoveredStress::VectorType, 3>();
 
-    DataOut<2> data_out;
+    PieceableDataOut data_out;
     data_out.attach_dof_handler(body.dof_handler());
-    data_out.add_data_vector(
-      solution,
-      std::vector<std::string>(2, "displacement"),
-      DataOut<2>::type_dof_data,
-      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-        2, DataComponentInterpretation::component_is_part_of_vector));
-    const StressPostprocessor stresses(body.material());
-    data_out.add_data_vector(stress_solution, stresses);
+    const DisplacementStressPostprocessor fields(
+      body.material(),
+      scale ? scales.displacement : 1.,
+      scale ? scales.stress : 1.);
+    data_out.add_data_vector(body.solution(), fields);
     const auto cell_fields = material_and_subdomain(tria);
     add_error_fields(data_out,
                      error_fields,
-                     scale ? &scaled.recovered : nullptr);
+                     scale && error_fields.recovered ? &scaled_recovered :
+                                                       nullptr);
     data_out.add_data_vector(cell_fields[0], "material_id");
     data_out.add_data_vector(cell_fields[1], "subdomain");
 
@@ -182,16 +148,20 @@ namespace coulomb_adapt
   // zlib's fastest level instead of deal.II's default, the best
   // compression: on these fields the files are hardly larger, and writing
   // them no longer dominates an adaptive run (benchmarks/adaptive_run).
+  // Large meshes are written in pieces, one per thread (vtu_pieces.h).
   void
-  BodyOutput::write_vtu_cycle(DataOut<2>        &data_out,
+  BodyOutput::write_vtu_cycle(PieceableDataOut  &data_out,
                               const MPI_Comm     comm,
                               const unsigned int cycle)
   {
     DataOutBase::VtkFlags vtk_flags;
     vtk_flags.compression_level = DataOutBase::VtkFlags::best_speed;
-    data_out.set_flags(vtk_flags);
-    const std::string pvtu =
-      write_vtu_with_pvtu_record(comm, data_out, directory, base_name, cycle);
+    std::vector<PatchPiece> pieces = data_out.take_pieces(
+      n_vtu_pieces(data_out.get_patches().size(), MultithreadInfo::n_threads()));
+    for (PatchPiece &piece : pieces)
+      piece.set_flags(vtk_flags);
+    const std::string pvtu = write_vtu_pieces_with_pvtu_record(
+      comm, pieces, directory, base_name, cycle);
     pvd_records.emplace_back(cycle, pvtu);
     write_file(comm,
                directory + "/" + base_name + ".pvd",
