@@ -156,6 +156,10 @@ namespace coulomb_adapt
   {
     DataOutBase::VtkFlags vtk_flags;
     vtk_flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    // The date in each file's header comes from std::localtime, which is
+    // not safe to call from several threads at once (and without it the
+    // .vtu files of two identical runs are identical).
+    vtk_flags.print_date_and_time = false;
     std::vector<PatchPiece> pieces = data_out.take_pieces(
       n_vtu_pieces(data_out.get_patches().size(), MultithreadInfo::n_threads()));
     for (PatchPiece &piece : pieces)
