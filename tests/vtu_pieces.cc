@@ -38,9 +38,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <regex>
-#include <sstream>
 
 using namespace coulomb_adapt;
 
@@ -60,15 +58,6 @@ namespace
       for (unsigned int j = 0; same && j < a.data.n_cols(); ++j)
         same = a.data(i, j) == b.data(i, j);
     return same;
-  }
-
-  std::string
-  file_text(const std::string &path)
-  {
-    std::ifstream      in(path);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
   }
 } // namespace
 
@@ -143,7 +132,7 @@ main(int argc, char *argv[])
                    n_cells = 0, n_tmp = 0;
       if (rank == 0)
         {
-          const std::string text = file_text(directory + "/" + record);
+          const std::string text = testing::read_text(directory + "/" + record);
           const std::regex  source("<Piece Source=\"([^\"]+)\"/>");
           for (auto m = std::sregex_iterator(text.begin(), text.end(), source);
                m != std::sregex_iterator();
@@ -153,7 +142,7 @@ main(int argc, char *argv[])
               n_misnamed += name != "body_00" + std::to_string(n_pieces) + "." +
                                       std::to_string(n_listed) + ".vtu";
               ++n_listed;
-              const std::string piece = file_text(directory + "/" + name);
+              const std::string piece = testing::read_text(directory + "/" + name);
               std::smatch       cells;
               if (std::regex_search(piece,
                                     cells,
