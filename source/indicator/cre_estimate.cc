@@ -148,7 +148,8 @@ namespace coulomb_adapt
                                      contact[b],
                                      degree_increase,
                                      optimise_tractions,
-                                     relax_equilibration);
+                                     relax_equilibration,
+                                     options.timer);
         before_squared += errors.error_squared_before_optimisation;
         normalisation_squared += errors.sum_norm_squared;
         volume_squared[b] = add_body_errors(*bodies[b], b, errors, estimate);

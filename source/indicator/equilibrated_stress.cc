@@ -446,7 +446,8 @@ namespace coulomb_adapt
     const ContactTractionData           &contact,
     const unsigned int                   degree_increase,
     const bool                           optimise_tractions,
-    const bool                           relax_equilibration)
+    const bool                           relax_equilibration,
+    TimerOutput                         *timer)
   {
     // Ghosted copies: the node systems read the ghost cells too (the
     // corrected solutions come without ghost entries).
@@ -507,7 +508,8 @@ namespace coulomb_adapt
                                // estimate below the exact error).
                                degree_increase >= 3,
                                result.relaxed,
-                               result);
+                               result,
+                               timer);
     else
       classical_errors(body, cells, local, loads, u_kinematic, result);
 

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/base/timer.h>
 
 #include <deal.II/grid/cell_id.h>
 
@@ -89,6 +90,10 @@ namespace coulomb_adapt
    *    eta F_G (the prescribed data on loaded and contact edges) in the
    *    complete polynomials of degree p + @p degree_increase, rigid motions
    *    removed; sigma^ = K eps(u^).
+   *
+   * With @p timer, the cells' quadratic forms (the local problems and the
+   * optimisation's products) are timed in its section
+   * "error indicator: cell forms".
    */
   EquilibratedStressErrors
   equilibrated_stress_errors(const ElasticBody                   &body,
@@ -97,7 +102,8 @@ namespace coulomb_adapt
                              const ContactTractionData           &contact,
                              const unsigned int degree_increase,
                              const bool         optimise_tractions  = true,
-                             const bool         relax_equilibration = true);
+                             const bool         relax_equilibration = true,
+                             TimerOutput       *timer               = nullptr);
 } // namespace coulomb_adapt
 
 #endif
