@@ -15,24 +15,11 @@
 // - a matrix that is singular (a zero row and column) is reported with
 //   MUMPS's error code, on every rank, not returned as a solution.
 
-#include <deal.II/base/quadrature_lib.h>
-
-#include <deal.II/distributed/tria.h>
-
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/dofs/dof_tools.h>
-
-#include <deal.II/fe/fe_q.h>
-#include <deal.II/fe/fe_values.h>
-
-#include <deal.II/grid/grid_generator.h>
-
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_solver.h>
 
 #include <coulomb_adapt/solvers/symmetric_direct_solver.h>
 
+#include "reaction_diffusion_system.h"
 #include "test_utilities.h"
 
 #include <cmath>
@@ -42,75 +29,8 @@ using namespace coulomb_adapt;
 
 namespace
 {
-  struct System
-  {
-    TrilinosWrappers::SparseMatrix A;
-    TrilinosWrappers::MPI::Vector  b;
-  };
-
-  // -Laplace u + u on the unit square, P2 on 16 x 16 squares: symmetric
-  // positive definite, with an irregular load (not aligned with any
-  // eigenvector) so that every unknown takes part.
-  System
-  reaction_diffusion_system(const MPI_Comm comm)
-  {
-    parallel::distributed::Triangulation<2> triangulation(comm);
-    GridGenerator::hyper_cube(triangulation);
-    triangulation.refine_global(4);
-    const FE_Q<2> fe(2);
-    DoFHandler<2> dof_handler(triangulation);
-    dof_handler.distribute_dofs(fe);
-    const IndexSet owned = dof_handler.locally_owned_dofs();
-    IndexSet       relevant;
-    DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
-    DynamicSparsityPattern dsp(relevant);
-    DoFTools::make_sparsity_pattern(dof_handler, dsp);
-    SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
-
-    System system;
-    system.A.reinit(owned, owned, dsp, comm);
-    system.b.reinit(owned, comm);
-    const QGauss<2>                      quadrature(3);
-    FEValues<2>                          fe_values(fe,
-                          quadrature,
-                          update_values | update_gradients |
-                            update_quadrature_points | update_JxW_values);
-    const unsigned int                   n = fe.n_dofs_per_cell();
-    FullMatrix<double>                   cell_matrix(n, n);
-    Vector<double>                       cell_rhs(n);
-    std::vector<types::global_dof_index> indices(n);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          cell_matrix = 0;
-          cell_rhs    = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const Point<2> &x    = fe_values.quadrature_point(q);
-              const double    load = std::sin(7 * x[0]) + x[1] * x[1] * x[0];
-              for (unsigned int i = 0; i < n; ++i)
-                {
-                  for (unsigned int j = 0; j < n; ++j)
-                    cell_matrix(i, j) +=
-                      (fe_values.shape_grad(i, q) * fe_values.shape_grad(j, q) +
-                       fe_values.shape_value(i, q) *
-                         fe_values.shape_value(j, q)) *
-                      fe_values.JxW(q);
-                  cell_rhs(i) +=
-                    load * fe_values.shape_value(i, q) * fe_values.JxW(q);
-                }
-            }
-          cell->get_dof_indices(indices);
-          system.A.add(indices, cell_matrix);
-          system.b.add(indices, cell_rhs);
-        }
-    system.A.compress(VectorOperation::add);
-    system.b.compress(VectorOperation::add);
-    return system;
-  }
-
-
+  using System = testing::ReactionDiffusionSystem;
+  using testing::relative_difference;
 
   double
   relative_residual(const System                        &system,
@@ -124,14 +44,6 @@ namespace
 
 
 
-  double
-  relative_difference(const TrilinosWrappers::MPI::Vector &x,
-                      const TrilinosWrappers::MPI::Vector &y)
-  {
-    TrilinosWrappers::MPI::Vector difference(x);
-    difference -= y;
-    return difference.l2_norm() / y.l2_norm();
-  }
 } // namespace
 
 
@@ -143,7 +55,7 @@ main(int argc, char **argv)
   auto                             out  = testing::root_output();
   const MPI_Comm                   comm = MPI_COMM_WORLD;
 
-  System                        system = reaction_diffusion_system(comm);
+  System system = testing::reaction_diffusion_system(comm);
   TrilinosWrappers::MPI::Vector x(system.b);
   solve_symmetric_positive_definite(system.A, x, system.b);
   out << "unknowns: " << system.A.m() << std::endl;

@@ -20,6 +20,7 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include <coulomb_adapt/bodies/coarse_cell_indexed_triangulation.h>
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 
@@ -141,8 +142,8 @@ namespace coulomb_adapt
           Utilities::MPI::n_mpi_processes(mpi_communicator), serial);
         const auto description = TriangulationDescription::Utilities::
           create_description_from_triangulation(serial, mpi_communicator);
-        auto t = std::make_unique<parallel::fullydistributed::Triangulation<2>>(
-          mpi_communicator);
+        auto t =
+          std::make_unique<CoarseCellIndexedTriangulation>(mpi_communicator);
         for (const auto id : serial.get_manifold_ids())
           if (id != numbers::flat_manifold_id)
             t->set_manifold(id, serial.get_manifold(id));

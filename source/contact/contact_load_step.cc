@@ -65,6 +65,8 @@ namespace coulomb_adapt
         report.newton_iterations_of_stopped_prediction = n_stopped;
         iterate(report);
       }
+    // Kept until here: iterate() tells a start from the initial gap by it.
+    warm_start_states.clear();
     finish_load_step(report);
     return report;
   }

@@ -1,6 +1,7 @@
 #include <deal.II/base/patterns.h>
 
 #include <coulomb_adapt/contact/contact_diagnosis.h>
+#include <coulomb_adapt/contact/contact_linear_solver_choice.h>
 #include <coulomb_adapt/contact/contact_solve_driver.h>
 #include <coulomb_adapt/core/parameter_error.h>
 
@@ -186,6 +187,13 @@ namespace coulomb_adapt
                 "the previous cycle's contact sets (warm start)" :
               nested ? "the sets of the coarser meshes (nested iteration)" :
                        "the initial gap")
+          << std::endl;
+    pcout << "  contact: linear solver "
+          << choose_contact_linear_solver(
+               parameters.linear_solver,
+               bodies[0]->dof_handler().n_dofs() +
+                 bodies[1]->dof_handler().n_dofs())
+               .description
           << std::endl;
 
     solve_load_steps(restarts(predicted_start), predicted_sets, outcome);

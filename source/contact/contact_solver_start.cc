@@ -129,12 +129,23 @@ namespace coulomb_adapt
 
 
   // Nearest previous node by position: the interface is a curve, and the
-  // meshes of two cycles resolve it differently.
+  // meshes of two cycles resolve it differently. A previous mesh with at
+  // most two active nodes gives their closed set only, each closed node
+  // stuck as from the initial gap: nearest-node transfer would copy one
+  // node's stick or slip onto a stretch of the zone (dovetail's .geo at 4x
+  // its mesh size: one node per flank, one stuck, one slipping; the 2x
+  // mesh then cycled, 5 Newton steps instead of 2).
   void
   ContactSolver::transfer_warm_start_sets()
   {
     std::vector<ContactNodeState> transferred = states;
     unsigned int                  n_active    = 0;
+    const bool                    closed_set_only =
+      mu > 0 && std::count_if(warm_start_states.begin(),
+                              warm_start_states.end(),
+                              [](const ContactNodeState &s) {
+                                return s.status != ContactStatus::open;
+                              }) <= 2;
     for (unsigned int j = 0; j < states.size(); ++j)
       {
         if (!mortar.is_covered(j))
@@ -149,6 +160,8 @@ namespace coulomb_adapt
           }
         transferred[j].status    = nearest->status;
         transferred[j].slip_sign = nearest->slip_sign;
+        if (closed_set_only && transferred[j].status == ContactStatus::slip)
+          transferred[j].status = ContactStatus::stick;
         if (mu == 0 && transferred[j].status == ContactStatus::stick)
           transferred[j].status = ContactStatus::slip;
         if (mu > 0 && states[j].held_tangentially &&
@@ -158,7 +171,6 @@ namespace coulomb_adapt
       }
     if (n_active > 0 || support.holds_all_rigid_motions())
       states = transferred;
-    warm_start_states.clear();
   }
 
 

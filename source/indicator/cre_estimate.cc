@@ -99,6 +99,8 @@ namespace coulomb_adapt
                     ErrorEstimate            &estimate)
     {
       estimate.optimisation_parameters += errors.optimisation_parameters;
+      estimate.optimisation_steps =
+        std::max(estimate.optimisation_steps, errors.optimisation_steps);
       estimate.relaxed_equilibration[b] = errors.relaxed;
       estimate.contribution_squared[b].swap(errors.error_squared);
       estimate.node_system_defect =
@@ -119,6 +121,7 @@ namespace coulomb_adapt
                      const unsigned int                        degree_increase,
                      const bool                      optimise_tractions,
                      const bool                      relax_equilibration,
+                     const double                    minimisation_tolerance,
                      const parameters::LinearSolver &solver_parameters,
                      const ErrorEstimateOptions     &options)
   {
@@ -149,6 +152,7 @@ namespace coulomb_adapt
                                      degree_increase,
                                      optimise_tractions,
                                      relax_equilibration,
+                                     minimisation_tolerance,
                                      options.timer);
         before_squared += errors.error_squared_before_optimisation;
         normalisation_squared += errors.sum_norm_squared;

@@ -447,6 +447,7 @@ namespace coulomb_adapt
     const unsigned int                   degree_increase,
     const bool                           optimise_tractions,
     const bool                           relax_equilibration,
+    const double                         minimisation_tolerance,
     TimerOutput                         *timer)
   {
     // Ghosted copies: the node systems read the ghost cells too (the
@@ -508,6 +509,7 @@ namespace coulomb_adapt
                                // estimate below the exact error).
                                degree_increase >= 3,
                                result.relaxed,
+                               minimisation_tolerance,
                                result,
                                timer);
     else

@@ -169,6 +169,7 @@ namespace coulomb_adapt
                                 indicator_parameters.cre_degree_increase,
                                 indicator_parameters.cre_traction_optimisation,
                                 indicator_parameters.cre_relaxed_equilibration,
+                                indicator_parameters.cre_minimisation_tolerance,
                                 solver_parameters,
                                 options);
     }

@@ -19,7 +19,9 @@
 #include <coulomb_adapt/indicator/equilibration_mesh.h>
 #include <coulomb_adapt/indicator/local_problem_loads.h>
 #include <coulomb_adapt/indicator/traction_optimisation.h>
+#include <coulomb_adapt/solvers/additive_schwarz_preconditioner.h>
 #include <coulomb_adapt/solvers/symmetric_direct_solver.h>
+#include <coulomb_adapt/solvers/truncated_minimisation.h>
 
 #include <algorithm>
 #include <map>
@@ -482,25 +484,85 @@ namespace coulomb_adapt
 
 
 
-      // H alpha = -g. Without the relaxed modes by CG with Jacobi: the
-      // estimate is the quadratic's value, whose excess over the minimum is
-      // r^T H^-1 r for the residual r; 1e-6 leaves the estimates of the
-      // test suite unchanged in their printed digits with about 70 % of
-      // the steps 1e-8 took (1e-4 changed the seed example's adapted mesh).
+      // The additive Schwarz patches of the relaxed system: per vertex
+      // whose parameters this rank owns, its own names and those of the
+      // edges through it (ghost cells complete the edges of every owned
+      // vertex). Such a patch holds the vertex's couple mode and the
+      // tangential modes and bubbles of its edges, the fourth-order
+      // coupling that point Jacobi misses. The stars' cells' names too
+      // (patches of ~46 instead of ~20 on P1 triangles) took fewer steps
+      // but about twice the flops (steps measured on the relaxed system of
+      // blocks with 3 refinements, 130,275 parameters; flops counted from
+      // the patch sizes; doc/indicator.md).
+      std::vector<std::vector<types::global_dof_index>>
+      vertex_patches(const ParameterNames &names)
+      {
+        const unsigned int per_vertex = names.fe.n_dofs_per_vertex();
+        const unsigned int per_line   = names.fe.n_dofs_per_line();
+        std::map<types::global_dof_index, std::vector<types::global_dof_index>>
+          patches_of;
+        for (const auto &cell : names.dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned() || cell->is_ghost())
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                const auto vertex = cell->vertex_dof_index(v, 0);
+                if (!names.owned.is_element(vertex))
+                  continue;
+                auto &patch = patches_of[vertex];
+                for (unsigned int k = 0; k < per_vertex; ++k)
+                  patch.push_back(cell->vertex_dof_index(v, k));
+                for (const unsigned int l : cell->line_indices())
+                  if (cell->line(l)->vertex_index(0) == cell->vertex_index(v) ||
+                      cell->line(l)->vertex_index(1) == cell->vertex_index(v))
+                    for (unsigned int k = 0; k < per_line; ++k)
+                      patch.push_back(cell->line(l)->dof_index(k));
+              }
+        std::vector<std::vector<types::global_dof_index>> patches;
+        patches.reserve(patches_of.size());
+        for (auto &[vertex, patch] : patches_of)
+          {
+            std::sort(patch.begin(), patch.end());
+            patch.erase(std::unique(patch.begin(), patch.end()), patch.end());
+            patches.push_back(std::move(patch));
+          }
+        return patches;
+      }
+
+
+
+      // H alpha = -g. Without the relaxed modes (tolerance < 0) by CG with
+      // Jacobi: the estimate is the quadratic's value, whose excess over
+      // the minimum is r^T H^-1 r for the residual r; 1e-6 leaves the
+      // estimates of the test suite unchanged in their printed digits with
+      // about 70 % of the steps 1e-8 took (1e-4 changed the seed example's
+      // adapted mesh).
       // With the relaxed modes H is, like the complementary energy of an
-      // Airy stress function, a fourth-order operator: CG took 500 steps
-      // on the seed's 488 DoFs and did not reach 1e-6 in 1000 on 26,724
-      // (the estimate then depended on round-off, which broke its
-      // homogeneity). There a sparse direct solve is cheaper and exact to
-      // round-off: MUMPS's LDL^T of the lower triangle, which took 0.74 of
-      // the time of the LU that Amesos asks MUMPS for (and stores half
-      // the factors). Returns the number of parameters.
+      // Airy stress function, a fourth-order operator: CG with Jacobi took
+      // 500 steps on the seed's 488 DoFs and did not reach 1e-6 in 1000 on
+      // 26,724 (its estimate then depended on round-off, which broke its
+      // homogeneity). With a tolerance > 0 it is CG preconditioned by
+      // additive Schwarz over the vertices' patches, stopped by the estimate's
+      // own decrease (minimise_by_truncated_cg(): relative, so homogeneous;
+      // the patches follow the mesh, so the steps do not depend on the
+      // partition); the classical estimate @p classical is the quadratic's
+      // value at alpha = 0. With tolerance 0 it is MUMPS's LDL^T of the
+      // lower triangle, exact to round-off and several times slower. Returns
+      // the number of parameters; @p steps: the truncated CG's.
       types::global_dof_index
       minimise(TrilinosWrappers::SparseMatrix &H,
                TrilinosWrappers::MPI::Vector  &g,
                TrilinosWrappers::MPI::Vector  &alpha,
-               const bool                      direct)
+               const ParameterNames           &names,
+               const double                    tolerance,
+               const double                    classical,
+               unsigned int                   &steps)
       {
+        // The patches drop the names without a free parameter by their
+        // zero diagonal, so the preconditioner comes first.
+        std::unique_ptr<AdditiveSchwarzPreconditioner> schwarz;
+        if (tolerance > 0)
+          schwarz = std::make_unique<AdditiveSchwarzPreconditioner>(
+            H, vertex_patches(names), names.relevant);
         // Names without a free parameter (vertices on loaded edges, edges
         // with known tractions, the interior DoF of Q2, the vertices'
         // third component without the couple mode) get alpha = 0.
@@ -517,7 +579,14 @@ namespace coulomb_adapt
         const double g_norm = g.l2_norm();
         if (g_norm == 0)
           return n_parameters;
-        if (direct)
+        if (schwarz)
+          {
+            steps = minimise_by_truncated_cg(
+                      H, alpha, g, *schwarz, classical, tolerance, 10, 2000)
+                      .steps;
+            return n_parameters;
+          }
+        if (tolerance == 0)
           {
             solve_symmetric_positive_definite(H, alpha, g);
             return n_parameters;
@@ -582,6 +651,7 @@ namespace coulomb_adapt
                              const LocalProblemLoads             &loads,
                              const bool                           with_bubbles,
                              const bool                           relaxed,
+                             const double minimisation_tolerance,
                              EquilibratedStressErrors            &result,
                              TimerOutput                         *timer)
     {
@@ -643,7 +713,14 @@ namespace coulomb_adapt
       result.error_squared_before_optimisation =
         Utilities::MPI::sum(forms.classical_sum(), comm);
 
-      result.optimisation_parameters = minimise(H, g, alpha, relaxed);
+      result.optimisation_parameters =
+        minimise(H,
+                 g,
+                 alpha,
+                 names,
+                 relaxed ? minimisation_tolerance : -1.,
+                 result.error_squared_before_optimisation,
+                 result.optimisation_steps);
       TrilinosWrappers::MPI::Vector alpha_ghosted(names.owned,
                                                   names.relevant,
                                                   comm);

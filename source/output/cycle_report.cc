@@ -303,6 +303,10 @@ namespace coulomb_adapt
                   "kept: the relaxed modes need 'CRE relaxed "
                   "equilibration' and displacement data that the FE space "
                   "interpolates exactly")
+            << (e.optimisation_steps > 0 ?
+                  "; " + std::to_string(e.optimisation_steps) +
+                    " truncated CG steps" :
+                  std::string())
             << "); with the classical tractions epsilon would be " << std::fixed
             << std::setprecision(3) << 100 * e.epsilon_before_optimisation
             << " %" << std::defaultfloat << std::endl;
@@ -345,6 +349,7 @@ namespace coulomb_adapt
         {"node_system_defect", e.node_system_defect},
         {"local_problem_defect", e.local_problem_defect},
         {"optimisation_parameters", e.optimisation_parameters},
+        {"optimisation_cg_steps", e.optimisation_steps},
         {"relaxed_equilibration",
          {e.relaxed_equilibration[0], e.relaxed_equilibration[1]}},
         {"epsilon_classical_tractions", e.epsilon_before_optimisation}};

@@ -111,6 +111,10 @@ namespace coulomb_adapt
        * estimate (else: closest to the averaged traction). */
       bool cre_traction_optimisation;
       bool cre_relaxed_equilibration;
+      /** With the relaxed equilibration: 0 minimises the estimate exactly
+       * (sparse direct solve); > 0 stops the truncated CG when the
+       * estimate's last steps gain less than this fraction of it. */
+      double cre_minimisation_tolerance;
       /** Compare with the exact error: the scene's exact solution if it
        * has one, else a reference solution on a finer mesh. */
       bool compute_exact_error;

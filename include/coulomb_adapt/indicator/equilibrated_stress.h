@@ -52,8 +52,10 @@ namespace coulomb_adapt
      * parameters are optimised; equal to the sum of error_squared when
      * they are not). */
     double error_squared_before_optimisation = 0;
-    /** The number of free parameters optimised (one direct solve). */
+    /** The number of free parameters optimised, and the truncated CG's
+     * steps (0: solved directly). */
     types::global_dof_index optimisation_parameters = 0;
+    unsigned int            optimisation_steps      = 0;
     /** Whether the optimisation also moved the relaxed modes (see
      * equilibrated_stress_errors()). */
     bool relaxed = false;
@@ -84,7 +86,9 @@ namespace coulomb_adapt
    *    the bubbles) the optimisation also moves the edge tractions that
    *    keep every cell in equilibrium without the prolongation conditions,
    *    where the body's displacement data are interpolated exactly
-   *    (BodyDescription::displacement_data_interpolated_exactly).
+   *    (BodyDescription::displacement_data_interpolated_exactly); that
+   *    system is minimised to @p minimisation_tolerance (0: exactly, see
+   *    'CRE minimisation tolerance').
    * 2. F_G: the polynomial of degree p on each edge with these moments.
    * 3. On each cell, the Neumann problem with body force f and tractions
    *    eta F_G (the prescribed data on loaded and contact edges) in the
@@ -101,9 +105,10 @@ namespace coulomb_adapt
                              const TrilinosWrappers::MPI::Vector &u_kinematic,
                              const ContactTractionData           &contact,
                              const unsigned int degree_increase,
-                             const bool         optimise_tractions  = true,
-                             const bool         relax_equilibration = true,
-                             TimerOutput       *timer               = nullptr);
+                             const bool         optimise_tractions,
+                             const bool         relax_equilibration,
+                             const double       minimisation_tolerance,
+                             TimerOutput       *timer = nullptr);
 } // namespace coulomb_adapt
 
 #endif

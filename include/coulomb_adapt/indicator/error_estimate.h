@@ -49,6 +49,9 @@ namespace coulomb_adapt
      * the CG steps of that optimisation (0: not optimised). */
     double                  epsilon_before_optimisation = 0;
     types::global_dof_index optimisation_parameters     = 0;
+    /** cre with the relaxed equilibration: the truncated CG's steps (the
+     * larger of the two bodies'; 0: solved directly or not optimised). */
+    unsigned int optimisation_steps = 0;
     /** cre, per body: whether the relaxed equilibration modes were used
      * (equilibrated_stress_errors()). */
     std::array<bool, 2> relaxed_equilibration = {{false, false}};
@@ -135,6 +138,7 @@ namespace coulomb_adapt
                      const unsigned int              degree_increase,
                      const bool                      optimise_tractions,
                      const bool                      relax_equilibration,
+                     const double                    minimisation_tolerance,
                      const parameters::LinearSolver &solver_parameters,
                      const ErrorEstimateOptions     &options = {});
 

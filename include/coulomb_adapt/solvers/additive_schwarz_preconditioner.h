@@ -1,0 +1,71 @@
+#ifndef coulomb_adapt_solvers_additive_schwarz_preconditioner_h
+#define coulomb_adapt_solvers_additive_schwarz_preconditioner_h
+
+#include <deal.II/base/index_set.h>
+
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <vector>
+
+namespace coulomb_adapt
+{
+  using namespace dealii;
+
+  /**
+   * One-level additive Schwarz preconditioner with exact dense solves on
+   * overlapping patches of unknowns:
+   *   P^-1 r = sum_patches R_p^T A_pp^-1 R_p r,
+   * A_pp the rows and columns of A named by the patch (taken from A
+   * itself, also the rows another rank owns). The patches are given as
+   * global indices, each by one rank (e.g. the unknowns of the cells
+   * around a vertex that rank owns); every unknown with a nonzero
+   * diagonal must be in some patch. Unknowns whose diagonal is zero are
+   * dropped from the patches and get zero.
+   *
+   * Why not Trilinos' Ifpack or ML: their blocks and overlap follow the
+   * parallel partition, so the preconditioned iterates, and anything
+   * computed from a truncated iteration, would change with the number of
+   * ranks; here the patches follow the mesh, and only the summation order
+   * of the overlapping corrections does.
+   */
+  class AdditiveSchwarzPreconditioner
+  {
+  public:
+    /**
+     * @p A: the matrix (owned rows); @p relevant: every index of the
+     * patches given on this rank (a superset of A's owned rows there).
+     */
+    AdditiveSchwarzPreconditioner(
+      const TrilinosWrappers::SparseMatrix                    &A,
+      const std::vector<std::vector<types::global_dof_index>> &patches,
+      const IndexSet                                          &relevant);
+
+    void
+    vmult(TrilinosWrappers::MPI::Vector       &dst,
+          const TrilinosWrappers::MPI::Vector &src) const;
+
+    /**
+     * The number of patches and their mean size, summed over the ranks.
+     */
+    std::size_t
+    n_patches() const;
+
+    double
+    mean_patch_size() const;
+
+  private:
+    IndexSet                             owned, relevant;
+    MPI_Comm                             communicator;
+    std::vector<types::global_dof_index> relevant_list;
+    // Per patch: its (nonzero-diagonal) indices as positions within
+    // relevant, and A_pp's Cholesky factorisation.
+    std::vector<std::vector<unsigned int>> patch_positions;
+    std::vector<LAPACKFullMatrix<double>>  factors;
+    std::size_t                            n_global_patches = 0;
+    double                                 mean_size        = 0;
+  };
+} // namespace coulomb_adapt
+
+#endif
