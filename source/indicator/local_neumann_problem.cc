@@ -5,16 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-// The kernels of a cell's quadratic form (whiten_many(), gram_lower())
-// are loops of independent multiply-adds along rows of unknown length,
-// which GCC vectorises at -O3 but not at the project's -O2 (its "very
-// cheap" cost model refuses loops that need a remainder).
-#if defined(__GNUC__) && !defined(__clang__)
-#  define COULOMB_ADAPT_VECTORISE __attribute__((optimize("O3")))
-#else
-#  define COULOMB_ADAPT_VECTORISE
-#endif
-
 namespace coulomb_adapt
 {
   LocalNeumannProblem::LocalNeumannProblem(const ElasticBody &body,
@@ -334,7 +324,7 @@ namespace coulomb_adapt
 
 
 
-  COULOMB_ADAPT_VECTORISE void
+  void
   LocalNeumannProblem::whiten_many(double            *loads,
                                    const unsigned int n_loads,
                                    const unsigned int stride) const
@@ -370,7 +360,7 @@ namespace coulomb_adapt
 
 
 
-  COULOMB_ADAPT_VECTORISE void
+  void
   LocalNeumannProblem::gram_lower(const double      *columns,
                                   const unsigned int n_columns,
                                   const unsigned int n_rows,
