@@ -460,7 +460,8 @@ namespace coulomb_adapt
     const unsigned int                   degree_increase,
     const bool                           optimise_tractions,
     const bool                           relax_equilibration,
-    const double                         minimisation_tolerance)
+    const double                         minimisation_tolerance,
+    TimerOutput                         *timer)
   {
     // Ghosted copies: the node systems read the ghost cells too (the
     // corrected solutions come without ghost entries).
@@ -523,7 +524,8 @@ namespace coulomb_adapt
                                degree_increase >= 3,
                                result.relaxed,
                                minimisation_tolerance,
-                               result);
+                               result,
+                               timer);
     else
       classical_errors(body, cells, local, loads, u_kinematic, result);
 
