@@ -7,6 +7,7 @@
 #include <coulomb_adapt/contact/contact_linear_solver_choice.h>
 #include <coulomb_adapt/contact/contact_solver.h>
 #include <coulomb_adapt/contact/eliminated_contact_system.h>
+#include <coulomb_adapt/contact/first_step_rule.h>
 #include <coulomb_adapt/contact/newton_diagnostics.h>
 #include <coulomb_adapt/contact/row_replacing_contact_system.h>
 #include <coulomb_adapt/contact/set_change_control.h>
@@ -17,76 +18,6 @@
 
 namespace coulomb_adapt
 {
-  namespace
-  {
-    // Started from the initial gap, the first Newton step's solve holds
-    // the bodies at their closest nodes only and pushes a zone much wider
-    // than the contact zone into penetration (hertz: 1.7-2 times its
-    // nodes). Closed in full, that zone is opened again only at its
-    // edges, where the pressure comes out negative: one node per side and
-    // step (hertz Q1 at 3,500 DoFs: 7 steps, 35 -> 17 active nodes).
-    // Closing only the newly penetrating nodes within this fraction of the
-    // deepest penetration under-estimates the zone instead, and the next
-    // solve's penetration closes the rest in one step (4 steps there;
-    // benchmarks/contact/README.md, "Newton steps on every scene").
-    constexpr double first_step_penetration_fraction = 0.95;
-
-    // The nodes that the first step's rule closed (open before, @p before)
-    // but that penetrate less deeply than the fraction of the deepest
-    // start open again; @p update is corrected. Returns their number.
-    unsigned int
-    open_shallow_penetration(const std::vector<ContactStatus> &before,
-                             std::vector<ContactNodeState>    &states,
-                             SetChangeControl::SetUpdate      &update)
-    {
-      const auto newly_closed = [&](const unsigned int j) {
-        return before[j] == ContactStatus::open &&
-               states[j].status != ContactStatus::open;
-      };
-      double deepest = 0;
-      for (unsigned int j = 0; j < states.size(); ++j)
-        if (newly_closed(j))
-          deepest = std::min(deepest, states[j].gap);
-      unsigned int n_opened = 0;
-      for (unsigned int j = 0; j < states.size(); ++j)
-        if (newly_closed(j) &&
-            states[j].gap > first_step_penetration_fraction * deepest)
-          {
-            states[j].status = ContactStatus::open;
-            ++n_opened;
-          }
-      std::vector<unsigned int> changed;
-      for (const unsigned int j : update.changed)
-        if (states[j].status != before[j])
-          changed.push_back(j);
-      update.changed = changed;
-      update.n_moved = changed.size();
-      return n_opened;
-    }
-
-    // open_shallow_penetration(), unless that leaves body 1 free to turn
-    // where the rule's sets hold it.
-    unsigned int
-    close_deepest_penetration_only(const std::vector<ContactStatus> &before,
-                                   const SlaveSupport               &support,
-                                   std::vector<ContactNodeState>    &states,
-                                   SetChangeControl::SetUpdate      &update)
-    {
-      auto               limited        = states;
-      auto               limited_update = update;
-      const unsigned int n =
-        open_shallow_penetration(before, limited, limited_update);
-      if (n == 0 ||
-          (support.rotation_free(limited) && !support.rotation_free(states)))
-        return 0;
-      states = std::move(limited);
-      update = std::move(limited_update);
-      return n;
-    }
-  } // namespace
-
-
-
   ContactSolver::ContactSolver(
     ElasticBody                    &slave,
     ElasticBody                    &master,
