@@ -21,9 +21,7 @@ namespace coulomb_adapt
                           "vtu",
                           Patterns::Selection(option_pattern<OutputFormat>()),
                           "File format of the per-cycle fields. vtu: one "
-                          ".vtu per rank and cycle (one per thread on a rank "
-                          "with 32,768 cells or more, written concurrently), "
-                          "a .pvtu per cycle and a "
+                          ".vtu per rank and cycle, a .pvtu per cycle and a "
                           ".pvd per body indexing the cycles. hdf5: one .h5 "
                           "per body and cycle, written by all ranks "
                           "together (parallel HDF5), and a .xdmf per body "

@@ -1,5 +1,4 @@
 #include <deal.II/base/data_out_base.h>
-#include <deal.II/base/multithread_info.h>
 
 #include <deal.II/numerics/data_out.h>
 
@@ -102,7 +101,7 @@ namespace coulomb_adapt
         scaled_recovered_stress(*error_fields.recovered, scales.stress) :
         std::array<RecoveredStress::VectorType, 3>();
 
-    PieceableDataOut data_out;
+    DataOut<2> data_out;
     data_out.attach_dof_handler(body.dof_handler());
     const DisplacementStressPostprocessor fields(
       body.material(),
@@ -148,24 +147,18 @@ namespace coulomb_adapt
   // zlib's fastest level instead of deal.II's default, the best
   // compression: on these fields the files are hardly larger, and writing
   // them no longer dominates an adaptive run (benchmarks/adaptive_run).
-  // Large meshes are written in pieces, one per thread (vtu_pieces.h).
+  // No date in the header: two identical runs write identical files.
   void
-  BodyOutput::write_vtu_cycle(PieceableDataOut  &data_out,
+  BodyOutput::write_vtu_cycle(DataOut<2>        &data_out,
                               const MPI_Comm     comm,
                               const unsigned int cycle)
   {
     DataOutBase::VtkFlags vtk_flags;
-    vtk_flags.compression_level = DataOutBase::VtkFlags::best_speed;
-    // The date in each file's header comes from std::localtime, which is
-    // not safe to call from several threads at once (and without it the
-    // .vtu files of two identical runs are identical).
+    vtk_flags.compression_level   = DataOutBase::VtkFlags::best_speed;
     vtk_flags.print_date_and_time = false;
-    std::vector<PatchPiece> pieces = data_out.take_pieces(
-      n_vtu_pieces(data_out.get_patches().size(), MultithreadInfo::n_threads()));
-    for (PatchPiece &piece : pieces)
-      piece.set_flags(vtk_flags);
-    const std::string pvtu = write_vtu_pieces_with_pvtu_record(
-      comm, pieces, directory, base_name, cycle);
+    data_out.set_flags(vtk_flags);
+    const std::string pvtu =
+      write_vtu_with_pvtu_record(comm, data_out, directory, base_name, cycle);
     pvd_records.emplace_back(cycle, pvtu);
     write_file(comm,
                directory + "/" + base_name + ".pvd",

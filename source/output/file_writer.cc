@@ -1,6 +1,5 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
-#include <deal.II/base/thread_management.h>
 #include <deal.II/base/utilities.h>
 
 #include <deal.II/grid/reference_cell.h>
@@ -130,69 +129,43 @@ namespace coulomb_adapt
 
 
   std::string
-  write_vtu_pieces_with_pvtu_record(const MPI_Comm                 comm,
-                                    const std::vector<PatchPiece> &pieces,
-                                    const std::string             &directory,
-                                    const std::string             &base_name,
-                                    const unsigned int             cycle)
+  write_vtu_with_pvtu_record(const MPI_Comm                comm,
+                             const DataOutInterface<2, 2> &data_out,
+                             const std::string            &directory,
+                             const std::string            &base_name,
+                             const unsigned int            cycle)
   {
-    Assert(!pieces.empty(), ExcMessage("every rank writes a piece"));
     // deal.II's file names (DataOutInterface::write_vtu_with_pvtu_record
-    // with one file per rank), numbered on across the ranks' extra pieces.
-    const std::vector<unsigned int> n_pieces_of_rank =
-      Utilities::MPI::all_gather(comm,
-                                 static_cast<unsigned int>(pieces.size()));
-    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
-    unsigned int       n_pieces = 0, first_own = 0;
-    for (unsigned int r = 0; r < n_pieces_of_rank.size(); ++r)
-      {
-        if (r == rank)
-          first_own = n_pieces;
-        n_pieces += n_pieces_of_rank[r];
-      }
+    // with one file per rank), so that a run looks the same as before.
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
     const unsigned int n_digits =
-      Utilities::needed_digits(n_pieces > 1 ? n_pieces - 1 : 0);
+      Utilities::needed_digits(n_ranks > 1 ? n_ranks - 1 : 0);
     const std::string stem =
       base_name + "_" + Utilities::int_to_string(cycle, 3);
-    std::vector<std::string> piece_names;
-    for (unsigned int i = 0; i < n_pieces; ++i)
-      piece_names.push_back(stem + "." + Utilities::int_to_string(i, n_digits) +
-                            ".vtu");
+    std::vector<std::string> pieces;
+    for (unsigned int r = 0; r < n_ranks; ++r)
+      pieces.push_back(stem + "." + Utilities::int_to_string(r, n_digits) +
+                       ".vtu");
 
-    // Every piece is written to a temporary file, concurrently; only when
-    // all pieces of all ranks are complete are they renamed, and only then
-    // the record that lists them is written. Every rank learns of any
-    // rank's failure.
-    std::vector<std::string> own_paths;
-    for (unsigned int k = 0; k < pieces.size(); ++k)
-      own_paths.push_back(directory + "/" + piece_names[first_own + k]);
-    std::vector<Threads::Task<std::string>> writes;
-    for (unsigned int k = 0; k < pieces.size(); ++k)
-      writes.push_back(Threads::new_task([&, k]() {
-        return write_temporary(own_paths[k], [&](std::ostream &out) {
-          pieces[k].write_vtu(out);
-        });
-      }));
-    std::string error;
-    for (Threads::Task<std::string> &write : writes)
-      if (const std::string &e = write.return_value(); error.empty())
-        error = e;
-    error = first_error(comm, error);
+    // Every rank writes its piece to a temporary file; only when all have
+    // succeeded are they renamed, and only then the record that lists them
+    // is written. Every rank learns of any rank's failure.
+    const std::string piece =
+      directory + "/" + pieces[Utilities::MPI::this_mpi_process(comm)];
+    std::string error =
+      first_error(comm, write_temporary(piece, [&](std::ostream &out) {
+                    data_out.write_vtu(out);
+                  }));
     if (!error.empty())
       {
-        for (const std::string &path : own_paths)
-          std::remove((path + ".tmp").c_str());
+        std::remove((piece + ".tmp").c_str());
         AssertThrow(false, ExcMessage(error));
       }
-    std::string rename_error;
-    for (const std::string &path : own_paths)
-      if (rename_error.empty())
-        rename_error = rename_temporary(path);
-    error = first_error(comm, rename_error);
+    error = first_error(comm, rename_temporary(piece));
     AssertThrow(error.empty(), ExcMessage(error));
 
     write_file(comm, directory + "/" + stem + ".pvtu", [&](std::ostream &out) {
-      pieces[0].write_pvtu_record(out, piece_names);
+      data_out.write_pvtu_record(out, pieces);
     });
     return stem + ".pvtu";
   }

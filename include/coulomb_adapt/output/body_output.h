@@ -11,7 +11,6 @@
 #include <coulomb_adapt/core/options.h>
 #include <coulomb_adapt/core/units.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
-#include <coulomb_adapt/output/vtu_pieces.h>
 
 #include <string>
 #include <utility>
@@ -62,7 +61,7 @@ namespace coulomb_adapt
     /** The cycle's `.pvtu` (+ one `.vtu` per rank) and the index
      * `<base>.pvd`. */
     void
-    write_vtu_cycle(PieceableDataOut  &data_out,
+    write_vtu_cycle(DataOut<2>        &data_out,
                     const MPI_Comm     comm,
                     const unsigned int cycle);
 

@@ -11,10 +11,8 @@ namespace coulomb_adapt
    * The fields ParaView shows from a body's solution, computed at the
    * output points from one evaluation of it: the displacement (a vector)
    * and, from its gradient, sigma_xx, sigma_yy, sigma_xy, sigma_zz and the
-   * von Mises stress (MPa). One data set instead of two: DataOut
-   * evaluates every data set on every cell, and a second one for the
-   * displacement cost a third of build_patches (benchmarks/adaptive_run).
-   * A scaled problem's physical fields (core/units.h) are the displacement
+   * von Mises stress (MPa), one data set for both. A scaled problem's
+   * physical fields (core/units.h) are the displacement
    * times @p displacement_scale and the stresses times @p stress_scale.
    */
   class DisplacementStressPostprocessor : public DataPostprocessor<2>

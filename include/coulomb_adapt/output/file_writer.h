@@ -5,8 +5,6 @@
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 
-#include <coulomb_adapt/output/vtu_pieces.h>
-
 #include <functional>
 #include <ostream>
 #include <string>
@@ -33,25 +31,20 @@ namespace coulomb_adapt
              const std::function<void(std::ostream &)> &write);
 
   /**
-   * DataOutInterface::write_vtu_with_pvtu_record for @p pieces (this
-   * rank's; any number, also different on different ranks: vtu_pieces.h),
-   * made atomic, collective and concurrent. Each piece goes to
-   * `BASE_CCC.I.vtu`, I numbered across the ranks in rank order (with one
-   * piece per rank I is the rank: deal.II's names), written on the
-   * threads deal.II may use to NAME.tmp and renamed only when every piece
-   * of every rank is complete; then the record `BASE_CCC.pvtu` listing
-   * all, through write_file. A failure on any rank throws the same error,
-   * naming the file and the system's reason, on every rank. Returns the
-   * record's name (relative to @p directory, for a .pvd).
+   * DataOutInterface::write_vtu_with_pvtu_record with one piece per rank
+   * (`BASE_CCC.R.vtu`, and `BASE_CCC.pvtu` listing them), made atomic and
+   * collective: each piece is written to NAME.tmp and renamed only when
+   * every rank has written its own, then the record through write_file.
+   * A failure on any rank throws the same error, naming the file and the
+   * system's reason, on every rank. Returns the record's name (relative
+   * to @p directory, for a .pvd).
    */
   std::string
-  write_vtu_pieces_with_pvtu_record(const MPI_Comm                 comm,
-                                    const std::vector<PatchPiece> &pieces,
-                                    const std::string             &directory,
-                                    const std::string             &base_name,
-                                    const unsigned int             cycle);
-
-
+  write_vtu_with_pvtu_record(const MPI_Comm                        comm,
+                             const dealii::DataOutInterface<2, 2> &data_out,
+                             const std::string                    &directory,
+                             const std::string                    &base_name,
+                             const unsigned int                    cycle);
 
   /**
    * Write the HDF5 file @p path through @p write, which every rank of
