@@ -34,6 +34,7 @@ using namespace coulomb_adapt;
 namespace
 {
   using testing::ProgramRun;
+  using testing::read_text;
   using testing::Settings;
 
   Settings
@@ -65,14 +66,6 @@ namespace
     return names;
   }
 
-  std::string
-  read_text(const std::string &path)
-  {
-    std::ifstream     in(path);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
 
   unsigned int
   count(const std::string &text, const std::string &what)

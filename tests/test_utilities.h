@@ -12,7 +12,9 @@
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/core/parameters.h>
 
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,6 +58,16 @@ namespace coulomb_adapt
       Parameters parameters;
       parameters.parse_parameters(prm);
       return parameters;
+    }
+
+    /** A whole file as text (empty when it cannot be read). */
+    inline std::string
+    read_text(const std::string &path)
+    {
+      std::ifstream     in(path);
+      std::stringstream text;
+      text << in.rdbuf();
+      return text.str();
     }
 
     inline ConditionalOStream

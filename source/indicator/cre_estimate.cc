@@ -152,7 +152,8 @@ namespace coulomb_adapt
                                      degree_increase,
                                      optimise_tractions,
                                      relax_equilibration,
-                                     minimisation_tolerance);
+                                     minimisation_tolerance,
+                                     options.timer);
         before_squared += errors.error_squared_before_optimisation;
         normalisation_squared += errors.sum_norm_squared;
         volume_squared[b] = add_body_errors(*bodies[b], b, errors, estimate);

@@ -34,21 +34,35 @@ namespace coulomb_adapt
   namespace
   {
     // The element equilibration needs every face to be a whole face of
-    // both its cells.
+    // both its cells. Checked on the owned cells, whose neighbours are all
+    // owned or ghosts: a ghost cell's neighbour may be an artificial cell
+    // of a coarser level (parallel::fullydistributed keeps no more of the
+    // mesh than the ghost layer needs), which looked like a hanging node
+    // on 2 ranks. A hanging face has an owned cell on one side, so every
+    // one is found by some rank; the verdict is collective, so that no
+    // rank waits for one that has stopped.
     void
-    check_conforming(const ElasticBody                         &body,
-                     const DoFHandler<2>::active_cell_iterator &cell)
+    check_conforming(const ElasticBody &body)
     {
-      for (const unsigned int f : cell->face_indices())
-        AssertThrow(cell->at_boundary(f) || (!cell->face(f)->has_children() &&
-                                             !cell->neighbor_is_coarser(f)),
-                    ExcMessage("Error indicator/Estimator = cre: the mesh of " +
-                               body.name() +
-                               " has hanging nodes. The element equilibration "
-                               "is written for conforming meshes: use "
-                               "Adaptation/Strategy = remesh or uniform "
-                               "(quadrilaterals without a scene's local "
-                               "refinement, or triangles)."));
+      bool conforming = true;
+      for (const auto &cell : body.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int f : cell->face_indices())
+            conforming = conforming &&
+                         (cell->at_boundary(f) ||
+                          (!cell->face(f)->has_children() &&
+                           !cell->neighbor_is_coarser(f)));
+      conforming = Utilities::MPI::min(static_cast<unsigned int>(conforming),
+                                       body.triangulation()
+                                         .get_communicator()) == 1;
+      AssertThrow(conforming,
+                  ExcMessage("Error indicator/Estimator = cre: the mesh of " +
+                             body.name() +
+                             " has hanging nodes. The element equilibration "
+                             "is written for conforming meshes: use "
+                             "Adaptation/Strategy = remesh or uniform "
+                             "(quadrilaterals without a scene's local "
+                             "refinement, or triangles)."));
     }
 
 
@@ -85,7 +99,6 @@ namespace coulomb_adapt
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned() || cell->is_ghost())
           {
-            check_conforming(body, cell);
             CellData data;
             data.cell  = cell;
             data.owned = cell->is_locally_owned();
@@ -447,7 +460,8 @@ namespace coulomb_adapt
     const unsigned int                   degree_increase,
     const bool                           optimise_tractions,
     const bool                           relax_equilibration,
-    const double                         minimisation_tolerance)
+    const double                         minimisation_tolerance,
+    TimerOutput                         *timer)
   {
     // Ghosted copies: the node systems read the ghost cells too (the
     // corrected solutions come without ghost entries).
@@ -459,6 +473,7 @@ namespace coulomb_adapt
     const unsigned int      p    = base.degree;
 
     // 1.-2. The local mesh, the known moments and the averaged ones.
+    check_conforming(body);
     std::map<CellId, unsigned int> slot_of;
     std::vector<CellData>          cells = collect_cells(body, u, slot_of);
     std::vector<FaceData>          faces = collect_faces(body, cells);
@@ -509,7 +524,8 @@ namespace coulomb_adapt
                                degree_increase >= 3,
                                result.relaxed,
                                minimisation_tolerance,
-                               result);
+                               result,
+                               timer);
     else
       classical_errors(body, cells, local, loads, u_kinematic, result);
 

@@ -77,7 +77,8 @@ namespace coulomb_adapt
 
 
   void
-  LocalNeumannProblem::evaluate(const Point<2> &x) const
+  LocalNeumannProblem::evaluate(const Point<2> &x,
+                                const bool      with_gradients) const
   {
     const double xi[2] = {(x[0] - centre[0]) / h, (x[1] - centre[1]) / h};
     // Powers xi_d^0 ... xi_d^degree, by products (no std::pow).
@@ -89,11 +90,14 @@ namespace coulomb_adapt
           power[d][e] = power[d][e - 1] * xi[d];
       }
     values.resize(exponents.size());
+    for (unsigned int m = 0; m < exponents.size(); ++m)
+      values[m] = power[0][exponents[m][0]] * power[1][exponents[m][1]];
+    if (!with_gradients)
+      return;
     gradients.resize(exponents.size());
     for (unsigned int m = 0; m < exponents.size(); ++m)
       {
         const auto &e = exponents[m];
-        values[m]     = power[0][e[0]] * power[1][e[1]];
         gradients[m][0] =
           e[0] == 0 ? 0. : e[0] * power[0][e[0] - 1] * power[1][e[1]] / h;
         gradients[m][1] =
@@ -228,7 +232,7 @@ namespace coulomb_adapt
   const std::vector<double> &
   LocalNeumannProblem::monomial_values(const Point<2> &x) const
   {
-    evaluate(x);
+    evaluate(x, false);
     return values;
   }
 
@@ -241,7 +245,7 @@ namespace coulomb_adapt
                                     const double               w,
                                     const std::array<bool, 2> &components) const
   {
-    evaluate(x);
+    evaluate(x, false);
     const unsigned int M = exponents.size();
     for (unsigned int c = 0; c < 2; ++c)
       if (components[c])
@@ -316,6 +320,79 @@ namespace coulomb_adapt
   {
     w.reinit(load.size(), true);
     factor.forward(w, load);
+  }
+
+
+
+  void
+  LocalNeumannProblem::whiten_many(double            *loads,
+                                   const unsigned int n_loads,
+                                   const unsigned int stride) const
+  {
+    // Row by row of L: x_i = (r_i - sum_k<i L_ik x_k) / L_ii, each step
+    // over all loads (L's rows are contiguous).
+    const unsigned int N = n_coefficients();
+    for (unsigned int i = 0; i < N; ++i)
+      {
+        const double *const      row_i = &factor(i, 0);
+        double *const __restrict x_i   = loads + i * stride;
+        // Two columns of L at a time: one pass over x_i per two products.
+        unsigned int k = 0;
+        for (; k + 1 < i; k += 2)
+          {
+            const double        l = row_i[k], m = row_i[k + 1];
+            const double *const x_k = loads + k * stride;
+            const double *const y_k = x_k + stride;
+            for (unsigned int r = 0; r < n_loads; ++r)
+              x_i[r] -= l * x_k[r] + m * y_k[r];
+          }
+        for (; k < i; ++k)
+          {
+            const double        l   = row_i[k];
+            const double *const x_k = loads + k * stride;
+            for (unsigned int r = 0; r < n_loads; ++r)
+              x_i[r] -= l * x_k[r];
+          }
+        for (unsigned int r = 0; r < n_loads; ++r)
+          x_i[r] /= row_i[i];
+      }
+  }
+
+
+
+  void
+  LocalNeumannProblem::gram_lower(const double      *columns,
+                                  const unsigned int n_columns,
+                                  const unsigned int n_rows,
+                                  double            *gram)
+  {
+    std::fill(gram, gram + n_columns * n_columns, 0.);
+    // Two rows of @p columns at a time: one pass over the Gram matrix per
+    // two products.
+    unsigned int a = 0;
+    for (; a + 1 < n_rows; a += 2)
+      {
+        const double *const x = columns + a * n_columns;
+        const double *const y = x + n_columns;
+        for (unsigned int i = 0; i < n_columns; ++i)
+          {
+            const double             x_i = x[i], y_i = y[i];
+            double *const __restrict row_i = gram + i * n_columns;
+            for (unsigned int j = 0; j <= i; ++j)
+              row_i[j] += x_i * x[j] + y_i * y[j];
+          }
+      }
+    for (; a < n_rows; ++a)
+      {
+        const double *const x = columns + a * n_columns;
+        for (unsigned int i = 0; i < n_columns; ++i)
+          {
+            const double             x_i   = x[i];
+            double *const __restrict row_i = gram + i * n_columns;
+            for (unsigned int j = 0; j <= i; ++j)
+              row_i[j] += x_i * x[j];
+          }
+      }
   }
 
 

@@ -4,7 +4,7 @@
 
 #include <coulomb_adapt/output/body_output.h>
 #include <coulomb_adapt/output/file_writer.h>
-#include <coulomb_adapt/output/stress_postprocessor.h>
+#include <coulomb_adapt/output/displacement_stress_postprocessor.h>
 
 #include <array>
 #include <string>
@@ -23,47 +23,18 @@ namespace coulomb_adapt
 
   namespace
   {
-    // The physical fields of a scaled problem, for HDF5's doubles: the
-    // displacement times D; the stresses times P, as those of the solution
-    // times P (with the scaled moduli); the smoothed stresses times P (the
-    // owned entries scaled, then the ghosts imported). With D = P one
-    // vector serves both.
-    struct ScaledFields
+    // The smoothed stresses of a scaled problem, for HDF5's doubles: times
+    // P (the owned entries scaled, then the ghosts imported).
+    std::array<RecoveredStress::VectorType, 3>
+    scaled_recovered_stress(const RecoveredStress &recovered,
+                            const double           stress_scale)
     {
-      TrilinosWrappers::MPI::Vector              solution;
-      TrilinosWrappers::MPI::Vector              stress_solution;
-      std::array<RecoveredStress::VectorType, 3> recovered;
-    };
-
-    TrilinosWrappers::MPI::Vector
-    scaled_solution(const ElasticBody &body, const double factor)
-    {
-      const MPI_Comm comm = body.triangulation().get_communicator();
-      TrilinosWrappers::MPI::Vector owned(body.locally_owned_dof_set(), comm);
-      owned = body.solution();
-      owned *= factor;
-      TrilinosWrappers::MPI::Vector scaled(body.locally_owned_dof_set(),
-                                           body.locally_relevant_dof_set(),
-                                           comm);
-      scaled = owned;
-      return scaled;
-    }
-
-    ScaledFields
-    scaled_fields(const ElasticBody     &body,
-                  const RecoveredStress *recovered,
-                  const units::Scales   &scales)
-    {
-      ScaledFields scaled;
-      scaled.solution = scaled_solution(body, scales.displacement);
-      if (scales.stress != scales.displacement)
-        scaled.stress_solution = scaled_solution(body, scales.stress);
-      if (recovered)
-        for (unsigned int c = 0; c < 3; ++c)
-          {
-            scaled.recovered[c] = recovered->component(c);
-            scaled.recovered[c] *= scales.stress;
-          }
+      std::array<RecoveredStress::VectorType, 3> scaled;
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          scaled[c] = recovered.component(c);
+          scaled[c] *= stress_scale;
+        }
       return scaled;
     }
 
@@ -125,29 +96,23 @@ namespace coulomb_adapt
     const Triangulation<2> &tria = body.triangulation();
     const bool scale = (scales.stress != 1 || scales.displacement != 1) &&
                        format == OutputFormat::hdf5;
-    const ScaledFields scaled =
-      scale ? scaled_fields(body, error_fields.recovered, scales) :
-              ScaledFields();
-    const TrilinosWrappers::MPI::Vector &solution =
-      scale ? scaled.solution : body.solution();
-    const TrilinosWrappers::MPI::Vector &stress_solution =
-      scale && scales.stress != scales.displacement ? scaled.stress_solution :
-                                                      solution;
+    const std::array<RecoveredStress::VectorType, 3> scaled_recovered =
+      scale && error_fields.recovered ?
+        scaled_recovered_stress(*error_fields.recovered, scales.stress) :
+        std::array<RecoveredStress::VectorType, 3>();
 
     DataOut<2> data_out;
     data_out.attach_dof_handler(body.dof_handler());
-    data_out.add_data_vector(
-      solution,
-      std::vector<std::string>(2, "displacement"),
-      DataOut<2>::type_dof_data,
-      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-        2, DataComponentInterpretation::component_is_part_of_vector));
-    const StressPostprocessor stresses(body.material());
-    data_out.add_data_vector(stress_solution, stresses);
+    const DisplacementStressPostprocessor fields(
+      body.material(),
+      scale ? scales.displacement : 1.,
+      scale ? scales.stress : 1.);
+    data_out.add_data_vector(body.solution(), fields);
     const auto cell_fields = material_and_subdomain(tria);
     add_error_fields(data_out,
                      error_fields,
-                     scale ? &scaled.recovered : nullptr);
+                     scale && error_fields.recovered ? &scaled_recovered :
+                                                       nullptr);
     data_out.add_data_vector(cell_fields[0], "material_id");
     data_out.add_data_vector(cell_fields[1], "subdomain");
 
@@ -182,13 +147,15 @@ namespace coulomb_adapt
   // zlib's fastest level instead of deal.II's default, the best
   // compression: on these fields the files are hardly larger, and writing
   // them no longer dominates an adaptive run (benchmarks/adaptive_run).
+  // No date in the header: two identical runs write identical files.
   void
   BodyOutput::write_vtu_cycle(DataOut<2>        &data_out,
                               const MPI_Comm     comm,
                               const unsigned int cycle)
   {
     DataOutBase::VtkFlags vtk_flags;
-    vtk_flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    vtk_flags.compression_level   = DataOutBase::VtkFlags::best_speed;
+    vtk_flags.print_date_and_time = false;
     data_out.set_flags(vtk_flags);
     const std::string pvtu =
       write_vtu_with_pvtu_record(comm, data_out, directory, base_name, cycle);

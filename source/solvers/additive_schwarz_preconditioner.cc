@@ -1,36 +1,43 @@
 #include <deal.II/base/mpi.h>
 
-#include <deal.II/lac/trilinos_index_access.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 
 #include <coulomb_adapt/solvers/additive_schwarz_preconditioner.h>
 
 #include <Epetra_CrsMatrix.h>
-#include <Epetra_Import.h>
 #include <Epetra_Map.h>
 
-#include <memory>
+#include <algorithm>
 
 namespace coulomb_adapt
 {
   namespace
   {
-    // A's rows for every index of @p relevant: A itself on one rank, else
-    // the owned rows imported onto an overlapping row map (what Ifpack's
-    // overlapping Schwarz does internally).
-    std::unique_ptr<Epetra_CrsMatrix>
+    // A's rows for every index of @p relevant: A itself when every rank's
+    // relevant rows are its own (one rank), else the owned rows imported
+    // onto an overlapping row map (what Ifpack's overlapping Schwarz does
+    // internally). @p imported keeps the import alive.
+    const Epetra_CrsMatrix &
     overlapping_rows(const TrilinosWrappers::SparseMatrix &A,
-                     const IndexSet                       &relevant)
+                     const IndexSet                       &relevant,
+                     std::unique_ptr<Epetra_CrsMatrix>    &imported)
     {
       const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
-      const Epetra_Map        map =
-        relevant.make_trilinos_map(A.get_mpi_communicator(), true);
-      Epetra_Import importer(map, matrix.RowMap());
-      auto          rows = std::make_unique<Epetra_CrsMatrix>(Copy, map, 0);
-      AssertThrow(rows->Import(matrix, importer, Insert) == 0,
+      const MPI_Comm          comm   = A.get_mpi_communicator();
+      const bool              own_rows_only =
+        Utilities::MPI::min(static_cast<unsigned int>(
+                              relevant == A.locally_owned_range_indices()),
+                            comm) == 1;
+      if (own_rows_only)
+        return matrix;
+      const Epetra_Map map = relevant.make_trilinos_map(comm, true);
+      Epetra_Import    importer(map, matrix.RowMap());
+      imported = std::make_unique<Epetra_CrsMatrix>(Copy, map, 0);
+      AssertThrow(imported->Import(matrix, importer, Insert) == 0,
                   ExcMessage("additive Schwarz: importing the patches' rows "
                              "failed"));
-      rows->FillComplete(matrix.DomainMap(), matrix.RangeMap());
-      return rows;
+      imported->FillComplete(matrix.DomainMap(), matrix.RangeMap());
+      return *imported;
     }
 
 
@@ -72,6 +79,32 @@ namespace coulomb_adapt
 
 
 
+    // z += A_pp^-1 r on one patch: the gathered r, the product by the
+    // columns of A_pp^-1 (independent multiply-adds along a contiguous
+    // column, which vectorise, instead of a chain of dot products per
+    // row), scattered back.
+    void
+    add_patch_correction(const unsigned int *const positions,
+                         const std::size_t         m,
+                         const double *const       inverse,
+                         const double *const       r,
+                         double *const             z,
+                         double *const __restrict  gathered,
+                         double *const __restrict  product)
+    {
+      for (std::size_t a = 0; a < m; ++a)
+        gathered[a] = r[positions[a]];
+      std::fill(product, product + m, 0.);
+      for (std::size_t b = 0; b < m; ++b)
+        {
+          const double        r_b    = gathered[b];
+          const double *const column = inverse + b * m;
+          for (std::size_t a = 0; a < m; ++a)
+            product[a] += column[a] * r_b;
+        }
+      for (std::size_t a = 0; a < m; ++a)
+        z[positions[a]] += product[a];
+    }
   } // namespace
 
 
@@ -79,87 +112,101 @@ namespace coulomb_adapt
   AdditiveSchwarzPreconditioner::AdditiveSchwarzPreconditioner(
     const TrilinosWrappers::SparseMatrix                    &A,
     const std::vector<std::vector<types::global_dof_index>> &patches,
-    const IndexSet                                          &relevant_indices)
-    : owned(A.locally_owned_range_indices())
-    , relevant(relevant_indices)
-    , communicator(A.get_mpi_communicator())
+    const IndexSet                                          &relevant)
   {
-    relevant.fill_index_vector(relevant_list);
-    const auto       rows = overlapping_rows(A, relevant);
-    std::vector<int> column_position(rows->ColMap().NumMyElements(), -1);
-    std::size_t      total_size = 0;
-    // Reserved: growing the vector would copy the factorised matrices,
-    // and a copy forgets its factorisation.
-    factors.reserve(patches.size());
+    const MPI_Comm comm = A.get_mpi_communicator();
+    relevant_map =
+      std::make_unique<Epetra_Map>(relevant.make_trilinos_map(comm, true));
+    owned_to_relevant =
+      std::make_unique<Epetra_Import>(*relevant_map,
+                                      A.trilinos_matrix().RangeMap());
+    r_relevant = std::make_unique<Epetra_Vector>(*relevant_map);
+    z_relevant = std::make_unique<Epetra_Vector>(*relevant_map);
+
+    std::unique_ptr<Epetra_CrsMatrix> imported;
+    const Epetra_CrsMatrix &rows = overlapping_rows(A, relevant, imported);
+    std::vector<int>        column_position(rows.ColMap().NumMyElements(), -1);
+    starts.push_back(0);
+    inverse_starts.push_back(0);
+    LAPACKFullMatrix<double> block;
     for (const auto &patch : patches)
       {
         // Drop the indices without an unknown (zero diagonal).
         const std::vector<double> full =
-          dense_block(*rows, patch, column_position);
-        std::vector<types::global_dof_index> kept;
-        std::vector<std::size_t>             kept_at;
+          dense_block(rows, patch, column_position);
+        std::vector<std::size_t> kept_at;
         for (std::size_t a = 0; a < patch.size(); ++a)
           if (full[a * patch.size() + a] != 0)
-            {
-              kept.push_back(patch[a]);
-              kept_at.push_back(a);
-            }
-        if (kept.empty())
+            kept_at.push_back(a);
+        if (kept_at.empty())
           continue;
-        const std::size_t m = kept.size();
-        // Factorised in place: a copy of a LAPACKFullMatrix forgets its
-        // factorisation (its state starts again as a plain matrix).
-        LAPACKFullMatrix<double> &block = factors.emplace_back(m, m);
+        const std::size_t m = kept_at.size();
+        block.reinit(m, m);
         block.set_property(LAPACKSupport::symmetric);
         for (std::size_t a = 0; a < m; ++a)
           for (std::size_t b = 0; b < m; ++b)
             block(a, b) = full[kept_at[a] * patch.size() + kept_at[b]];
-        block.compute_cholesky_factorization();
-        std::vector<unsigned int> positions(m);
-        for (std::size_t a = 0; a < m; ++a)
-          positions[a] = relevant.index_within_set(kept[a]);
-        patch_positions.push_back(std::move(positions));
-        total_size += m;
+        // LAPACK's Cholesky factor and inverse (potrf, potri; deal.II
+        // copies the lower triangle up, so it is exactly symmetric and its
+        // rows are its columns).
+        block.invert();
+        for (std::size_t b = 0; b < m; ++b)
+          for (std::size_t a = 0; a < m; ++a)
+            inverses.push_back(block(a, b));
+        for (const std::size_t a : kept_at)
+          positions.push_back(relevant.index_within_set(patch[a]));
+        starts.push_back(positions.size());
+        inverse_starts.push_back(inverses.size());
       }
-    n_global_patches =
-      Utilities::MPI::sum(patch_positions.size(), communicator);
+    const std::size_t n_local_patches = starts.size() - 1;
+    n_global_patches = Utilities::MPI::sum(n_local_patches, comm);
     mean_size =
       n_global_patches == 0 ?
         0. :
-        Utilities::MPI::sum(static_cast<double>(total_size), communicator) /
+        Utilities::MPI::sum(static_cast<double>(positions.size()), comm) /
           n_global_patches;
   }
 
 
 
-  // The patches work on one array over the relevant indices: one
-  // gather and one scatter per application instead of a map lookup per
-  // patch entry.
+  // The patches work on the relevant indices' values, positions being
+  // their local indices there (make_trilinos_map keeps the index set's
+  // order): one import and one export per application, with the
+  // communication pattern built once.
   void
   AdditiveSchwarzPreconditioner::vmult(
     TrilinosWrappers::MPI::Vector       &dst,
     const TrilinosWrappers::MPI::Vector &src) const
   {
-    TrilinosWrappers::MPI::Vector src_ghosted(owned, relevant, communicator);
-    src_ghosted = src;
-    std::vector<double> r(relevant_list.size()), z(relevant_list.size(), 0.);
-    src_ghosted.extract_subvector_to(relevant_list, r);
-    Vector<double> x;
-    for (std::size_t p = 0; p < patch_positions.size(); ++p)
+    AssertThrow(r_relevant->Import(src.trilinos_vector(),
+                                   *owned_to_relevant,
+                                   Insert) == 0,
+                ExcMessage("additive Schwarz: importing the residual failed"));
+    z_relevant->PutScalar(0.);
+    const double *const r = r_relevant->Values();
+    double *const       z = z_relevant->Values();
+    std::vector<double> gathered, product;
+    for (std::size_t p = 0; p + 1 < starts.size(); ++p)
       {
-        const auto &positions = patch_positions[p];
-        x.reinit(positions.size(), true);
-        for (std::size_t a = 0; a < positions.size(); ++a)
-          x[a] = r[positions[a]];
-        factors[p].solve(x);
-        for (std::size_t a = 0; a < positions.size(); ++a)
-          z[positions[a]] += x[a];
+        const std::size_t m = starts[p + 1] - starts[p];
+        gathered.resize(m);
+        product.resize(m);
+        add_patch_correction(&positions[starts[p]],
+                             m,
+                             &inverses[inverse_starts[p]],
+                             r,
+                             z,
+                             gathered.data(),
+                             product.data());
       }
-    TrilinosWrappers::MPI::Vector sum;
-    sum.reinit(owned, relevant, communicator, true);
-    sum.add(relevant_list, z);
-    sum.compress(VectorOperation::add);
-    dst = sum;
+    // Each owned index is one relevant index of its own rank: the export
+    // copies that one and adds the other ranks' ones.
+    dst = 0;
+    AssertThrow(dst.trilinos_vector().Export(*z_relevant,
+                                             *owned_to_relevant,
+                                             Add) == 0,
+                ExcMessage("additive Schwarz: exporting the corrections "
+                           "failed"));
   }
 
 

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/base/timer.h>
 
 #include <deal.II/grid/cell_id.h>
 
@@ -93,6 +94,10 @@ namespace coulomb_adapt
    *    eta F_G (the prescribed data on loaded and contact edges) in the
    *    complete polynomials of degree p + @p degree_increase, rigid motions
    *    removed; sigma^ = K eps(u^).
+   *
+   * With @p timer, the cells' quadratic forms (the local problems and the
+   * optimisation's products) are timed in its section
+   * "error indicator: cell forms".
    */
   EquilibratedStressErrors
   equilibrated_stress_errors(const ElasticBody                   &body,
@@ -102,7 +107,8 @@ namespace coulomb_adapt
                              const unsigned int degree_increase,
                              const bool         optimise_tractions,
                              const bool         relax_equilibration,
-                             const double       minimisation_tolerance);
+                             const double       minimisation_tolerance,
+                             TimerOutput       *timer = nullptr);
 } // namespace coulomb_adapt
 
 #endif

@@ -99,6 +99,28 @@ namespace coulomb_adapt
     void
     whiten(const Vector<double> &load, Vector<double> &w) const;
 
+    /** whiten() for @p n_loads loads at once, in place: @p loads is a
+     * row-major matrix of n_coefficients() rows and @p stride >= n_loads
+     * columns whose first n_loads columns are the loads (row a: entry a of
+     * every load). Each step of the forward substitution is then one loop
+     * over the loads: independent multiply-adds instead of the chain of
+     * one dot product per entry of whiten() (the same to round-off). */
+    void
+    whiten_many(double            *loads,
+                const unsigned int n_loads,
+                const unsigned int stride) const;
+
+    /** The lower triangle of the Gram matrix of the columns of the
+     * row-major @p n_rows x @p n_columns matrix @p columns (whitened loads:
+     * their energy products), into the row-major @p gram (n_columns^2;
+     * entries above the diagonal are zero), summed row by row of
+     * @p columns. */
+    static void
+    gram_lower(const double      *columns,
+               const unsigned int n_columns,
+               const unsigned int n_rows,
+               double            *gram);
+
     /** L^-1 of the work of the FE stress on each basis function: for a
      * response u with whitened load w, int sigma_c : eps(u) = w . this. */
     const Vector<double> &
@@ -119,9 +141,10 @@ namespace coulomb_adapt
     errors(const Vector<double> &coefficients) const;
 
   private:
-    // Values and gradients of the scalar monomials at x.
+    // Values (and with @p with_gradients their gradients) of the scalar
+    // monomials at x. The loads need the values only.
     void
-    evaluate(const Point<2> &x) const;
+    evaluate(const Point<2> &x, const bool with_gradients = true) const;
 
     // K from the cell's monomial moments (see reinit()).
     void

@@ -22,7 +22,9 @@ namespace coulomb_adapt
      * conditions when @p relaxed), cell by cell on the threads deal.II may use (with a
      * copy of @p local each), and the errors at the minimum in @p result
      * (error_squared, sum_norm_squared and the classical estimate). The
-     * faces keep the classical moments. */
+     * faces keep the classical moments. With @p timer, the cells' quadratic
+     * forms and their assembly are timed in "error indicator: cell
+     * forms". */
     void
     optimise_free_parameters(const ElasticBody                   &body,
                              const std::vector<CellData>         &cells,
@@ -32,8 +34,9 @@ namespace coulomb_adapt
                              const LocalProblemLoads             &loads,
                              const bool                           with_bubbles,
                              const bool                           relaxed,
-                             const double              minimisation_tolerance,
-                             EquilibratedStressErrors &result);
+                             const double minimisation_tolerance,
+                             EquilibratedStressErrors            &result,
+                             TimerOutput *timer = nullptr);
   } // namespace equilibration
 } // namespace coulomb_adapt
 

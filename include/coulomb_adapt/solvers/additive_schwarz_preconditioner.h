@@ -3,10 +3,14 @@
 
 #include <deal.II/base/index_set.h>
 
-#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <Epetra_Import.h>
+#include <Epetra_Map.h>
+#include <Epetra_Vector.h>
+
+#include <memory>
 #include <vector>
 
 namespace coulomb_adapt
@@ -29,6 +33,13 @@ namespace coulomb_adapt
    * computed from a truncated iteration, would change with the number of
    * ranks; here the patches follow the mesh, and only the summation order
    * of the overlapping corrections does.
+   *
+   * Each A_pp^-1 is kept explicitly (LAPACK's Cholesky factor and inverse,
+   * once) and applied as a dense product: the patches are small (~20 on
+   * the estimator's vertex patches), where a LAPACK call per patch and
+   * application (two triangular solves) cost more in call overhead than
+   * in flops, while the product is the same 2 m^2 flops in one loop the
+   * compiler vectorises.
    */
   class AdditiveSchwarzPreconditioner
   {
@@ -42,6 +53,10 @@ namespace coulomb_adapt
       const std::vector<std::vector<types::global_dof_index>> &patches,
       const IndexSet                                          &relevant);
 
+    /**
+     * Not thread-safe: it works in the preconditioner's own ghosted
+     * vectors.
+     */
     void
     vmult(TrilinosWrappers::MPI::Vector       &dst,
           const TrilinosWrappers::MPI::Vector &src) const;
@@ -56,15 +71,19 @@ namespace coulomb_adapt
     mean_patch_size() const;
 
   private:
-    IndexSet                             owned, relevant;
-    MPI_Comm                             communicator;
-    std::vector<types::global_dof_index> relevant_list;
-    // Per patch: its (nonzero-diagonal) indices as positions within
-    // relevant, and A_pp's Cholesky factorisation.
-    std::vector<std::vector<unsigned int>> patch_positions;
-    std::vector<LAPACKFullMatrix<double>>  factors;
-    std::size_t                            n_global_patches = 0;
-    double                                 mean_size        = 0;
+    // The relevant indices' values: imported from the owned ones before
+    // the patches are applied, their sums exported (added) after.
+    std::unique_ptr<Epetra_Map>    relevant_map;
+    std::unique_ptr<Epetra_Import> owned_to_relevant;
+    mutable std::unique_ptr<Epetra_Vector> r_relevant, z_relevant;
+    // Patch p: its (nonzero-diagonal) indices' positions within the
+    // relevant ones, positions[starts[p] .. starts[p + 1]), and A_pp^-1
+    // by columns from inverses[inverse_starts[p]].
+    std::vector<unsigned int> positions;
+    std::vector<std::size_t>  starts, inverse_starts;
+    std::vector<double>       inverses;
+    std::size_t               n_global_patches = 0;
+    double                    mean_size        = 0;
   };
 } // namespace coulomb_adapt
 

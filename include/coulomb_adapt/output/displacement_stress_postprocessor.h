@@ -1,0 +1,46 @@
+#ifndef coulomb_adapt_output_displacement_stress_postprocessor_h
+#define coulomb_adapt_output_displacement_stress_postprocessor_h
+
+#include <deal.II/numerics/data_postprocessor.h>
+
+#include <coulomb_adapt/core/elastic_material.h>
+
+namespace coulomb_adapt
+{
+  /**
+   * The fields ParaView shows from a body's solution, computed at the
+   * output points from one evaluation of it: the displacement (a vector)
+   * and, from its gradient, sigma_xx, sigma_yy, sigma_xy, sigma_zz and the
+   * von Mises stress (MPa), one data set for both. A scaled problem's
+   * physical fields (core/units.h) are the displacement
+   * times @p displacement_scale and the stresses times @p stress_scale.
+   */
+  class DisplacementStressPostprocessor : public DataPostprocessor<2>
+  {
+  public:
+    DisplacementStressPostprocessor(const ElasticMaterial &material,
+                                    const double displacement_scale = 1,
+                                    const double stress_scale       = 1);
+
+    void
+    evaluate_vector_field(
+      const DataPostprocessorInputs::Vector<2> &inputs,
+      std::vector<Vector<double>> &computed_quantities) const override;
+
+    std::vector<std::string>
+    get_names() const override;
+
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+    get_data_component_interpretation() const override;
+
+    UpdateFlags
+    get_needed_update_flags() const override;
+
+  private:
+    const ElasticMaterial material;
+    const double          displacement_scale;
+    const double          stress_scale;
+  };
+} // namespace coulomb_adapt
+
+#endif
