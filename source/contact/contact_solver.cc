@@ -20,11 +20,11 @@
 namespace coulomb_adapt
 {
   ContactSolver::ContactSolver(
-    ElasticBody                    &slave,
-    ElasticBody                    &master,
-    const parameters::Contact      &contact_parameters,
-    const parameters::LinearSolver &solver_parameters,
-    const ConditionalOStream       &pcout,
+    ElasticBody                         &slave,
+    ElasticBody                         &master,
+    const parameters::Contact           &contact_parameters,
+    const parameters::LinearSolver      &solver_parameters,
+    const ConditionalOStream            &pcout,
     std::shared_ptr<KrylovFailureRecord> krylov_failures)
     : slave(slave)
     , master(master)
@@ -32,9 +32,8 @@ namespace coulomb_adapt
     , solver_parameters(solver_parameters)
     , pcout(pcout)
     , mu(contact_parameters.friction_coefficient)
-    , krylov_failures(krylov_failures ?
-                        std::move(krylov_failures) :
-                        std::make_shared<KrylovFailureRecord>())
+    , krylov_failures(krylov_failures ? std::move(krylov_failures) :
+                                        std::make_shared<KrylovFailureRecord>())
   {}
 
 
@@ -68,40 +67,49 @@ namespace coulomb_adapt
         control.begin_step(k);
         const bool turning = check_sets(k);
         n_turning_steps += turning;
-        const auto [assembly_time, solve_time] =
-          newton_step(k, turning, report.n_active);
+        // A Krylov solve whose sets come out unchanged but whose residual
+        // does not is solved again, more tightly, within the same step:
+        // the sets, hence the linear system, are those of step k (the
+        // slip directions are part of the sets), so the repeat refines
+        // step k's solve and is not a new linearisation.
+        NextStep next = NextStep::repeat_linear_solve;
+        while (next == NextStep::repeat_linear_solve)
+          {
+            const auto [assembly_time, solve_time] =
+              newton_step(k, turning, report.n_active);
 
-        // The statuses before the update, for the first step's rule only.
-        std::vector<ContactStatus> before;
-        if (k == 1 && from_initial_gap)
-          for (const auto &s : states)
-            before.push_back(s.status);
-        auto         update   = control.update_sets(k);
-        unsigned int n_opened = 0;
-        if (!before.empty())
-          n_opened =
-            close_deepest_penetration_only(before, support, states, update);
-        const double residual =
-          complementarity_residual(rule, previous_weighted_slip, states);
-        last_changed = update.changed;
-        record_step(k, residual, report);
-        newton_diagnostics::log_newton_step(pcout,
-                                            k,
-                                            report,
-                                            mu,
-                                            update,
-                                            residual,
-                                            assembly_time,
-                                            solve_time,
-                                            iterative ? &last_linear_solve :
-                                                        nullptr);
-        if (n_opened > 0)
-          pcout << "    first step from the initial gap: " << n_opened
-                << " newly penetrating nodes left open (less than "
-                << first_step_penetration_fraction
-                << " times the deepest penetration)" << std::endl;
-        if (next_step(k, update, residual, turning, control, report) ==
-            NextStep::converged)
+            // The statuses before the update, for the first step's rule only.
+            std::vector<ContactStatus> before;
+            if (k == 1 && from_initial_gap)
+              for (const auto &s : states)
+                before.push_back(s.status);
+            auto         update   = control.update_sets(k);
+            unsigned int n_opened = 0;
+            if (!before.empty())
+              n_opened =
+                close_deepest_penetration_only(before, support, states, update);
+            const double residual =
+              complementarity_residual(rule, previous_weighted_slip, states);
+            last_changed = update.changed;
+            record_step(k, residual, report);
+            newton_diagnostics::log_newton_step(pcout,
+                                                k,
+                                                report,
+                                                mu,
+                                                update,
+                                                residual,
+                                                assembly_time,
+                                                solve_time,
+                                                iterative ? &last_linear_solve :
+                                                            nullptr);
+            if (n_opened > 0)
+              pcout << "    first step from the initial gap: " << n_opened
+                    << " newly penetrating nodes left open (less than "
+                    << first_step_penetration_fraction
+                    << " times the deepest penetration)" << std::endl;
+            next = next_step(k, update, residual, turning, control, report);
+          }
+        if (next == NextStep::converged)
           break;
       }
 
@@ -200,7 +208,12 @@ namespace coulomb_adapt
                              const double         residual,
                              ContactSolverReport &report) const
   {
-    report.residual_history.push_back(residual);
+    // A repeated linear solve (NextStep::repeat_linear_solve) replaces its
+    // step's residual: one entry per Newton step.
+    if (report.residual_history.size() == k)
+      report.residual_history.back() = residual;
+    else
+      report.residual_history.push_back(residual);
     report.newton_iterations = k;
     report.n_active = report.n_stick = report.n_slip = 0;
     for (const auto &s : states)
@@ -248,10 +261,10 @@ namespace coulomb_adapt
         report.n_tighter_linear_solves = 1;
         linear_tolerance_factor        = 1e-2;
         pcout << "    sets unchanged, residual above the tolerance: "
-              << "the linear solve is repeated with its tolerance "
-              << "reduced to " << linear_tolerance_factor << " times"
+              << "step " << k << "'s linear solve is repeated with its "
+              << "tolerance reduced to " << linear_tolerance_factor << " times"
               << std::endl;
-        return NextStep::iterate;
+        return NextStep::repeat_linear_solve;
       }
     if (update.n_changed == 0)
       throw newton_diagnostics::residual_above_tolerance(
@@ -418,8 +431,8 @@ namespace coulomb_adapt
   {
     std::ostringstream failure;
     failure << "Newton step " << k << ", " << condensation.owned.size()
-            << " DoFs: stopped at " << e.last_step
-            << " iterations, residual " << e.last_residual;
+            << " DoFs: stopped at " << e.last_step << " iterations, residual "
+            << e.last_residual;
     krylov_failures->failure = failure.str();
     ++krylov_failures->n_failed_solves;
     pcout << "    the Krylov solve did not converge in " << e.last_step

@@ -89,11 +89,11 @@ namespace coulomb_adapt
     /** @p krylov_failures: the record of failed Krylov solves that this
      * solver shares with others of the same run (ContactSolveDriver), or
      * none (a record of its own). */
-    ContactSolver(ElasticBody                    &slave,
-                  ElasticBody                    &master,
-                  const parameters::Contact      &contact_parameters,
-                  const parameters::LinearSolver &solver_parameters,
-                  const ConditionalOStream       &pcout,
+    ContactSolver(ElasticBody                         &slave,
+                  ElasticBody                         &master,
+                  const parameters::Contact           &contact_parameters,
+                  const parameters::LinearSolver      &solver_parameters,
+                  const ConditionalOStream            &pcout,
                   std::shared_ptr<KrylovFailureRecord> krylov_failures = {});
 
     /** Solve one load step; the bodies' solutions are set. Throws with a
@@ -206,7 +206,11 @@ namespace coulomb_adapt
     enum class NextStep
     {
       converged,
-      iterate
+      iterate,
+      /** The sets are final but an inexact (Krylov) solve left the
+       * residual above the tolerance: the same step's system again, more
+       * tightly. */
+      repeat_linear_solve
     };
     /** Convergence test, repeated Krylov solve, cycles and stagnation
      * after the set update of step @p k; throws the diagnosis when the
