@@ -223,6 +223,22 @@ def check_directory(directory):
     return len(checked), left
 
 
+def lower_priority():
+    """In the run's process, before it starts: the lowest CPU priority.
+    Two ranks on two cores (Open MPI's ranks spin while they wait) would
+    otherwise keep this script's polling loop off the CPU for tens of
+    milliseconds, in which the run writes and renames many files: no kill
+    lands in a write, and the test tests nothing. The run is a session of
+    its own, hence (Linux) an autogroup of its own, whose nice value is
+    what the scheduler weighs against this script's."""
+    os.nice(19)
+    try:
+        with open("/proc/self/autogroup", "w") as f:
+            f.write("19")
+    except OSError:
+        pass
+
+
 def run_and_kill(command, directory, trigger, timeout):
     """Run @p command, SIGKILL it once the @p trigger-th distinct file
     name has been seen in @p directory (@p trigger a number), or the file
@@ -230,11 +246,18 @@ def run_and_kill(command, directory, trigger, timeout):
     run ended first."""
     process = subprocess.Popen(command, stdout=subprocess.DEVNULL,
                                stderr=subprocess.DEVNULL,
-                               start_new_session=True)
+                               start_new_session=True,
+                               preexec_fn=lower_priority)
     seen = []
     killed_at = None
     start = time.monotonic()
+    # The run's processes (mpirun's ranks), looked up every 20 ms, so that
+    # a kill hits them at once (kill_group).
+    members, members_time = [], 0.
     while process.poll() is None:
+        if time.monotonic() - members_time > 0.02:
+            members, members_time = (session_members(process.pid),
+                                     time.monotonic())
         if time.monotonic() - start > timeout:
             kill_group(process)
             raise SystemExit("the run did not end within %g s" % timeout)
@@ -251,7 +274,7 @@ def run_and_kill(command, directory, trigger, timeout):
             hit = next((name for name in seen
                         if name in (trigger, trigger + ".tmp")), None)
         if hit is not None:
-            kill_group(process)
+            kill_group(process, members)
             killed_at = hit
             break
         time.sleep(0.0005)
@@ -278,11 +301,21 @@ def session_members(sid):
     return members
 
 
-def kill_group(process):
+def kill_group(process, known_members=()):
     """SIGKILL to every process of the run: its process group, and every
     process of its session (Open MPI's mpirun puts each rank in a process
     group of its own, in mpirun's session; a rank that outlived mpirun
-    would write on)."""
+    would write on). The members already known (@p known_members) are
+    killed first: scanning /proc takes milliseconds, longer than a small
+    file's write, which the ranks would finish in the meantime."""
+    for pid in [process.pid] + list(known_members):
+        try:
+            if pid == process.pid:
+                os.killpg(pid, signal.SIGKILL)
+            else:
+                os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
     for pid in [process.pid] + session_members(process.pid):
         try:
             if pid == process.pid:
