@@ -321,7 +321,6 @@ namespace coulomb_adapt
   std::vector<SlaveNodeConditions>
   slave_node_conditions(const SlaveCondensation             &condensation,
                         const MortarInterface               &mortar,
-                        const ElasticBody                   &master,
                         const std::vector<ContactNodeState> &states,
                         const std::vector<double> &previous_weighted_slip,
                         const double               friction_coefficient)

@@ -380,7 +380,7 @@ namespace coulomb_adapt
   {
     Timer      assembly_timer;
     const auto conditions = slave_node_conditions(
-      condensation, mortar, master, states, previous_weighted_slip, mu);
+      condensation, mortar, states, previous_weighted_slip, mu);
     newton_system->assemble(conditions);
     assembly_timer.stop();
     Timer solve_timer;
