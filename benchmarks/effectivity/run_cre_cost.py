@@ -14,7 +14,9 @@ Per run the CSV holds the timer sections 'contact solve', 'error
 indicator', 'error indicator: equilibration' and (where the executable has
 it) 'error indicator: cell forms' from summary.json, epsilon to all its
 digits, the truncated CG's steps, the peak resident memory (/usr/bin/time's
-%M), the run's elapsed time and the load average at its start. The machine
+%M), the run's elapsed and CPU time (user + system) and the load average
+at its start. (It replaces run_cell_forms_timing.py, which measured the
+same runs for cell_forms.csv: `--tolerances 0` gives its columns.) The machine
 is shared: compare sides of the same repeat, and read the load column.
 """
 import argparse
@@ -39,11 +41,11 @@ SECTIONS = {"contact_solve_s": "contact solve",
 FIELDS = ["side", "tolerance", "repeat", "contact_solve_s",
           "error_indicator_s", "equilibration_s", "cell_forms_s",
           "indicator_over_solve", "epsilon", "cg_steps", "peak_kb",
-          "elapsed_s", "load_average"]
+          "elapsed_s", "cpu_s", "load_average"]
 
 
 def run_once(exe, tolerance, outdir):
-    command = ["/usr/bin/time", "-f", "TIME %e s %M KB", exe,
+    command = ["/usr/bin/time", "-f", "TIME %e s %M KB %U %S", exe,
                os.path.join(ROOT, "prm", "blocks.prm")]
     for s in SETTINGS + ["Error indicator/CRE minimisation tolerance=" +
                          tolerance, "Output/Output directory=" + outdir]:
@@ -62,8 +64,10 @@ def run_once(exe, tolerance, outdir):
                                         row["contact_solve_s"], 2)
     row["epsilon"] = repr(cycle["epsilon"])
     row["cg_steps"] = cycle["cre"].get("optimisation_cg_steps", "")
-    m = re.search(r"TIME ([0-9.]+) s ([0-9]+) KB", out.stderr)
+    m = re.search(r"TIME ([0-9.]+) s ([0-9]+) KB ([0-9.]+) ([0-9.]+)",
+                  out.stderr)
     row["elapsed_s"], row["peak_kb"] = float(m.group(1)), int(m.group(2))
+    row["cpu_s"] = round(float(m.group(3)) + float(m.group(4)), 2)
     row["load_average"] = round(load, 2)
     return row
 
