@@ -5,7 +5,9 @@
 #include <coulomb_adapt/contact/contact_solve_driver.h>
 #include <coulomb_adapt/core/parameter_error.h>
 
+#include <cmath>
 #include <iomanip>
+#include <sstream>
 
 namespace coulomb_adapt
 {
@@ -168,6 +170,10 @@ namespace coulomb_adapt
       scene.n_load_steps() == 1 ? previous_states : first_load_step_states;
     outcome.warm_start = parameters.adaptation.warm_start &&
                          !previous_states.empty() && !previous_start.empty();
+    const types::global_dof_index n_dofs =
+      bodies[0]->dof_handler().n_dofs() + bodies[1]->dof_handler().n_dofs();
+    if (first_meshes)
+      first_meshes_dofs = n_dofs;
     std::vector<ContactNodeState> predicted_sets;
     if (outcome.warm_start)
       predicted_sets = previous_start;
@@ -179,6 +185,20 @@ namespace coulomb_adapt
         nested =
           start_from_coarser_meshes(predicted_sets, *outcome.nested_iteration);
       }
+    else if (outcome.warm_start && after_large_refinement(n_dofs))
+      {
+        outcome.nested_iteration.emplace();
+        std::vector<ContactNodeState> uniform_sets;
+        nested = start_from_uniform_refinements(n_dofs,
+                                                uniform_sets,
+                                                *outcome.nested_iteration);
+        if (nested)
+          {
+            outcome.warm_start = false;
+            predicted_sets     = std::move(uniform_sets);
+          }
+      }
+    last_n_dofs = n_dofs;
     const bool predicted_start = outcome.warm_start || nested;
     outcome.solver             = new_solver(parameters.contact,
                                 predicted_start ? &predicted_sets : nullptr);
@@ -324,6 +344,98 @@ namespace coulomb_adapt
       }
     log_nested_iteration_levels(pcout, record.levels);
     return !predicted_sets.empty() || !record.levels.empty();
+  }
+
+
+
+  // After a large refinement (a first adaptation step from a coarse
+  // initial mesh: blocks, refine, 144 -> 23,600 DoFs) the previous cycle
+  // had a few contact nodes (4) where the new meshes have many (75), and
+  // the sets carried over by position put the stick/slip front where the
+  // coarse solution had it, up to half a coarse element off. The Newton
+  // iteration then moves the front about one node per step and side, and
+  // a start with too much slip can run away towards sliding before it
+  // comes back (that run: 22 steps; its cold start: 6). Uniform refinements
+  // of the scene's meshes resolve the contact zone about as the new meshes
+  // do at a fraction of their DoFs, and their nested iteration places the
+  // front to within their node spacing. Static scenes only: a load path's
+  // warm start carries its first load step's sets, not a static problem's.
+  bool
+  ContactSolveDriver::after_large_refinement(
+    const types::global_dof_index n_dofs) const
+  {
+    const double ratio = parameters.adaptation.nested_start_dof_ratio;
+    return ratio > 0 && scene.n_load_steps() == 1 && last_n_dofs > 0 &&
+           first_meshes_dofs > 0 &&
+           parameters.contact.nested_iteration_levels > 0 &&
+           static_cast<double>(n_dofs) >=
+             ratio * static_cast<double>(last_n_dofs);
+  }
+
+
+
+  // The finest R with the scene's meshes refined R times at most half the
+  // cycle's DoFs (estimated as 4^(R - g) times those of the first meshes,
+  // g = 'Mesh/Global refinements'; an over-estimate for linear elements),
+  // and the levels below it as the first cycle's nested iteration takes
+  // them. A coarser solve that fails leaves the warm start.
+  bool
+  ContactSolveDriver::start_from_uniform_refinements(
+    const types::global_dof_index  n_dofs,
+    std::vector<ContactNodeState> &predicted_sets,
+    NestedIterationRecord         &record)
+  {
+    const unsigned int g = parameters.mesh.global_refinements;
+    int                R = -static_cast<int>(g);
+    while (static_cast<double>(first_meshes_dofs) * std::pow(4., R + 1) <=
+           static_cast<double>(n_dofs))
+      ++R;
+    const int finest = static_cast<int>(g) + R;
+    std::ostringstream why;
+    why << "the cycle's " << n_dofs << " DoFs are at least "
+        << parameters.adaptation.nested_start_dof_ratio
+        << " times the previous cycle's " << last_n_dofs;
+    if (finest < 1)
+      {
+        record.skipped = "no uniform refinement of the scene's meshes has "
+                         "at most half the cycle's DoFs";
+        pcout << "  contact: nested start skipped (" << why.str()
+              << "): " << record.skipped << std::endl;
+        return false;
+      }
+    const auto        &c        = parameters.contact;
+    const unsigned int n_levels = std::min<unsigned int>(
+      c.nested_iteration_levels + 1, static_cast<unsigned int>(finest) + 1);
+    pcout << "  contact: nested start (" << why.str()
+          << "): the scene's meshes refined up to " << finest
+          << " times, instead of the previous cycle's sets" << std::endl;
+    try
+      {
+        predicted_sets =
+          predict_contact_sets_on_coarser_meshes(mpi_communicator,
+                                                 scene,
+                                                 parameters.mesh.cell_type,
+                                                 finest + 1,
+                                                 n_levels,
+                                                 parameters.finite_elements,
+                                                 c,
+                                                 parameters.linear_solver,
+                                                 record.levels);
+      }
+    catch (const std::exception &e)
+      {
+        const std::string what = user_message(e);
+        pcout << "  contact: nested start abandoned, a coarser solve "
+                 "failed: "
+              << what << "; the previous cycle's sets instead" << std::endl;
+        record.levels.clear();
+        record.skipped = "a coarser solve failed: " + what;
+        return false;
+      }
+    log_nested_iteration_levels(pcout, record.levels);
+    if (predicted_sets.empty())
+      record.skipped = "every coarser solve stopped with a diagnosis";
+    return !predicted_sets.empty();
   }
 
 

@@ -461,6 +461,22 @@ namespace coulomb_adapt
                           "nodes, instead of from the initial gap (a load "
                           "path: its first load step from the previous "
                           "cycle's sets after that step).");
+        prm.declare_entry(
+          "Nested start above DoF ratio",
+          "16",
+          Patterns::Double(0),
+          "A cycle whose meshes have at least this many times the previous "
+          "cycle's DoFs (both bodies) starts its contact solve from nested "
+          "iteration instead of the warm start: the scene's meshes refined "
+          "uniformly, up to the finest with at most half the cycle's DoFs, "
+          "solved as 'Contact/Nested iteration levels' says, and the Newton "
+          "iteration starts from that mesh's sets. Why: after a large "
+          "refinement the previous cycle's few contact nodes place the "
+          "stick/slip front only roughly, and the Newton iteration moves it "
+          "about one node per step and side (blocks, refine, "
+          "epsilon_0 = 0.5 %: 22 steps from 144 to 23,600 DoFs). Static "
+          "scenes only (a load path keeps its warm start); 0: always the "
+          "warm start.");
       }
       prm.leave_subsection();
     }
@@ -493,6 +509,16 @@ namespace coulomb_adapt
         max_size_ratio   = prm.get_double("Maximum size ratio");
         singular_rate    = prm.get_double("Singular convergence rate");
         warm_start       = prm.get_bool("Warm start");
+        nested_start_dof_ratio =
+          prm.get_double("Nested start above DoF ratio");
+        require_parameter(nested_start_dof_ratio == 0 ||
+                            nested_start_dof_ratio >= 2,
+                          path + "Nested start above DoF ratio",
+                          nested_start_dof_ratio,
+                          "0 (never) or at least 2: a uniform refinement "
+                          "has about 4 times the DoFs of the mesh below it, "
+                          "and nested iteration solves meshes with at most "
+                          "half the cycle's DoFs");
         remeshing_algorithm =
           parse_option<RemeshingAlgorithm>(prm.get("Remeshing algorithm"));
         remeshing_split_above_cells =

@@ -39,7 +39,7 @@ namespace coulomb_adapt
     ContactSolverReport report;
     bool                warm_start = false;
     /** Set when nested iteration was considered (first meshes without
-     * warm start). */
+     * warm start, or a cycle after a large refinement). */
     std::optional<NestedIterationRecord> nested_iteration;
     /** The summary keys of the restarts taken, in order. */
     std::vector<std::string> restarts;
@@ -116,6 +116,18 @@ namespace coulomb_adapt
     bool
     start_from_coarser_meshes(std::vector<ContactNodeState> &predicted_sets,
                               NestedIterationRecord         &record);
+    /** Whether the cycle's meshes, with @p n_dofs, are so much finer than
+     * the previous solve's that the previous sets are too coarse a start
+     * ('Adaptation/Nested start above DoF ratio'). */
+    bool
+    after_large_refinement(const types::global_dof_index n_dofs) const;
+    /** Nested iteration for a cycle after a large refinement: the scene's
+     * meshes refined uniformly, up to the finest with at most half of
+     * @p n_dofs; as start_from_coarser_meshes(). */
+    bool
+    start_from_uniform_refinements(const types::global_dof_index n_dofs,
+                                   std::vector<ContactNodeState> &predicted_sets,
+                                   NestedIterationRecord         &record);
     /** The load steps of the scene, each restarted as @p restarts allow. */
     void
     solve_load_steps(const std::vector<Restart>          &restarts,
@@ -137,6 +149,12 @@ namespace coulomb_adapt
      * coarser mesh of the nested iteration (first meshes only; else
      * empty): the start of the fine mesh's load steps. */
     std::vector<std::vector<ContactNodeState>> coarser_load_path;
+    /** DoFs of the last solve (0 before the first), and of the scene's
+     * meshes with 'Mesh/Global refinements' (0 if this driver never solved
+     * on them): the measures of a large refinement and of the uniform
+     * refinements' sizes. */
+    types::global_dof_index last_n_dofs       = 0;
+    types::global_dof_index first_meshes_dofs = 0;
     const ConditionalOStream                  &pcout;
     /** Shared by every ContactSolver of the fine meshes in this run: after
      * one failed Krylov solve under 'auto' the direct solver takes the

@@ -159,6 +159,10 @@ namespace coulomb_adapt
       double singular_rate;
       /** Start Newton from the previous cycle's contact sets. */
       bool warm_start;
+      /** A cycle with at least this many times the previous cycle's DoFs
+       * starts from nested iteration on the scene's uniform refinements
+       * instead (0: always the warm start). */
+      double nested_start_dof_ratio;
       /** gmsh's 2D algorithm for remesh. */
       RemeshingAlgorithm remeshing_algorithm =
         RemeshingAlgorithm::frontal_delaunay;

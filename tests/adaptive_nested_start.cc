@@ -1,0 +1,225 @@
+// Nested start of an adaptive cycle after a large refinement (issue 18
+// item 4, 'Adaptation/Nested start above DoF ratio'): a cycle with at least
+// 16 times the previous cycle's DoFs starts its contact solve from the
+// scene's meshes refined uniformly (up to half its DoFs) instead of the
+// previous cycle's few contact nodes.
+//
+//  - blocks, mu = 0.3, refine (Q1, size ratio), epsilon_0 = 0.5 %: the
+//    first adaptation step goes from 144 to 23,600 DoFs (4 -> 75 active
+//    nodes). The warm start carries the coarse cycle's slip ends over half
+//    a coarse element each (32 of 75 nodes slipping, 10 in the solution)
+//    and its Newton iteration runs towards sliding before it comes back
+//    (22 steps when this test was written). The nested start: at most 4
+//    steps in every cycle, its coarser levels included.
+//  - the solution does not depend on the start: both runs end every cycle
+//    with the same meshes, sets, contact tractions (1e-8 of the largest
+//    pressure) and epsilon (1e-9 relative);
+//  - blocks on the seed's mesh, remesh (P1), epsilon_0 = 0.5 %: 488 ->
+//    ~48,000 DoFs, at most 4 Newton steps per solve (the warm start took
+//    5);
+//  - a cycle with a smaller jump keeps the warm start (the log and
+//    summary.json say which start each cycle took);
+//  - the 2-rank run prints what the 1-rank run prints.
+
+#include <deal.II/base/mpi.h>
+
+#include "program_run.h"
+#include "test_utilities.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace coulomb_adapt;
+
+namespace
+{
+  using testing::ProgramRun;
+  using testing::Settings;
+
+  Settings
+  blocks(const std::string &cell_type,
+         const std::string &strategy,
+         const std::string &directory)
+  {
+    Settings s = {{"Scene/Name", "blocks"},
+                  {"Contact/Friction coefficient", "0.3"},
+                  {"Mesh/Cell type", cell_type},
+                  {"Adaptation/Strategy", strategy},
+                  {"Adaptation/Target error", "0.5"},
+                  {"Adaptation/Number of cycles", "8"},
+                  {"Adaptation/Minimum number of cycles", "1"},
+                  {"Output/Write VTU", "false"},
+                  {"Output/Output directory", directory}};
+    if (strategy == "refine")
+      s.push_back({"Adaptation/Refinement criterion", "size ratio"});
+    return s;
+  }
+
+  // The largest Newton count of a cycle's solves: the fine mesh's and
+  // every coarser level's.
+  unsigned int
+  most_newton_steps(const nlohmann::json &cycle)
+  {
+    unsigned int n = cycle["newton_iterations"].get<unsigned int>();
+    if (cycle.contains("nested_iteration"))
+      for (const auto &level : cycle["nested_iteration"]["levels"])
+        n = std::max(n, level["newton_iterations"].get<unsigned int>());
+    return n;
+  }
+
+  std::string
+  start_of(const nlohmann::json &cycle)
+  {
+    if (cycle["warm_start"].get<bool>())
+      return "warm start";
+    if (cycle.contains("nested_iteration") &&
+        !cycle["nested_iteration"]["levels"].empty())
+      {
+        const auto &levels = cycle["nested_iteration"]["levels"];
+        return "nested start, " + std::to_string(levels.size()) +
+               " levels up to " +
+               std::to_string(levels.back()["global_refinements"].get<int>()) +
+               " refinements";
+      }
+    return "initial gap";
+  }
+
+  // Pressure and tangential traction of every slave node, from a cycle's
+  // contact CSV (written by rank 0, complete after the run's barrier).
+  std::vector<std::array<double, 2>>
+  contact_tractions(const std::string &directory, const unsigned int cycle)
+  {
+    std::ostringstream name;
+    name << directory << "/contact_" << std::setw(3) << std::setfill('0')
+         << cycle << ".csv";
+    std::ifstream in(name.str());
+    AssertThrow(in, ExcMessage("cannot read " + name.str()));
+    std::string line;
+    std::getline(in, line); // header: x,y,normal_x,normal_y,weight,p,t,...
+    std::vector<std::array<double, 2>> tractions;
+    while (std::getline(in, line))
+      {
+        std::stringstream        s(line);
+        std::vector<std::string> fields;
+        for (std::string f; std::getline(s, f, ',');)
+          fields.push_back(f);
+        tractions.push_back({{std::stod(fields[5]), std::stod(fields[6])}});
+      }
+    return tractions;
+  }
+
+  void
+  compare(const std::string &title,
+          const Settings    &settings,
+          const bool         check_warm_start_is_slow,
+          ConditionalOStream &out)
+  {
+    out << title << std::endl;
+    const ProgramRun nested(settings);
+    Settings         warm_settings = settings;
+    warm_settings.push_back({"Adaptation/Nested start above DoF ratio", "0"});
+    for (auto &entry : warm_settings)
+      if (entry.first == "Output/Output directory")
+        entry.second += "-warm";
+    const ProgramRun warm(warm_settings);
+
+    const auto &cycles      = nested.summary["cycles"];
+    const auto &warm_cycles = warm.summary["cycles"];
+    AssertThrow(cycles.size() == warm_cycles.size(),
+                ExcMessage("the starts led to different numbers of cycles"));
+    unsigned int most_nested = 0, most_warm = 0;
+    for (unsigned int c = 0; c < cycles.size(); ++c)
+      {
+        const auto &a = cycles[c];
+        const auto &b = warm_cycles[c];
+        out << "  cycle " << c << ": " << a["n_dofs"] << " DoFs, "
+            << start_of(a) << ", Newton steps (most of any level) "
+            << most_newton_steps(a) << "; " << a["active_nodes"]
+            << " active, " << a["stick_nodes"] << " stick, "
+            << a["slip_nodes"] << " slip; epsilon " << std::setprecision(4)
+            << 100 * a["epsilon"].get<double>() << " %" << std::endl;
+        most_nested = std::max(most_nested, most_newton_steps(a));
+        if (c > 0)
+          most_warm = std::max(most_warm, most_newton_steps(b));
+        for (const char *key :
+             {"n_dofs", "active_nodes", "stick_nodes", "slip_nodes"})
+          AssertThrow(a[key] == b[key],
+                      ExcMessage(std::string("cycle ") + std::to_string(c) +
+                                 ": " + key + " differ between the starts"));
+        const double eps_a = a["epsilon"].get<double>();
+        const double eps_b = b["epsilon"].get<double>();
+        AssertThrow(std::abs(eps_a - eps_b) <= 1e-9 * eps_b,
+                    ExcMessage("cycle " + std::to_string(c) +
+                               ": epsilon differs between the starts"));
+        const auto ta =
+          contact_tractions(nested.parameters.output.directory, c);
+        const auto tb = contact_tractions(warm.parameters.output.directory, c);
+        AssertThrow(ta.size() == tb.size(), ExcInternalError());
+        double p_max = 0, difference = 0;
+        for (unsigned int j = 0; j < ta.size(); ++j)
+          {
+            p_max = std::max(p_max, std::abs(tb[j][0]));
+            for (unsigned int k = 0; k < 2; ++k)
+              difference =
+                std::max(difference, std::abs(ta[j][k] - tb[j][k]));
+          }
+        AssertThrow(difference <= 1e-8 * p_max,
+                    ExcMessage("cycle " + std::to_string(c) +
+                               ": the contact tractions differ between the "
+                               "starts by " +
+                               std::to_string(difference / p_max) +
+                               " of the largest pressure"));
+      }
+    out << "  every cycle as with the warm start: the same DoFs and sets, "
+           "tractions within 1e-8 of the largest pressure, epsilon within "
+           "1e-9"
+        << std::endl;
+    out << "  at most 4 Newton steps per solve: "
+        << (most_nested <= 4 ? "yes" : "no") << std::endl;
+    AssertThrow(most_nested <= 4,
+                ExcMessage("a solve took " + std::to_string(most_nested) +
+                           " Newton steps"));
+    // What the nested start is for: without it this run's first
+    // adaptation step takes more than 4 steps.
+    if (check_warm_start_is_slow)
+      {
+        out << "  the warm start took more than 4 Newton steps in an "
+               "adapted cycle: "
+            << (most_warm > 4 ? "yes" : "no") << std::endl;
+        AssertThrow(most_warm > 4,
+                    ExcMessage("the warm start took only " +
+                               std::to_string(most_warm) + " Newton steps"));
+      }
+  }
+} // namespace
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  auto                             out = testing::root_output();
+
+  compare("blocks, refine (Q1, size ratio), epsilon_0 = 0.5 %",
+          blocks("quadrilateral", "refine", "output-refine"),
+          true,
+          out);
+  {
+    // The seed's mesh (prm/blocks.prm): 408 triangles.
+    Settings settings = blocks("triangle", "remesh", "output-remesh");
+    settings.push_back({"Scene/Blocks/Upper body subdivisions", "3, 3"});
+    settings.push_back({"Scene/Blocks/Lower body subdivisions", "6, 7"});
+    compare("blocks (the seed's mesh), remesh (P1), epsilon_0 = 0.5 %",
+            settings,
+            true,
+            out);
+  }
+}
