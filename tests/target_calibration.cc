@@ -1,14 +1,18 @@
 // TargetCalibration (adaptation/target_calibration.h) against numbers
-// computed by hand: aim = safety * epsilon_0 / c, c = achieved / predicted
-// of the last plan, clamped to [0.5, 2], 1 until a plan has been checked.
+// computed by hand: aim = safety * epsilon_0 / c', c = achieved / predicted
+// of the last plan, clamped to [0.5, 2], 1 until a plan has been checked,
+// and c' = c for c >= 1, min(1, c / safety) below (a correction below 1
+// is believed only beyond the safety margin).
 // Safety 0.8, epsilon_0 = 5 %:
 //  - first cycle (no plan yet): c = 1, aim = 0.8 * 0.05 = 0.04; an
 //    achieved epsilon without a plan (0.07) leaves c at 1;
 //  - plan 0.04, achieved 0.05: c = 1.25, aim = 0.04 / 1.25 = 0.032; the
 //    plan is used once (a second achieved 0.1 leaves c at 1.25);
 //  - plan 0.032, achieved 0.016: c = 0.5 (the lower bound itself),
-//    aim 0.08;
-//  - plan 0.08, achieved 0.01: ratio 0.125, clamped to 0.5, aim 0.08;
+//    c' = 0.625, aim 0.064;
+//  - plan 0.08, achieved 0.01: ratio 0.125, clamped to 0.5, aim 0.064;
+//  - plan 0.04, achieved 0.034: c = 0.85, within [safety, 1): c' = 1, aim
+//    0.04 (not 0.047, which is near epsilon_0);
 //  - plan 0.02, achieved 0.1: ratio 5, clamped to 2, aim 0.02;
 //  - plan 0.02, achieved 0.039: c = 1.95 (inside), aim = 0.04 / 1.95;
 //  - plans that cannot be checked leave c: predicted 0, predicted
@@ -69,11 +73,18 @@ main(int argc, char *argv[])
   check("plan 0.032, achieved 0.016 (c = 0.5, the bound)",
         calibration,
         0.5,
-        0.08);
+        0.064);
 
   calibration.record_plan(0.08);
   calibration.record_achieved(0.01);
-  check("plan 0.08, achieved 0.01 (0.125 clamped)", calibration, 0.5, 0.08);
+  check("plan 0.08, achieved 0.01 (0.125 clamped)", calibration, 0.5, 0.064);
+
+  calibration.record_plan(0.04);
+  calibration.record_achieved(0.034);
+  check("plan 0.04, achieved 0.034 (c = 0.85, within the safety margin)",
+        calibration,
+        0.85,
+        0.04);
 
   calibration.record_plan(0.02);
   calibration.record_achieved(0.1);

@@ -530,7 +530,29 @@ namespace coulomb_adapt
 
 
 
-      // H alpha = -g. Without the relaxed modes (tolerance < 0) by CG with
+      // How minimise() solves H alpha = -g.
+      enum class Minimisation
+      {
+        /** CG with Jacobi to 1e-6 (the prolongation conditions kept). */
+        jacobi_cg,
+        /** MUMPS's LDL^T (the relaxed modes, tolerance 0). */
+        exact,
+        /** CG with additive Schwarz, truncated by the estimate's decrease
+         * (the relaxed modes, tolerance > 0). */
+        truncated_cg
+      };
+
+      Minimisation
+      minimisation_method(const bool relaxed, const double tolerance)
+      {
+        return !relaxed          ? Minimisation::jacobi_cg :
+               tolerance == 0    ? Minimisation::exact :
+                                   Minimisation::truncated_cg;
+      }
+
+
+
+      // H alpha = -g. Without the relaxed modes (jacobi_cg) by CG with
       // Jacobi: the estimate is the quadratic's value, whose excess over
       // the minimum is r^T H^-1 r for the residual r; 1e-6 leaves the
       // estimates of the test suite unchanged in their printed digits with
@@ -540,12 +562,12 @@ namespace coulomb_adapt
       // Airy stress function, a fourth-order operator: CG with Jacobi took
       // 500 steps on the seed's 488 DoFs and did not reach 1e-6 in 1000 on
       // 26,724 (its estimate then depended on round-off, which broke its
-      // homogeneity). With a tolerance > 0 it is CG preconditioned by
+      // homogeneity). With a tolerance > 0 (truncated_cg) it is CG preconditioned by
       // additive Schwarz over the vertices' patches, stopped by the estimate's
       // own decrease (minimise_by_truncated_cg(): relative, so homogeneous;
       // the patches follow the mesh, so the steps do not depend on the
       // partition); the classical estimate @p classical is the quadratic's
-      // value at alpha = 0. With tolerance 0 it is MUMPS's LDL^T of the
+      // value at alpha = 0. With tolerance 0 (exact) it is MUMPS's LDL^T of the
       // lower triangle, exact to round-off and several times slower. Returns
       // the number of parameters; @p steps: the truncated CG's.
       types::global_dof_index
@@ -553,6 +575,7 @@ namespace coulomb_adapt
                TrilinosWrappers::MPI::Vector  &g,
                TrilinosWrappers::MPI::Vector  &alpha,
                const ParameterNames           &names,
+               const Minimisation              method,
                const double                    tolerance,
                const double                    classical,
                unsigned int                   &steps)
@@ -560,7 +583,7 @@ namespace coulomb_adapt
         // The patches drop the names without a free parameter by their
         // zero diagonal, so the preconditioner comes first.
         std::unique_ptr<AdditiveSchwarzPreconditioner> schwarz;
-        if (tolerance > 0)
+        if (method == Minimisation::truncated_cg)
           schwarz = std::make_unique<AdditiveSchwarzPreconditioner>(
             H, vertex_patches(names), names.relevant);
         // Names without a free parameter (vertices on loaded edges, edges
@@ -579,14 +602,14 @@ namespace coulomb_adapt
         const double g_norm = g.l2_norm();
         if (g_norm == 0)
           return n_parameters;
-        if (schwarz)
+        if (method == Minimisation::truncated_cg)
           {
             steps = minimise_by_truncated_cg(
                       H, alpha, g, *schwarz, classical, tolerance, 10, 2000)
                       .steps;
             return n_parameters;
           }
-        if (tolerance == 0)
+        if (method == Minimisation::exact)
           {
             solve_symmetric_positive_definite(H, alpha, g);
             return n_parameters;
@@ -718,7 +741,8 @@ namespace coulomb_adapt
                  g,
                  alpha,
                  names,
-                 relaxed ? minimisation_tolerance : -1.,
+                 minimisation_method(relaxed, minimisation_tolerance),
+                 minimisation_tolerance,
                  result.error_squared_before_optimisation,
                  result.optimisation_steps);
       TrilinosWrappers::MPI::Vector alpha_ghosted(names.owned,

@@ -20,7 +20,12 @@ namespace coulomb_adapt
    * what its plan predicted (1 before any plan has been checked): a
    * global correction of the model. The safety factor keeps the step after
    * a correction from landing just above the target because c itself
-   * changes a little from one cycle to the next.
+   * changes a little from one cycle to the next. For the same reason a
+   * correction below 1 is believed only beyond the safety margin: c is
+   * replaced by min(1, c / safety), so that c in [safety, 1) leaves the
+   * aim at safety * epsilon_0 instead of planning for more than that
+   * (a plan for above epsilon_0 misses it as soon as c moves back towards
+   * 1, and a miss costs a whole cycle).
    */
   class TargetCalibration
   {
@@ -29,7 +34,8 @@ namespace coulomb_adapt
      * epsilon_0 (times the correction). */
     explicit TargetCalibration(const double safety_factor);
 
-    /** The epsilon to plan the next mesh for. */
+    /** The epsilon to plan the next mesh for: safety * epsilon_0 / c,
+     * with c < 1 replaced by min(1, c / safety). */
     double
     aim(const double target_error) const;
 
