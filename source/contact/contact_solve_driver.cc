@@ -368,6 +368,7 @@ namespace coulomb_adapt
     return ratio > 0 && scene.n_load_steps() == 1 && last_n_dofs > 0 &&
            first_meshes_dofs > 0 &&
            parameters.contact.nested_iteration_levels > 0 &&
+           n_dofs > parameters.contact.nested_iteration_min_dofs &&
            static_cast<double>(n_dofs) >=
              ratio * static_cast<double>(last_n_dofs);
   }
