@@ -1,7 +1,7 @@
 // Nested start of an adaptive cycle after a large refinement (issue 18
 // item 4, 'Adaptation/Nested start above DoF ratio'): a cycle with at least
 // 16 times the previous cycle's DoFs starts its contact solve from the
-// scene's meshes refined uniformly (up to half its DoFs) instead of the
+// scene's meshes refined uniformly (up to its DoFs) instead of the
 // previous cycle's few contact nodes.
 //
 //  - blocks, mu = 0.3, refine (Q1, size ratio), epsilon_0 = 0.5 %: the

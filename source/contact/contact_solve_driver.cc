@@ -375,11 +375,15 @@ namespace coulomb_adapt
 
 
 
-  // The finest R with the scene's meshes refined R times at most half the
+  // The finest R with the scene's meshes refined R times at most the
   // cycle's DoFs (estimated as 4^(R - g) times those of the first meshes,
   // g = 'Mesh/Global refinements'; an over-estimate for linear elements),
   // and the levels below it as the first cycle's nested iteration takes
-  // them. A coarser solve that fails leaves the warm start.
+  // them. Up to the cycle's own size, not less: an adapted mesh resolves
+  // the contact zone much finer than a uniform one of its DoFs (blocks'
+  // default mesh, remesh to 0.5 %: from the uniform level of 10,628 DoFs
+  // the 50,750-DoF cycle took 5 Newton steps, from that of 41,732 one).
+  // A coarser solve that fails leaves the warm start.
   bool
   ContactSolveDriver::start_from_uniform_refinements(
     const types::global_dof_index  n_dofs,
@@ -399,7 +403,7 @@ namespace coulomb_adapt
     if (finest < 1)
       {
         record.skipped = "no uniform refinement of the scene's meshes has "
-                         "at most half the cycle's DoFs";
+                         "at most the cycle's DoFs";
         pcout << "  contact: nested start skipped (" << why.str()
               << "): " << record.skipped << std::endl;
         return false;

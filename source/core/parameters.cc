@@ -468,7 +468,7 @@ namespace coulomb_adapt
           "A cycle whose meshes have at least this many times the previous "
           "cycle's DoFs (both bodies) starts its contact solve from nested "
           "iteration instead of the warm start: the scene's meshes refined "
-          "uniformly, up to the finest with at most half the cycle's DoFs, "
+          "uniformly, up to the finest with at most the cycle's DoFs, "
           "solved as 'Contact/Nested iteration levels' says, and the Newton "
           "iteration starts from that mesh's sets. Why: after a large "
           "refinement the previous cycle's few contact nodes place the "
@@ -516,10 +516,10 @@ namespace coulomb_adapt
                             nested_start_dof_ratio >= 2,
                           path + "Nested start above DoF ratio",
                           nested_start_dof_ratio,
-                          "0 (never) or at least 2: a uniform refinement "
-                          "has about 4 times the DoFs of the mesh below it, "
-                          "and nested iteration solves meshes with at most "
-                          "half the cycle's DoFs");
+                          "0 (never) or at least 2: a cycle with less than "
+                          "twice the previous cycle's DoFs is no large "
+                          "refinement, and its warm start is good (one "
+                          "uniform refinement has about 4 times the DoFs)");
         remeshing_algorithm =
           parse_option<RemeshingAlgorithm>(prm.get("Remeshing algorithm"));
         remeshing_split_above_cells =

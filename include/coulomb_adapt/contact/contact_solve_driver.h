@@ -122,8 +122,8 @@ namespace coulomb_adapt
     bool
     after_large_refinement(const types::global_dof_index n_dofs) const;
     /** Nested iteration for a cycle after a large refinement: the scene's
-     * meshes refined uniformly, up to the finest with at most half of
-     * @p n_dofs; as start_from_coarser_meshes(). */
+     * meshes refined uniformly, up to the finest with at most @p n_dofs
+     * (estimated); as start_from_coarser_meshes(). */
     bool
     start_from_uniform_refinements(const types::global_dof_index n_dofs,
                                    std::vector<ContactNodeState> &predicted_sets,
