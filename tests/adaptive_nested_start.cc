@@ -101,16 +101,31 @@ namespace
          << cycle << ".csv";
     std::ifstream in(name.str());
     AssertThrow(in, ExcMessage("cannot read " + name.str()));
+    const auto split = [](const std::string &line) {
+      std::stringstream        s(line);
+      std::vector<std::string> fields;
+      for (std::string f; std::getline(s, f, ',');)
+        fields.push_back(f);
+      return fields;
+    };
+    // The columns by name: a column added to the CSV must not shift them.
     std::string line;
-    std::getline(in, line); // header: x,y,normal_x,normal_y,weight,p,t,...
+    std::getline(in, line);
+    const std::vector<std::string> header = split(line);
+    const auto column = [&](const std::string &name) {
+      const auto it = std::find(header.begin(), header.end(), name);
+      AssertThrow(it != header.end(),
+                  ExcMessage("no column " + name + " in the contact CSV"));
+      return it - header.begin();
+    };
+    const auto pressure   = column("contact_pressure");
+    const auto tangential = column("tangential_traction");
     std::vector<std::array<double, 2>> tractions;
     while (std::getline(in, line))
       {
-        std::stringstream        s(line);
-        std::vector<std::string> fields;
-        for (std::string f; std::getline(s, f, ',');)
-          fields.push_back(f);
-        tractions.push_back({{std::stod(fields[5]), std::stod(fields[6])}});
+        const std::vector<std::string> fields = split(line);
+        tractions.push_back(
+          {{std::stod(fields[pressure]), std::stod(fields[tangential])}});
       }
     return tractions;
   }
