@@ -6,6 +6,7 @@
 #include <coulomb_adapt/core/parameter_error.h>
 
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
@@ -126,6 +127,40 @@ namespace coulomb_adapt
                 << std::setprecision(3) << l.wall_time << " s" << std::endl;
         }
     }
+
+
+    // Runs @p predict, the solves on coarser meshes of @p start ("nested
+    // iteration", "nested start"), and logs their levels. A coarser
+    // solve that throws abandons the start (a coarse mesh that does not
+    // converge says nothing about the fine one): false, the log names
+    // what failed and what the fine solve starts from instead
+    // (@p instead, may be empty), and @p record why.
+    bool
+    solve_on_coarser_meshes(
+      const ConditionalOStream                             &pcout,
+      const std::string                                    &start,
+      const std::string                                    &instead,
+      const std::function<std::vector<ContactNodeState>()> &predict,
+      std::vector<ContactNodeState>                        &predicted_sets,
+      NestedIterationRecord                                &record)
+    {
+      try
+        {
+          predicted_sets = predict();
+        }
+      catch (const std::exception &e)
+        {
+          const std::string what = user_message(e);
+          pcout << "  contact: " << start
+                << " abandoned, a coarser solve failed: " << what << instead
+                << std::endl;
+          record.levels.clear();
+          record.skipped = "a coarser solve failed: " + what;
+          return false;
+        }
+      log_nested_iteration_levels(pcout, record.levels);
+      return true;
+    }
   } // namespace
 
 
@@ -198,7 +233,7 @@ namespace coulomb_adapt
             predicted_sets     = std::move(uniform_sets);
           }
       }
-    last_n_dofs = n_dofs;
+    last_n_dofs                = n_dofs;
     const bool predicted_start = outcome.warm_start || nested;
     outcome.solver             = new_solver(parameters.contact,
                                 predicted_start ? &predicted_sets : nullptr);
@@ -209,11 +244,10 @@ namespace coulomb_adapt
                        "the initial gap")
           << std::endl;
     pcout << "  contact: linear solver "
-          << choose_contact_linear_solver(
-               parameters.linear_solver,
-               bodies[0]->dof_handler().n_dofs() +
-                 bodies[1]->dof_handler().n_dofs(),
-               *krylov_failures)
+          << choose_contact_linear_solver(parameters.linear_solver,
+                                          bodies[0]->dof_handler().n_dofs() +
+                                            bodies[1]->dof_handler().n_dofs(),
+                                          *krylov_failures)
                .description
           << std::endl;
 
@@ -231,8 +265,12 @@ namespace coulomb_adapt
     const parameters::Contact           &c,
     const std::vector<ContactNodeState> *predicted_sets) const
   {
-    auto solver = std::make_unique<ContactSolver>(
-      *bodies[0], *bodies[1], c, parameters.linear_solver, pcout, krylov_failures);
+    auto solver = std::make_unique<ContactSolver>(*bodies[0],
+                                                  *bodies[1],
+                                                  c,
+                                                  parameters.linear_solver,
+                                                  pcout,
+                                                  krylov_failures);
     if (predicted_sets != nullptr)
       solver->warm_start_from(*predicted_sets);
     return solver;
@@ -319,30 +357,26 @@ namespace coulomb_adapt
         return false;
       }
 
-    try
+    // Abandoned, the fine solve starts cold and decides for itself.
+    if (!solve_on_coarser_meshes(
+          pcout,
+          "nested iteration",
+          "",
+          [&] {
+            return predict_on_coarser_meshes(mpi_communicator,
+                                             scene,
+                                             parameters,
+                                             n_levels,
+                                             graded,
+                                             coarser_load_path,
+                                             record.levels);
+          },
+          predicted_sets,
+          record))
       {
-        predicted_sets = predict_on_coarser_meshes(mpi_communicator,
-                                                   scene,
-                                                   parameters,
-                                                   n_levels,
-                                                   graded,
-                                                   coarser_load_path,
-                                                   record.levels);
-      }
-    catch (const std::exception &e)
-      {
-        // A coarse mesh that does not converge says nothing about the fine
-        // one: the fine solve starts cold and decides for itself.
-        const std::string what = user_message(e);
-        pcout << "  contact: nested iteration abandoned, a coarser solve "
-                 "failed: "
-              << what << std::endl;
-        record.levels.clear();
-        record.skipped = "a coarser solve failed: " + what;
         coarser_load_path.clear();
         return false;
       }
-    log_nested_iteration_levels(pcout, record.levels);
     return !predicted_sets.empty() || !record.levels.empty();
   }
 
@@ -395,7 +429,7 @@ namespace coulomb_adapt
     while (static_cast<double>(first_meshes_dofs) * std::pow(4., R + 1) <=
            static_cast<double>(n_dofs))
       ++R;
-    const int finest = static_cast<int>(g) + R;
+    const int          finest = static_cast<int>(g) + R;
     std::ostringstream why;
     why << "the cycle's " << n_dofs << " DoFs are at least "
         << parameters.adaptation.nested_start_dof_ratio
@@ -408,36 +442,32 @@ namespace coulomb_adapt
               << "): " << record.skipped << std::endl;
         return false;
       }
-    const auto        &c        = parameters.contact;
-    const unsigned int n_levels = std::min<unsigned int>(
-      c.nested_iteration_levels + 1, static_cast<unsigned int>(finest) + 1);
+    const auto        &c = parameters.contact;
+    const unsigned int n_levels =
+      std::min<unsigned int>(c.nested_iteration_levels + 1,
+                             static_cast<unsigned int>(finest) + 1);
     pcout << "  contact: nested start (" << why.str()
           << "): the scene's meshes refined up to " << finest
           << " times, instead of the previous cycle's sets" << std::endl;
-    try
-      {
-        predicted_sets =
-          predict_contact_sets_on_coarser_meshes(mpi_communicator,
-                                                 scene,
-                                                 parameters.mesh.cell_type,
-                                                 finest + 1,
-                                                 n_levels,
-                                                 parameters.finite_elements,
-                                                 c,
-                                                 parameters.linear_solver,
-                                                 record.levels);
-      }
-    catch (const std::exception &e)
-      {
-        const std::string what = user_message(e);
-        pcout << "  contact: nested start abandoned, a coarser solve "
-                 "failed: "
-              << what << "; the previous cycle's sets instead" << std::endl;
-        record.levels.clear();
-        record.skipped = "a coarser solve failed: " + what;
-        return false;
-      }
-    log_nested_iteration_levels(pcout, record.levels);
+    if (!solve_on_coarser_meshes(
+          pcout,
+          "nested start",
+          "; the previous cycle's sets instead",
+          [&] {
+            return predict_contact_sets_on_coarser_meshes(
+              mpi_communicator,
+              scene,
+              parameters.mesh.cell_type,
+              finest + 1,
+              n_levels,
+              parameters.finite_elements,
+              c,
+              parameters.linear_solver,
+              record.levels);
+          },
+          predicted_sets,
+          record))
+      return false;
     if (predicted_sets.empty())
       record.skipped = "every coarser solve stopped with a diagnosis";
     return !predicted_sets.empty();
