@@ -35,8 +35,10 @@ namespace coulomb_adapt
      * together sum to 2 * integral, the factor 2 of the seed's (3-10). */
     std::map<CellId, double> slave_cells;
     std::map<CellId, double> master_cells;
-    /** int phi_j c / int phi_j at slave node j (MPa mm): the density of
-     * the contact term along the interface. */
+    /** int psi_j c / int psi_j at slave node j (MPa mm): the density of
+     * the contact term along the interface, with psi_j the hat function
+     * on linear segments and a Bernstein polynomial (>= 0) on quadratic
+     * ones. */
     std::vector<double> nodal_density;
   };
 
