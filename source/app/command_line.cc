@@ -80,6 +80,21 @@ namespace coulomb_adapt
 
   namespace
   {
+    // deal.II names a misspelled entry but not the entries there are.
+    std::string
+    unknown_entry_hint(const std::string &message)
+    {
+      const bool unknown =
+        message.find("not yet declared") != std::string::npos ||
+        message.find("No entry with name") != std::string::npos;
+      return unknown ? " (--print-parameters lists the entries of every "
+                       "subsection with their allowed values; "
+                       "doc/parameters.md documents them)" :
+                       "";
+    }
+
+
+
     // deal.II's parser lets the last of two 'set' lines of one entry win
     // without a word (a subsection given twice merges, which is how both
     // end up in one place): a user who edits the first never sees an
@@ -173,7 +188,8 @@ namespace coulomb_adapt
       catch (const std::exception &e)
         {
           throw ParameterError("in parameter file '" + file +
-                               "': " + user_message(e));
+                               "': " + user_message(e) +
+                               unknown_entry_hint(user_message(e)));
         }
     }
 
@@ -225,7 +241,8 @@ namespace coulomb_adapt
       catch (const std::exception &e)
         {
           throw ParameterError("in option -s \"" + path + "=" + value +
-                               "\": " + user_message(e));
+                               "\": " + user_message(e) +
+                               unknown_entry_hint(user_message(e)));
         }
       for (; depth > 0; --depth)
         prm.leave_subsection();
