@@ -3,6 +3,7 @@
 #include <coulomb_adapt/indicator/contact_error.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace coulomb_adapt
@@ -138,15 +139,15 @@ namespace coulomb_adapt
               // The nodal density with weights that are >= 0 (quadratic
               // Lagrange functions are not: a node's share of c >= 0 could
               // be negative); Bernstein's for quadratic segments.
-              const std::vector<double> share =
-                n == 3 ? std::vector<double>{(1 - xi) * (1 - xi),
-                                             xi * xi,
-                                             2 * xi * (1 - xi)} :
-                         phi;
+              const std::array<double, 3> bernstein = {
+                {(1 - xi) * (1 - xi), xi * xi, 2 * xi * (1 - xi)}};
+              const auto share = [&](const unsigned int i) {
+                return n == 3 ? bernstein[i] : phi[i];
+              };
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  term.nodal_density[segment.nodes[i]] += share[i] * c * w;
-                  share_weight[segment.nodes[i]] += share[i] * w;
+                  term.nodal_density[segment.nodes[i]] += share(i) * c * w;
+                  share_weight[segment.nodes[i]] += share(i) * w;
                 }
             }
         term.integral += piece_sum;
