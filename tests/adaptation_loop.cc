@@ -22,6 +22,9 @@
 //    stays within 4 times the cap (one level of refinement: the refine
 //    strategy rounds r_E to whole levels, which gave 2.2 times here; gmsh
 //    1.06 times) and the log says the mesh was limited;
+//  - an epsilon_0 far above reach (100 %) with 'Over-refinement ratio'
+//    coarsens down to gmsh's coarsest mesh of the geometry and stops at
+//    its first repeat (it used to solve it on every cycle left);
 //  - the 2-rank run prints what the 1-rank run prints (same meshes, DoFs,
 //    epsilon, Newton steps).
 
@@ -283,6 +286,42 @@ main(int argc, char **argv)
         << (last_cells < most_cells ? "yes" : "no") << std::endl;
     AssertThrow(epsilon >= 0.04 && epsilon <= 0.05 && last_cells < most_cells,
                 ExcMessage("the over-refined mesh was not optimised again"));
+  }
+  {
+    // epsilon_0 far above reach, with 'Over-refinement ratio' (as in
+    // prm/blocks.prm): every mesh is over-refined, and the remesh plans coarser
+    // meshes until gmsh's coarsest mesh of the geometry (4 + 4 triangles),
+    // which a further plan returns unchanged. The loop stops on the first
+    // repeat instead of solving that mesh again on every cycle left (it solved
+    // cycles 4 to 10 on it).
+    out << "remesh, P1, epsilon_0 = 100 %, 12 cycles allowed" << std::endl;
+    auto settings =
+      blocks("triangle", "remesh", "3, 3", "6, 7", "100", "output-r100");
+    settings.push_back({"Adaptation/Over-refinement ratio", "0.8"});
+    const ProgramRun run(settings);
+    const auto      &cycles  = run.summary["cycles"];
+    unsigned int     repeats = 0;
+    for (unsigned int c = 0; c < cycles.size(); ++c)
+      {
+        const auto n_cells = [&](const unsigned int b) {
+          return cycles[c]["bodies"][b]["n_cells"].get<unsigned int>();
+        };
+        if (c > 0 &&
+            n_cells(0) ==
+              cycles[c - 1]["bodies"][0]["n_cells"].get<unsigned int>() &&
+            n_cells(1) ==
+              cycles[c - 1]["bodies"][1]["n_cells"].get<unsigned int>())
+          ++repeats;
+        out << "    cycle " << c << ": cells " << n_cells(0) << " + "
+            << n_cells(1) << ", epsilon "
+            << 100 * cycles[c]["epsilon"].get<double>() << " %" << std::endl;
+      }
+    out << "    " << run.summary["stop_reason"].get<std::string>() << std::endl;
+    AssertThrow(repeats <= 1,
+                ExcMessage("the same mesh was solved again and again"));
+    AssertThrow(run.summary["stop_reason"].get<std::string>().rfind(
+                  "target reached", 0) == 0,
+                ExcMessage("the run did not stop on its target"));
   }
   for (const std::string strategy : {"refine", "remesh"})
     {

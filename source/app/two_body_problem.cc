@@ -402,14 +402,31 @@ namespace coulomb_adapt
     std::ostringstream s;
     // An over-refined mesh is optimised again only while a further cycle
     // could still refine it should the coarser one miss the target.
-    const bool over_refined =
+    // It is not when the last remesh, planned coarser, gave each body the
+    // cells it had: gmsh's coarsest mesh of the geometry, which another
+    // plan would only solve again (epsilon_0 far above reach).
+    const std::array<types::global_cell_index, 2> n_cells = {
+      {bodies[0]->triangulation().n_global_active_cells(),
+       bodies[1]->triangulation().n_global_active_cells()}};
+    const bool at_coarsest_mesh =
+      previous_cycle_n_cells && *previous_cycle_n_cells == n_cells;
+    const bool over_refinement_possible =
       a.strategy == AdaptationStrategy::remesh && error_estimate &&
       error_estimate->epsilon < a.over_refinement_ratio * a.target_error &&
       cycle + 2 < a.n_cycles && n_dofs < a.max_dofs;
+    const bool over_refined = over_refinement_possible && !at_coarsest_mesh;
     if (over_refined && error_estimate->epsilon <= a.target_error)
       pcout << "  over-refined: epsilon = " << std::setprecision(4)
             << 100 * error_estimate->epsilon << " % < "
             << a.over_refinement_ratio << " epsilon_0: optimising again"
+            << std::endl;
+    else if (over_refinement_possible &&
+             error_estimate->epsilon <= a.target_error)
+      pcout << "  over-refined, but the last remesh kept every body's cell "
+               "count ("
+            << n_cells[0] << ", " << n_cells[1]
+            << "): the coarsest mesh gmsh makes of the geometry; not "
+               "optimised again"
             << std::endl;
     if (a.target_error > 0 && error_estimate &&
         error_estimate->epsilon <= a.target_error &&
@@ -541,6 +558,9 @@ namespace coulomb_adapt
           !continue_cycles(cycle, cycle_report->n_dofs(), reason);
         output_results(cycle, last_cycle);
         cycle_report->end_cycle(*error_estimate, contact_solver != nullptr);
+        previous_cycle_n_cells = std::array<types::global_cell_index, 2>{
+          {bodies[0]->triangulation().n_global_active_cells(),
+           bodies[1]->triangulation().n_global_active_cells()}};
         if (last_cycle)
           {
             cycle_report->record_stop(cycle, reason);

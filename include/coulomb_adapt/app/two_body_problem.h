@@ -138,6 +138,11 @@ namespace coulomb_adapt
     std::vector<ContactNodeState> previous_contact_states;
     /** The adaptation that made the current meshes (none on cycle 0). */
     std::optional<MeshAdaptationReport> last_adaptation;
+    /** Each body's cell count on the previous cycle's meshes (none on
+     * cycle 0): a remesh that returns the same counts cannot coarsen
+     * further. */
+    std::optional<std::array<types::global_cell_index, 2>>
+      previous_cycle_n_cells;
     /** epsilon_0 corrected by what the previous plans achieved. */
     TargetCalibration target_calibration;
   };
