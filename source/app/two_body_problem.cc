@@ -504,8 +504,31 @@ namespace coulomb_adapt
 
 
 
+  // An error ends the run: summary.json says so, with the message the
+  // user sees, before it propagates to main(), so that a script reading
+  // the summaries of many runs finds the failed ones and why.
   void
   TwoBodyProblem::run()
+  {
+    try
+      {
+        run_cycles();
+      }
+    catch (const std::exception &e)
+      {
+        const std::string not_written =
+          cycle_report->record_failure(current_cycle, user_message(e));
+        if (!not_written.empty())
+          pcout << "  summary.json not updated with the error: " << not_written
+                << std::endl;
+        throw;
+      }
+  }
+
+
+
+  void
+  TwoBodyProblem::run_cycles()
   {
     pcout << "coulomb-adapt: scene '" << scene->name() << "', "
           << Utilities::MPI::n_mpi_processes(mpi_communicator)
@@ -530,6 +553,7 @@ namespace coulomb_adapt
     for (unsigned int cycle = 0; cycle < parameters.adaptation.n_cycles;
          ++cycle)
       {
+        current_cycle = cycle;
         cycle_report->begin_cycle(cycle);
         if (cycle > 0)
           refine_grid();

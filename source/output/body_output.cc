@@ -3,8 +3,8 @@
 #include <deal.II/numerics/data_out.h>
 
 #include <coulomb_adapt/output/body_output.h>
-#include <coulomb_adapt/output/file_writer.h>
 #include <coulomb_adapt/output/displacement_stress_postprocessor.h>
+#include <coulomb_adapt/output/file_writer.h>
 
 #include <array>
 #include <string>
@@ -103,10 +103,10 @@ namespace coulomb_adapt
 
     DataOut<2> data_out;
     data_out.attach_dof_handler(body.dof_handler());
-    const DisplacementStressPostprocessor fields(
-      body.material(),
-      scale ? scales.displacement : 1.,
-      scale ? scales.stress : 1.);
+    const DisplacementStressPostprocessor fields(body.material(),
+                                                 scale ? scales.displacement :
+                                                         1.,
+                                                 scale ? scales.stress : 1.);
     data_out.add_data_vector(body.solution(), fields);
     const auto cell_fields = material_and_subdomain(tria);
     add_error_fields(data_out,

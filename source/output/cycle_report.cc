@@ -586,7 +586,17 @@ namespace coulomb_adapt
   {
     pcout << "Adaptation stops after cycle " << cycle << ": " << reason
           << std::endl;
+    summary.set("status", "completed");
     summary.set("stop_reason", reason);
+  }
+
+
+
+  std::string
+  CycleReport::record_failure(const unsigned int cycle,
+                              const std::string &message)
+  {
+    return summary.record_failure(cycle, message);
   }
 
 

@@ -129,6 +129,18 @@ namespace coulomb_adapt
 
 
   std::string
+  write_file_on_this_process(const std::string                         &path,
+                             const std::function<void(std::ostream &)> &write)
+  {
+    std::string error = write_temporary(path, write);
+    if (error.empty())
+      error = rename_temporary(path);
+    return error;
+  }
+
+
+
+  std::string
   write_vtu_with_pvtu_record(const MPI_Comm                comm,
                              const DataOutInterface<2, 2> &data_out,
                              const std::string            &directory,

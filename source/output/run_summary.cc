@@ -44,6 +44,22 @@ namespace coulomb_adapt
 
 
 
+  std::string
+  RunSummary::record_failure(const unsigned int cycle,
+                             const std::string &message)
+  {
+    summary["status"]          = "failed";
+    summary["error"]           = message;
+    summary["failed_in_cycle"] = cycle;
+    if (dealii::Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return "";
+    return write_file_on_this_process(file_name, [this](std::ostream &out) {
+      out << summary.dump(2) << '\n';
+    });
+  }
+
+
+
   const nlohmann::json &
   RunSummary::data() const
   {

@@ -9,6 +9,9 @@
 # MAKE_FIFO (optional): a named pipe created first (removed if there).
 # ABSENT (optional): a ;-list of glob patterns that must match no file
 # afterwards (nothing half-written left behind).
+# SUMMARY (optional): the run's summary.json, which must say so:
+# status "failed", an error matching EXPECTED, failed_in_cycle equal to
+# FAILED_IN_CYCLE, and the FAILED_IN_CYCLE cycles before it kept.
 if(DEFINED MAKE_DIRECTORY)
   file(MAKE_DIRECTORY ${MAKE_DIRECTORY})
 endif()
@@ -43,4 +46,17 @@ foreach(pattern ${ABSENT})
     message(FATAL_ERROR "exit code ${result}, but these files were left: ${left}")
   endif()
 endforeach()
+if(DEFINED SUMMARY)
+  file(READ ${SUMMARY} summary)
+  string(JSON status GET "${summary}" status)
+  string(JSON error GET "${summary}" error)
+  string(JSON failed_in_cycle GET "${summary}" failed_in_cycle)
+  string(JSON n_cycles LENGTH "${summary}" cycles)
+  string(REPLACE "\n" " " error_one_line "${error}")
+  if(NOT status STREQUAL "failed" OR NOT error_one_line MATCHES "${EXPECTED}"
+     OR NOT failed_in_cycle EQUAL FAILED_IN_CYCLE
+     OR NOT n_cycles EQUAL FAILED_IN_CYCLE)
+    message(FATAL_ERROR "${SUMMARY} does not record the failure: status '${status}', failed_in_cycle ${failed_in_cycle} (expected ${FAILED_IN_CYCLE}), ${n_cycles} cycles kept, error '${error}'")
+  endif()
+endif()
 message(STATUS "exit code ${result}: ${err}")

@@ -51,6 +51,8 @@ namespace coulomb_adapt
                    const std::string &parameter_file,
                    std::ostream      &log = std::cout);
 
+    /** The cycles; an error in them is recorded in summary.json
+     * (`status` "failed", `error`, `failed_in_cycle`) and rethrown. */
     void
     run();
 
@@ -63,6 +65,10 @@ namespace coulomb_adapt
     last_error_estimate() const;
 
   private:
+    /** run() without the failure record. */
+    void
+    run_cycles();
+
     /** The bodies on the scene's meshes, their output and the contact
      * driver. */
     void
@@ -136,6 +142,8 @@ namespace coulomb_adapt
     std::vector<std::unique_ptr<ErrorEstimate>> compared_estimates;
     /** The contact sets of the previous cycle, for the warm start. */
     std::vector<ContactNodeState> previous_contact_states;
+    /** The cycle being computed (for the failure record). */
+    unsigned int current_cycle = 0;
     /** The adaptation that made the current meshes (none on cycle 0). */
     std::optional<MeshAdaptationReport> last_adaptation;
     /** Each body's cell count on the previous cycle's meshes (none on

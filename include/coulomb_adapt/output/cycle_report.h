@@ -167,9 +167,15 @@ namespace coulomb_adapt
     void
     end_cycle(const ErrorEstimate &estimate, const bool has_contact);
 
-    /** Why the adaptation stops after cycle @p cycle. */
+    /** Why the adaptation stops after cycle @p cycle (summary.json
+     * `status` "completed"). */
     void
     record_stop(const unsigned int cycle, const std::string &reason);
+
+    /** The run stops on an error in cycle @p cycle (RunSummary::
+     * record_failure); returns a failure to write summary.json. */
+    std::string
+    record_failure(const unsigned int cycle, const std::string &message);
 
     /** The table of all cycles. */
     void

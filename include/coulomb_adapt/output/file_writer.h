@@ -31,6 +31,16 @@ namespace coulomb_adapt
              const std::function<void(std::ostream &)> &write);
 
   /**
+   * write_file by the calling process alone, with no communication: for
+   * a record made while the run is failing, when another rank may never
+   * reach a collective call. Returns the failure's message, empty on
+   * success (the caller is already reporting an error).
+   */
+  std::string
+  write_file_on_this_process(const std::string                         &path,
+                             const std::function<void(std::ostream &)> &write);
+
+  /**
    * DataOutInterface::write_vtu_with_pvtu_record with one piece per rank
    * (`BASE_CCC.R.vtu`, and `BASE_CCC.pvtu` listing them), made atomic and
    * collective: each piece is written to NAME.tmp and renamed only when

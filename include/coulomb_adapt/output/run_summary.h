@@ -31,6 +31,14 @@ namespace coulomb_adapt
     void
     add_cycle(const nlohmann::json &cycle);
 
+    /** The run stops on an error in cycle @p cycle: `status` "failed",
+     * `error` the message, `failed_in_cycle`; the cycles already recorded
+     * stay. Rank 0 rewrites the file without waiting for the others (they
+     * may be failing elsewhere); a failure to write is returned, not
+     * thrown, so that the run's own error is the one reported. */
+    std::string
+    record_failure(const unsigned int cycle, const std::string &message);
+
     const nlohmann::json &
     data() const;
 
