@@ -66,7 +66,9 @@ namespace coulomb_adapt
                           "Element size near the first contact point, in "
                           "units of the Hertz half-width a (0.1: 20 "
                           "elements across the contact width). 0 disables "
-                          "the grading. Global refinements divide it "
+                          "the grading (quadrilaterals then need 'Mesh/"
+                          "Global refinements' >= 1). Global refinements "
+                          "divide it "
                           "further. Refused when the graded meshes would "
                           "exceed 'Adaptation/Maximum number of DoFs'.");
         prm.declare_entry("Refined zone size",
@@ -157,7 +159,7 @@ namespace coulomb_adapt
         materials           = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
-      check_graded_mesh_size(parameters);
+      check_initial_mesh_size(parameters);
     }
 
 
@@ -176,12 +178,28 @@ namespace coulomb_adapt
     // a cell carries about 2 p^2 DoFs (quadrilaterals) or p^2 (triangles).
     // Before: 0.001 printed nothing and grew to 6.7 GB in 55 s.
     void
-    Hertz::check_graded_mesh_size(const Parameters &parameters) const
+    Hertz::check_initial_mesh_size(const Parameters &parameters) const
     {
-      if (contact_mesh_factor == 0)
-        return;
       const bool quadrilaterals =
         parameters.mesh.cell_type == CellType::quadrilateral;
+      // Ungraded quadrilaterals are the coarse meshes themselves: the
+      // disc's is deal.II's half ball of 4 cells, with no node on the axis
+      // for 'Hold axis' and, without it, no contact node facing the block
+      // (found by a probe: the run stopped on "selects no node" with a
+      // hint about mesh files).
+      if (quadrilaterals && contact_mesh_factor == 0 &&
+          parameters.mesh.global_refinements == 0)
+        throw ParameterError(
+          "Scene/Hertz/Contact mesh size",
+          "0",
+          "with quadrilaterals and 'Mesh/Global refinements' = 0 the disc "
+          "would be its coarse mesh of 4 cells, which has no node on its "
+          "axis x = 0 and no contact node facing the block. Allowed: a "
+          "contact mesh size > 0 (the default 0.1 grades the mesh towards "
+          "the contact), or 'Mesh/Global refinements' >= 1, or 'Mesh/Cell "
+          "type' = triangle");
+      if (contact_mesh_factor == 0)
+        return;
       const double a      = contact_half_width();
       const double h      = contact_mesh_size();
       const double zone   = refined_zone_factor * a;

@@ -95,9 +95,10 @@ namespace coulomb_adapt
 
     private:
       /** Refuse a `Contact mesh size` whose graded meshes would exceed
-       * `Adaptation/Maximum number of DoFs`. */
+       * `Adaptation/Maximum number of DoFs`, or, 0 with quadrilaterals
+       * and no global refinement, would leave the disc's 4 coarse cells. */
       void
-      check_graded_mesh_size(const Parameters &parameters) const;
+      check_initial_mesh_size(const Parameters &parameters) const;
 
       /** Both bodies meshed by gmsh with triangles (made once). */
       const std::array<CoarseMeshData, 2> &
