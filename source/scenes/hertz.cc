@@ -159,6 +159,27 @@ namespace coulomb_adapt
         materials           = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
+      // Hertz's half-width a assumes a << R; at a >= R its contact zone
+      // would be wider than the disc, and the grading towards it and the
+      // reference pressure mean nothing (a probe's 1e10 N/mm stopped on
+      // "selects no node", a hint for mesh files).
+      if (!cattaneo && contact_half_width() >= radius)
+        {
+          std::ostringstream s;
+          s << std::setprecision(3)
+            << "Hertz's contact half-width for this load would be a = "
+            << contact_half_width()
+            << " mm, not small against the radius R = " << radius
+            << " mm (the formula assumes a << R; at a >= R the zone would be "
+               "wider than the disc). Allowed: a line load below "
+            << line_load * std::pow(radius / contact_half_width(), 2)
+            << " N/mm (a = R) with these materials; a few % of that keeps "
+               "a / R small";
+          throw ParameterError("Scene/Hertz/Line load",
+                               Patterns::Tools::Convert<double>::to_string(
+                                 line_load),
+                               s.str());
+        }
       check_initial_mesh_size(parameters);
     }
 
