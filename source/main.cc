@@ -69,6 +69,14 @@ main(int argc, char *argv[])
           throw ParameterError("in " + source + ": " + e.what());
         }
 
+      // A bare command runs the defaults; say so, since a user who typed
+      // it may have expected the usage text instead.
+      if (is_root && command_line.parameter_file.empty() &&
+          command_line.overrides.empty())
+        std::cout << "coulomb-adapt: no parameter file given: running the "
+                     "default parameters (the seed's example is "
+                     "prm/blocks.prm; 'coulomb-adapt --help' for usage)"
+                  << std::endl;
       write_file(comm,
                  parameters.output.directory + "/parameters.prm",
                  [&](std::ostream &resolved) {
