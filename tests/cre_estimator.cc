@@ -54,7 +54,8 @@ namespace
       degree_increase,
       optimise_tractions,
       relax_equilibration,
-      parameters.error_indicator.cre_minimisation_tolerance,
+      {parameters.error_indicator.cre_minimisation_tolerance,
+       parameters.error_indicator.cre_exact_minimisation_up_to},
       parameters.linear_solver);
   }
 
@@ -273,6 +274,28 @@ main(int argc, char **argv)
     AssertThrow(excess >= -1e-13 && excess < 5e-3 && e1.optimisation_steps == 0,
                 ExcMessage("cre: the truncated minimisation is below the "
                            "exact minimum or too far above it"));
+
+    // A body whose system has more parameters than 'CRE exact
+    // minimisation up to' is minimised by the truncated CG at 1e-3 even
+    // with tolerance 0 (the factorisation's memory grows faster than the
+    // mesh): a limit below both bodies' counts must give exactly the
+    // estimate of tolerance 1e-3, and say so; the default limit keeps
+    // this mesh's exact minimum (e1 above).
+    Parameters limited                                   = p1->parameters;
+    limited.error_indicator.cre_exact_minimisation_up_to = 10;
+    const ErrorEstimate el           = cre(b1, p1->solver.get(), limited);
+    const bool          as_truncated = el.epsilon == et.epsilon &&
+                              el.optimisation_steps == et.optimisation_steps &&
+                              el.exact_minimisation_too_large &&
+                              !et.exact_minimisation_too_large &&
+                              !e1.exact_minimisation_too_large;
+    out << "  tolerance 0 with 'CRE exact minimisation up to' = 10 "
+           "parameters: the truncated CG at 1e-3 (the same epsilon and "
+           "steps), reported as too large for the exact minimum: "
+        << (as_truncated ? "yes" : "no") << std::endl;
+    AssertThrow(as_truncated,
+                ExcMessage("cre: a system above 'CRE exact minimisation up "
+                           "to' was not minimised as with tolerance 1e-3"));
 
     // The cells and node systems run on deal.II's threads, their results
     // added in the cells' order: the estimate must not depend on how many

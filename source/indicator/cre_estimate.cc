@@ -101,6 +101,9 @@ namespace coulomb_adapt
       estimate.optimisation_parameters += errors.optimisation_parameters;
       estimate.optimisation_steps =
         std::max(estimate.optimisation_steps, errors.optimisation_steps);
+      estimate.exact_minimisation_too_large =
+        estimate.exact_minimisation_too_large ||
+        errors.exact_minimisation_too_large;
       estimate.relaxed_equilibration[b] = errors.relaxed;
       estimate.contribution_squared[b].swap(errors.error_squared);
       estimate.node_system_defect =
@@ -121,7 +124,7 @@ namespace coulomb_adapt
                      const unsigned int                        degree_increase,
                      const bool                      optimise_tractions,
                      const bool                      relax_equilibration,
-                     const double                    minimisation_tolerance,
+                     const CreMinimisation          &minimisation,
                      const parameters::LinearSolver &solver_parameters,
                      const ErrorEstimateOptions     &options)
   {
@@ -152,7 +155,7 @@ namespace coulomb_adapt
                                      degree_increase,
                                      optimise_tractions,
                                      relax_equilibration,
-                                     minimisation_tolerance,
+                                     minimisation,
                                      options.timer);
         before_squared += errors.error_squared_before_optimisation;
         normalisation_squared += errors.sum_norm_squared;

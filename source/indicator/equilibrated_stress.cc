@@ -48,13 +48,12 @@ namespace coulomb_adapt
       for (const auto &cell : body.dof_handler().active_cell_iterators())
         if (cell->is_locally_owned())
           for (const unsigned int f : cell->face_indices())
-            conforming = conforming &&
-                         (cell->at_boundary(f) ||
-                          (!cell->face(f)->has_children() &&
-                           !cell->neighbor_is_coarser(f)));
-      conforming = Utilities::MPI::min(static_cast<unsigned int>(conforming),
-                                       body.triangulation()
-                                         .get_communicator()) == 1;
+            conforming = conforming && (cell->at_boundary(f) ||
+                                        (!cell->face(f)->has_children() &&
+                                         !cell->neighbor_is_coarser(f)));
+      conforming =
+        Utilities::MPI::min(static_cast<unsigned int>(conforming),
+                            body.triangulation().get_communicator()) == 1;
       AssertThrow(conforming,
                   ExcMessage("Error indicator/Estimator = cre: the mesh of " +
                              body.name() +
@@ -460,7 +459,7 @@ namespace coulomb_adapt
     const unsigned int                   degree_increase,
     const bool                           optimise_tractions,
     const bool                           relax_equilibration,
-    const double                         minimisation_tolerance,
+    const CreMinimisation               &minimisation,
     TimerOutput                         *timer)
   {
     // Ghosted copies: the node systems read the ghost cells too (the
@@ -523,7 +522,7 @@ namespace coulomb_adapt
                                // estimate below the exact error).
                                degree_increase >= 3,
                                result.relaxed,
-                               minimisation_tolerance,
+                               minimisation,
                                result,
                                timer);
     else

@@ -163,15 +163,17 @@ namespace coulomb_adapt
                  const parameters::LinearSolver           &solver_parameters,
                  const ErrorEstimateOptions               &options)
     {
-      return estimate_error_cre(bodies,
-                                contact,
-                                mu,
-                                indicator_parameters.cre_degree_increase,
-                                indicator_parameters.cre_traction_optimisation,
-                                indicator_parameters.cre_relaxed_equilibration,
-                                indicator_parameters.cre_minimisation_tolerance,
-                                solver_parameters,
-                                options);
+      return estimate_error_cre(
+        bodies,
+        contact,
+        mu,
+        indicator_parameters.cre_degree_increase,
+        indicator_parameters.cre_traction_optimisation,
+        indicator_parameters.cre_relaxed_equilibration,
+        {indicator_parameters.cre_minimisation_tolerance,
+         indicator_parameters.cre_exact_minimisation_up_to},
+        solver_parameters,
+        options);
     }
 
     // The registry of the estimators of 'Error indicator/Estimator': one

@@ -13,8 +13,6 @@
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
-#include <Epetra_CrsMatrix.h>
-
 #include <coulomb_adapt/core/optional_timer_section.h>
 #include <coulomb_adapt/indicator/equilibration_mesh.h>
 #include <coulomb_adapt/indicator/local_problem_loads.h>
@@ -22,6 +20,8 @@
 #include <coulomb_adapt/solvers/additive_schwarz_preconditioner.h>
 #include <coulomb_adapt/solvers/symmetric_direct_solver.h>
 #include <coulomb_adapt/solvers/truncated_minimisation.h>
+
+#include <Epetra_CrsMatrix.h>
 
 #include <algorithm>
 #include <map>
@@ -320,10 +320,9 @@ namespace coulomb_adapt
         LocalNeumannProblem::gram_lower(X.data(), stride, N, G.data());
         copy.form.n  = n;
         copy.form.t0 = t0;
-        copy.form.c  = G[n * stride + n] +
-                      std::max(local.kinematic_energy() -
-                                 G[(n + 1) * stride + n + 1],
-                               0.);
+        copy.form.c =
+          G[n * stride + n] +
+          std::max(local.kinematic_energy() - G[(n + 1) * stride + n + 1], 0.);
         // packed = H's lower triangle by rows, g, t.
         copy.H.reinit(n, n, true);
         copy.g.resize(n);
@@ -545,9 +544,23 @@ namespace coulomb_adapt
       Minimisation
       minimisation_method(const bool relaxed, const double tolerance)
       {
-        return !relaxed          ? Minimisation::jacobi_cg :
-               tolerance == 0    ? Minimisation::exact :
-                                   Minimisation::truncated_cg;
+        return !relaxed       ? Minimisation::jacobi_cg :
+               tolerance == 0 ? Minimisation::exact :
+                                Minimisation::truncated_cg;
+      }
+
+
+
+      // The free parameters: the names whose diagonal in H is not zero
+      // (every rank).
+      types::global_dof_index
+      count_free_parameters(const TrilinosWrappers::SparseMatrix &H,
+                            const MPI_Comm                        comm)
+      {
+        types::global_dof_index n = 0;
+        for (const auto i : H.locally_owned_range_indices())
+          n += (H.diag_element(i) != 0);
+        return Utilities::MPI::sum(n, comm);
       }
 
 
@@ -562,24 +575,40 @@ namespace coulomb_adapt
       // Airy stress function, a fourth-order operator: CG with Jacobi took
       // 500 steps on the seed's 488 DoFs and did not reach 1e-6 in 1000 on
       // 26,724 (its estimate then depended on round-off, which broke its
-      // homogeneity). With a tolerance > 0 (truncated_cg) it is CG preconditioned by
-      // additive Schwarz over the vertices' patches, stopped by the estimate's
-      // own decrease (minimise_by_truncated_cg(): relative, so homogeneous;
-      // the patches follow the mesh, so the steps do not depend on the
+      // homogeneity). With a tolerance > 0 (truncated_cg) it is CG
+      // preconditioned by additive Schwarz over the vertices' patches, stopped
+      // by the estimate's own decrease (minimise_by_truncated_cg(): relative,
+      // so homogeneous; the patches follow the mesh, so the steps do not depend
+      // on the
       // partition); the classical estimate @p classical is the quadratic's
       // value at alpha = 0. With tolerance 0 (exact) it is MUMPS's LDL^T of the
-      // lower triangle, exact to round-off and several times slower. Returns
-      // the number of parameters; @p steps: the truncated CG's.
+      // lower triangle, exact to round-off and several times slower, and
+      // its memory grows faster than the mesh: above @p minimisation's
+      // exact_up_to parameters the truncated CG takes over. Returns the
+      // number of parameters; @p steps: the truncated CG's;
+      // @p too_large: whether the exact minimisation was replaced.
       types::global_dof_index
       minimise(TrilinosWrappers::SparseMatrix &H,
                TrilinosWrappers::MPI::Vector  &g,
                TrilinosWrappers::MPI::Vector  &alpha,
                const ParameterNames           &names,
-               const Minimisation              method,
-               const double                    tolerance,
+               Minimisation                    method,
+               const CreMinimisation          &minimisation,
                const double                    classical,
-               unsigned int                   &steps)
+               unsigned int                   &steps,
+               bool                           &too_large)
       {
+        const types::global_dof_index n_parameters =
+          count_free_parameters(H, alpha.get_mpi_communicator());
+        double tolerance = minimisation.tolerance;
+        too_large        = method == Minimisation::exact &&
+                    minimisation.exact_up_to > 0 &&
+                    n_parameters > minimisation.exact_up_to;
+        if (too_large)
+          {
+            method    = Minimisation::truncated_cg;
+            tolerance = CreMinimisation::large_system_tolerance;
+          }
         // The patches drop the names without a free parameter by their
         // zero diagonal, so the preconditioner comes first.
         std::unique_ptr<AdditiveSchwarzPreconditioner> schwarz;
@@ -589,15 +618,10 @@ namespace coulomb_adapt
         // Names without a free parameter (vertices on loaded edges, edges
         // with known tractions, the interior DoF of Q2, the vertices'
         // third component without the couple mode) get alpha = 0.
-        types::global_dof_index n_parameters = 0;
         for (const auto i : H.locally_owned_range_indices())
           if (H.diag_element(i) == 0)
             H.set(i, i, 1.);
-          else
-            ++n_parameters;
         H.compress(VectorOperation::insert);
-        n_parameters =
-          Utilities::MPI::sum(n_parameters, alpha.get_mpi_communicator());
         g *= -1;
         const double g_norm = g.l2_norm();
         if (g_norm == 0)
@@ -674,7 +698,7 @@ namespace coulomb_adapt
                              const LocalProblemLoads             &loads,
                              const bool                           with_bubbles,
                              const bool                           relaxed,
-                             const double minimisation_tolerance,
+                             const CreMinimisation               &minimisation,
                              EquilibratedStressErrors            &result,
                              TimerOutput                         *timer)
     {
@@ -701,16 +725,16 @@ namespace coulomb_adapt
       for (unsigned int slot = 0; slot < cells.size(); ++slot)
         if (cells[slot].owned)
           owned_slots.push_back(slot);
-      const FormInputs in{cells,
+      const FormInputs                          in{cells,
                           faces,
                           loads,
                           u_kinematic,
                           names,
                           with_bubbles,
                           relaxed ? &couple_allowed : nullptr};
-      CellForms        forms;
+      CellForms                                 forms;
       std::vector<std::pair<int, unsigned int>> local_columns;
-      std::optional<OptionalTimerSection> section;
+      std::optional<OptionalTimerSection>       section;
       section.emplace(timer, "error indicator: cell forms");
       WorkStream::run(
         owned_slots.cbegin(),
@@ -741,10 +765,11 @@ namespace coulomb_adapt
                  g,
                  alpha,
                  names,
-                 minimisation_method(relaxed, minimisation_tolerance),
-                 minimisation_tolerance,
+                 minimisation_method(relaxed, minimisation.tolerance),
+                 minimisation,
                  result.error_squared_before_optimisation,
-                 result.optimisation_steps);
+                 result.optimisation_steps,
+                 result.exact_minimisation_too_large);
       TrilinosWrappers::MPI::Vector alpha_ghosted(names.owned,
                                                   names.relevant,
                                                   comm);

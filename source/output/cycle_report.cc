@@ -307,7 +307,12 @@ namespace coulomb_adapt
                   "interpolates exactly")
             << (e.optimisation_steps > 0 ?
                   "; " + std::to_string(e.optimisation_steps) +
-                    " truncated CG steps" :
+                    " truncated CG steps" +
+                    (e.exact_minimisation_too_large ?
+                       std::string(", as a body's system has more "
+                                   "parameters than 'CRE exact "
+                                   "minimisation up to'") :
+                       std::string()) :
                   std::string())
             << "); with the classical tractions epsilon would be " << std::fixed
             << std::setprecision(3) << 100 * e.epsilon_before_optimisation
@@ -352,6 +357,7 @@ namespace coulomb_adapt
         {"local_problem_defect", e.local_problem_defect},
         {"optimisation_parameters", e.optimisation_parameters},
         {"optimisation_cg_steps", e.optimisation_steps},
+        {"exact_minimisation_too_large", e.exact_minimisation_too_large},
         {"relaxed_equilibration",
          {e.relaxed_equilibration[0], e.relaxed_equilibration[1]}},
         {"epsilon_classical_tractions", e.epsilon_before_optimisation}};

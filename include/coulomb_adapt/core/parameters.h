@@ -115,6 +115,10 @@ namespace coulomb_adapt
        * (sparse direct solve); > 0 stops the truncated CG when the
        * estimate's last steps gain less than this fraction of it. */
       double cre_minimisation_tolerance;
+      /** With tolerance 0: the most parameters a body's system may have
+       * for the exact minimisation (above: the truncated CG at 1e-3);
+       * 0: no limit. */
+      types::global_dof_index cre_exact_minimisation_up_to;
       /** Compare with the exact error: the scene's exact solution if it
        * has one, else a reference solution on a finer mesh. */
       bool compute_exact_error;

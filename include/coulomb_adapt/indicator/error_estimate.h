@@ -10,6 +10,7 @@
 #include <coulomb_adapt/core/error_estimator.h>
 #include <coulomb_adapt/indicator/contact_correction.h>
 #include <coulomb_adapt/indicator/contact_error.h>
+#include <coulomb_adapt/indicator/equilibrated_stress.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 
 #include <array>
@@ -52,6 +53,10 @@ namespace coulomb_adapt
     /** cre with the relaxed equilibration: the truncated CG's steps (the
      * larger of the two bodies'; 0: solved directly or not optimised). */
     unsigned int optimisation_steps = 0;
+    /** cre: whether a body's relaxed system was too large for the exact
+     * minimisation ('CRE exact minimisation up to') and was minimised by
+     * the truncated CG instead. */
+    bool exact_minimisation_too_large = false;
     /** cre, per body: whether the relaxed equilibration modes were used
      * (equilibrated_stress_errors()). */
     std::array<bool, 2> relaxed_equilibration = {{false, false}};
@@ -138,7 +143,7 @@ namespace coulomb_adapt
                      const unsigned int              degree_increase,
                      const bool                      optimise_tractions,
                      const bool                      relax_equilibration,
-                     const double                    minimisation_tolerance,
+                     const CreMinimisation          &minimisation,
                      const parameters::LinearSolver &solver_parameters,
                      const ErrorEstimateOptions     &options = {});
 

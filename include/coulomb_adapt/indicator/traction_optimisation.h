@@ -34,7 +34,7 @@ namespace coulomb_adapt
                              const LocalProblemLoads             &loads,
                              const bool                           with_bubbles,
                              const bool                           relaxed,
-                             const double minimisation_tolerance,
+                             const CreMinimisation               &minimisation,
                              EquilibratedStressErrors            &result,
                              TimerOutput *timer = nullptr);
   } // namespace equilibration
