@@ -219,6 +219,51 @@ namespace coulomb_adapt
 
 
 
+  std::set<CellId>
+  ElasticBody::refined_cells() const
+  {
+    // A cell refined on this rank's part of the mesh is refined in the
+    // whole mesh (the local tree is a coarsening of the global one); the
+    // union over the ranks has every refined cell.
+    std::vector<CellId> local;
+    for (const auto &cell : tria->cell_iterators())
+      if (cell->has_children())
+        local.push_back(cell->id());
+    std::set<CellId> all;
+    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+      all.insert(part.begin(), part.end());
+    return all;
+  }
+
+
+
+  void
+  ElasticBody::refine_as(const std::set<CellId> &refined,
+                         const unsigned int      finest_level)
+  {
+    AssertThrow(!simplex,
+                ExcMessage("local refinement needs quadrilaterals (deal.II "
+                           "9.4 refines triangles only globally)"));
+    while (true)
+      {
+        bool any = false;
+        for (const auto &cell : tria->active_cell_iterators())
+          if (cell->is_locally_owned() &&
+              static_cast<unsigned int>(cell->level()) < finest_level &&
+              refined.count(cell->id()) > 0)
+            {
+              cell->set_refine_flag();
+              any = true;
+            }
+        if (!Utilities::MPI::logical_or(any, mpi_communicator))
+          break;
+        tria->prepare_coarsening_and_refinement();
+        tria->execute_coarsening_and_refinement();
+      }
+  }
+
+
+
   void
   ElasticBody::replace_mesh(const CoarseMeshData &mesh)
   {

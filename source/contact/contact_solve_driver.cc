@@ -1,5 +1,7 @@
 #include <deal.II/base/patterns.h>
 
+#include <deal.II/distributed/tria.h>
+
 #include <coulomb_adapt/contact/contact_diagnosis.h>
 #include <coulomb_adapt/contact/contact_linear_solver_choice.h>
 #include <coulomb_adapt/contact/contact_solve_driver.h>
@@ -105,7 +107,10 @@ namespace coulomb_adapt
       for (const NestedIterationLevel &l : levels)
         {
           pcout << "  contact: nested iteration, "
-                << (l.coarsening > 0 ?
+                << (l.from_own_hierarchy ?
+                      "cells up to level " +
+                        std::to_string(l.finest_cell_level) :
+                    l.coarsening > 0 ?
                       "graded zone " + std::to_string(1u << l.coarsening) +
                         "x coarser" :
                       std::to_string(l.global_refinements) +
@@ -160,6 +165,34 @@ namespace coulomb_adapt
         }
       log_nested_iteration_levels(pcout, record.levels);
       return true;
+    }
+
+
+
+    // A cycle's nested start: says why (@p why) and from which coarser
+    // meshes (@p meshes), then solves them (@p predict) as
+    // solve_on_coarser_meshes() does. False, with the reason in
+    // @p record, when it gives no sets: the cycle keeps the warm start.
+    bool
+    nested_start(const ConditionalOStream                             &pcout,
+                 const std::string                                    &why,
+                 const std::string                                    &meshes,
+                 const std::function<std::vector<ContactNodeState>()> &predict,
+                 std::vector<ContactNodeState> &predicted_sets,
+                 NestedIterationRecord         &record)
+    {
+      pcout << "  contact: nested start (" << why << "): " << meshes
+            << ", instead of the previous cycle's sets" << std::endl;
+      if (!solve_on_coarser_meshes(pcout,
+                                   "nested start",
+                                   "; the previous cycle's sets instead",
+                                   predict,
+                                   predicted_sets,
+                                   record))
+        return false;
+      if (predicted_sets.empty())
+        record.skipped = "every coarser solve stopped with a diagnosis";
+      return !predicted_sets.empty();
     }
   } // namespace
 
@@ -224,9 +257,13 @@ namespace coulomb_adapt
       {
         outcome.nested_iteration.emplace();
         std::vector<ContactNodeState> uniform_sets;
-        nested = start_from_uniform_refinements(n_dofs,
+        nested = locally_refined_meshes() ?
+                   start_from_coarser_hierarchy(n_dofs,
                                                 uniform_sets,
-                                                *outcome.nested_iteration);
+                                                *outcome.nested_iteration) :
+                   start_from_uniform_refinements(n_dofs,
+                                                  uniform_sets,
+                                                  *outcome.nested_iteration);
         if (nested)
           {
             outcome.warm_start = false;
@@ -429,48 +466,97 @@ namespace coulomb_adapt
     while (static_cast<double>(first_meshes_dofs) * std::pow(4., R + 1) <=
            static_cast<double>(n_dofs))
       ++R;
-    const int          finest = static_cast<int>(g) + R;
-    std::ostringstream why;
-    why << "the cycle's " << n_dofs << " DoFs are at least "
-        << parameters.adaptation.nested_start_dof_ratio
-        << " times the previous cycle's " << last_n_dofs;
+    const int finest = static_cast<int>(g) + R;
     if (finest < 1)
       {
         record.skipped = "no uniform refinement of the scene's meshes has "
                          "at most the cycle's DoFs";
-        pcout << "  contact: nested start skipped (" << why.str()
-              << "): " << record.skipped << std::endl;
+        pcout << "  contact: nested start skipped ("
+              << nested_start_reason(n_dofs) << "): " << record.skipped
+              << std::endl;
         return false;
       }
     const auto        &c = parameters.contact;
     const unsigned int n_levels =
       std::min<unsigned int>(c.nested_iteration_levels + 1,
                              static_cast<unsigned int>(finest) + 1);
-    pcout << "  contact: nested start (" << why.str()
-          << "): the scene's meshes refined up to " << finest
-          << " times, instead of the previous cycle's sets" << std::endl;
-    if (!solve_on_coarser_meshes(
-          pcout,
-          "nested start",
-          "; the previous cycle's sets instead",
-          [&] {
-            return predict_contact_sets_on_coarser_meshes(
-              mpi_communicator,
-              scene,
-              parameters.mesh.cell_type,
-              finest + 1,
-              n_levels,
-              parameters.finite_elements,
-              c,
-              parameters.linear_solver,
-              record.levels);
-          },
-          predicted_sets,
-          record))
-      return false;
-    if (predicted_sets.empty())
-      record.skipped = "every coarser solve stopped with a diagnosis";
-    return !predicted_sets.empty();
+    return nested_start(
+      pcout,
+      nested_start_reason(n_dofs),
+      "the scene's meshes refined up to " + std::to_string(finest) + " times",
+      [&] {
+        return predict_contact_sets_on_coarser_meshes(
+          mpi_communicator,
+          scene,
+          parameters.mesh.cell_type,
+          finest + 1,
+          n_levels,
+          parameters.finite_elements,
+          c,
+          parameters.linear_solver,
+          record.levels);
+      },
+      predicted_sets,
+      record);
+  }
+
+
+
+  // The cycle's own hierarchy (predict_contact_sets_on_coarser_hierarchy()
+  // chooses its levels), as many as the uniform start takes at most.
+  bool
+  ContactSolveDriver::start_from_coarser_hierarchy(
+    const types::global_dof_index  n_dofs,
+    std::vector<ContactNodeState> &predicted_sets,
+    NestedIterationRecord         &record)
+  {
+    const auto &c = parameters.contact;
+    return nested_start(
+      pcout,
+      nested_start_reason(n_dofs),
+      "the cycle's meshes with their finest cell levels coarsened",
+      [&] {
+        return predict_contact_sets_on_coarser_hierarchy(
+          mpi_communicator,
+          scene,
+          parameters.mesh.cell_type,
+          {{bodies[0], bodies[1]}},
+          c.nested_iteration_levels + 1,
+          parameters.finite_elements,
+          c,
+          parameters.linear_solver,
+          record.levels);
+      },
+      predicted_sets,
+      record);
+  }
+
+
+
+  std::string
+  ContactSolveDriver::nested_start_reason(
+    const types::global_dof_index n_dofs) const
+  {
+    std::ostringstream why;
+    why << "the cycle's " << n_dofs << " DoFs are at least "
+        << parameters.adaptation.nested_start_dof_ratio
+        << " times the previous cycle's " << last_n_dofs;
+    return why.str();
+  }
+
+
+
+  // Whether both bodies' meshes are refined in place (p4est,
+  // quadrilaterals): their hierarchy then holds the coarser meshes. A
+  // remeshed or triangle mesh has none.
+  bool
+  ContactSolveDriver::locally_refined_meshes() const
+  {
+    for (const ElasticBody *body : bodies)
+      if (dynamic_cast<const parallel::distributed::Triangulation<2> *>(
+            &body->triangulation()) == nullptr)
+        return false;
+    return true;
   }
 
 

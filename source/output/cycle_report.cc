@@ -166,6 +166,8 @@ namespace coulomb_adapt
                                     {"newton_iterations", l.newton_iterations},
                                     {"active_nodes", l.n_active},
                                     {"wall_time_s", l.wall_time}};
+            if (l.from_own_hierarchy)
+              level["finest_cell_level"] = l.finest_cell_level;
             if (!l.newton_iterations_per_load_step.empty())
               level["newton_iterations_per_load_step"] =
                 l.newton_iterations_per_load_step;

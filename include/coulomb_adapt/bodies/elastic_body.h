@@ -12,6 +12,8 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping.h>
 
+#include <deal.II/grid/cell_id.h>
+
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -74,6 +76,20 @@ namespace coulomb_adapt
      * are kept at one level by p4est. Quadrilateral meshes only. */
     void
     refine_and_coarsen(const std::vector<signed char> &decisions);
+
+    /** The cells of this mesh that have children, on every rank: the
+     * hierarchy of a locally refined mesh, which refine_as() rebuilds on
+     * another body of the same scene. */
+    std::set<CellId>
+    refined_cells() const;
+
+    /** Refine, up to level @p finest_level, every cell that is in
+     * @p refined (another body's refined_cells() of the same scene and
+     * coarse mesh): that body's mesh with its cells beyond
+     * @p finest_level coarsened (p4est's 2:1 balance may add a few).
+     * Quadrilateral meshes only. */
+    void
+    refine_as(const std::set<CellId> &refined, const unsigned int finest_level);
 
     /** Replace the mesh by @p mesh (from the remesher), with the scene's
      * manifolds; it becomes the coarse mesh of later uniform refinements.

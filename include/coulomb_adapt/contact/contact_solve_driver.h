@@ -125,9 +125,23 @@ namespace coulomb_adapt
      * meshes refined uniformly, up to the finest with at most @p n_dofs
      * (estimated); as start_from_coarser_meshes(). */
     bool
-    start_from_uniform_refinements(const types::global_dof_index n_dofs,
-                                   std::vector<ContactNodeState> &predicted_sets,
-                                   NestedIterationRecord         &record);
+    start_from_uniform_refinements(
+      const types::global_dof_index  n_dofs,
+      std::vector<ContactNodeState> &predicted_sets,
+      NestedIterationRecord         &record);
+    /** Why a cycle with @p n_dofs takes the nested start, for the log. */
+    std::string
+    nested_start_reason(const types::global_dof_index n_dofs) const;
+    /** Whether both bodies' meshes are p4est meshes refined in place. */
+    bool
+    locally_refined_meshes() const;
+    /** The same for locally refined (quadrilateral) meshes: the cycle's
+     * own meshes with their finest levels coarsened
+     * (predict_contact_sets_on_coarser_hierarchy()). */
+    bool
+    start_from_coarser_hierarchy(const types::global_dof_index  n_dofs,
+                                 std::vector<ContactNodeState> &predicted_sets,
+                                 NestedIterationRecord         &record);
     /** The load steps of the scene, each restarted as @p restarts allow. */
     void
     solve_load_steps(const std::vector<Restart>          &restarts,
@@ -153,9 +167,9 @@ namespace coulomb_adapt
      * meshes with 'Mesh/Global refinements' (0 if this driver never solved
      * on them): the measures of a large refinement and of the uniform
      * refinements' sizes. */
-    types::global_dof_index last_n_dofs       = 0;
-    types::global_dof_index first_meshes_dofs = 0;
-    const ConditionalOStream                  &pcout;
+    types::global_dof_index   last_n_dofs       = 0;
+    types::global_dof_index   first_meshes_dofs = 0;
+    const ConditionalOStream &pcout;
     /** Shared by every ContactSolver of the fine meshes in this run: after
      * one failed Krylov solve under 'auto' the direct solver takes the
      * Newton systems (the following load steps, restarts and cycles). */
