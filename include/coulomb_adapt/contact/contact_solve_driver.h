@@ -132,9 +132,11 @@ namespace coulomb_adapt
     /** Why a cycle with @p n_dofs takes the nested start, for the log. */
     std::string
     nested_start_reason(const types::global_dof_index n_dofs) const;
-    /** Whether both bodies' meshes are p4est meshes refined in place. */
+    /** Whether a nested start takes the cycle's own hierarchy (meshes
+     * refined in place, a scene that does not grade them) rather than
+     * uniform refinements of the scene's meshes. */
     bool
-    locally_refined_meshes() const;
+    start_from_own_hierarchy() const;
     /** The same for locally refined (quadrilateral) meshes: the cycle's
      * own meshes with their finest levels coarsened
      * (predict_contact_sets_on_coarser_hierarchy()). */

@@ -93,7 +93,8 @@ namespace coulomb_adapt
   /**
    * The same for a cycle whose meshes @p fine_bodies are local
    * (hanging-node) refinements of the scene's coarse meshes (Q1/Q2,
-   * 'Adaptation/Strategy = refine'): the coarser levels are those meshes
+   * 'Adaptation/Strategy = refine'; the driver keeps the uniform levels
+   * for a scene that grades its meshes): the coarser levels are those meshes
    * with every cell beyond level L coarsened (rebuilt from the scene's
    * coarse meshes, ElasticBody::refine_as()), for up to @p n_levels
    * levels L: the finest with at most two thirds of the cycle's cells, each
