@@ -1,5 +1,6 @@
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/geometry_info.h>
 #include <deal.II/base/timer.h>
 
 #include <coulomb_adapt/bodies/elastic_bodies.h>
@@ -115,10 +116,10 @@ namespace coulomb_adapt
 
     // The cells of both bodies' meshes with every cell beyond level L
     // coarsened, L = 0 ... @p finest, counted from the active cells per
-    // level: from the finest level down, each refined cell has 4 children,
-    // so the cells of level L are the active ones plus a quarter of those
-    // of level L + 1; the mesh cut at L has those and every active cell
-    // below L.
+    // level: from the finest level down, each refined cell has
+    // max_children_per_cell (4) children, so the cells of level L are the
+    // active ones plus a quarter of those of level L + 1; the mesh cut at
+    // L has those and every active cell below L.
     std::vector<double>
     cells_up_to_level(const std::array<const ElasticBody *, 2> &bodies,
                       const unsigned int                        finest)
@@ -136,7 +137,8 @@ namespace coulomb_adapt
           std::vector<double> of_level(finest + 1, 0.);
           of_level[finest] = active[finest];
           for (unsigned int l = finest; l-- > 0;)
-            of_level[l] = active[l] + of_level[l + 1] / 4;
+            of_level[l] = active[l] + of_level[l + 1] /
+                                        GeometryInfo<2>::max_children_per_cell;
           double below = 0;
           for (unsigned int l = 0; l <= finest; ++l)
             {
@@ -178,37 +180,6 @@ namespace coulomb_adapt
       std::reverse(levels.begin(), levels.end());
       return levels;
     }
-
-
-
-    // Sets from the scene's coarser gradings of its own meshes, if it
-    // grades them ('Contact/Nested iteration levels' of them; none
-    // otherwise): the start of a coarsest level that holds the scene's
-    // graded meshes (hertz Q1, 9,198 DoFs: 8 Newton steps from the initial
-    // gap).
-    std::vector<ContactNodeState>
-    predict_on_coarser_gradings(
-      const MPI_Comm                     mpi_communicator,
-      const Scene                       &scene,
-      const CellType                     cell_type,
-      const parameters::FiniteElements  &fe_parameters,
-      const parameters::Contact         &contact_parameters,
-      const parameters::LinearSolver    &solver_parameters,
-      std::vector<NestedIterationLevel> &levels)
-    {
-      if (contact_parameters.nested_iteration_levels == 0 ||
-          scene.with_coarser_graded_meshes(1) == nullptr)
-        return {};
-      return predict_contact_sets_on_coarser_graded_meshes(
-        mpi_communicator,
-        scene,
-        cell_type,
-        contact_parameters.nested_iteration_levels,
-        fe_parameters,
-        contact_parameters,
-        solver_parameters,
-        levels);
-    }
   } // namespace
 
 
@@ -235,14 +206,17 @@ namespace coulomb_adapt
     // Q1, 9,198 DoFs: 8). They start from their coarser gradings instead,
     // as a fine mesh without refinements does.
     std::vector<ContactNodeState> states;
-    if (coarsest == 0)
-      states = predict_on_coarser_gradings(mpi_communicator,
-                                           scene,
-                                           cell_type,
-                                           fe_parameters,
-                                           contact_parameters,
-                                           solver_parameters,
-                                           levels);
+    if (coarsest == 0 && contact_parameters.nested_iteration_levels > 0 &&
+        scene.with_coarser_graded_meshes(1) != nullptr)
+      states = predict_contact_sets_on_coarser_graded_meshes(
+        mpi_communicator,
+        scene,
+        cell_type,
+        contact_parameters.nested_iteration_levels,
+        fe_parameters,
+        contact_parameters,
+        solver_parameters,
+        levels);
 
     const ElasticBodies bodies =
       make_bodies(mpi_communicator, scene, cell_type, coarsest, fe_parameters);
@@ -288,19 +262,14 @@ namespace coulomb_adapt
       coarser_cell_levels(fine_bodies, finest, n_levels);
     if (cell_levels.empty())
       return {};
-    // The scene's own meshes are part of every level: a scene that grades
-    // them (hertz) has many nodes across the contact zone already there,
-    // and the coarsest level starts from its coarser gradings, as in
-    // predict_contact_sets_on_coarser_meshes().
-    std::vector<ContactNodeState> states =
-      predict_on_coarser_gradings(mpi_communicator,
-                                  scene,
-                                  cell_type,
-                                  fe_parameters,
-                                  contact_parameters,
-                                  solver_parameters,
-                                  levels);
-    const ElasticBodies bodies =
+    // The levels are built as every other body is (make_bodies(): the
+    // scene's coarse meshes, manifolds and boundary ids) and refined by the
+    // cycle's refined cell ids, which gives the same meshes on any number
+    // of ranks; copying the cycle's meshes (copy_triangulation) and
+    // coarsening them level by level would need an ElasticBody built from
+    // another one's triangulation.
+    std::vector<ContactNodeState> states;
+    const ElasticBodies           bodies =
       make_bodies(mpi_communicator, scene, cell_type, 0, fe_parameters);
     for (const unsigned int L : cell_levels)
       {

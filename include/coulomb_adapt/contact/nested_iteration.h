@@ -99,9 +99,7 @@ namespace coulomb_adapt
    * coarse meshes, ElasticBody::refine_as()), for up to @p n_levels
    * levels L: the finest with at most two thirds of the cycle's cells, each
    * coarser one with at most a third of the one above; coarsest first, the
-   * coarsest from the initial gap, or, for a scene that grades its
-   * meshes, from its coarser gradings
-   * (predict_contact_sets_on_coarser_graded_meshes()).
+   * coarsest from the initial gap.
    *
    * Why: a locally refined mesh resolves the contact zone much finer than
    * a uniform one of its DoFs, so the uniform levels' sets are coarse
