@@ -6,6 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <coulomb_adapt/app/command_line.h>
+#include <coulomb_adapt/app/single_process_messaging.h>
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/core/parameters.h>
@@ -22,6 +23,7 @@ main(int argc, char *argv[])
   // Threads: as many as the cores left to this rank (one per core in all;
   // DEAL_II_NUM_THREADS limits them). They run the cells of the cre
   // estimator and deal.II's own threaded loops (DataOut).
+  prefer_shared_memory_messaging_for_single_process();
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   const MPI_Comm                   comm = MPI_COMM_WORLD;
   const bool is_root = Utilities::MPI::this_mpi_process(comm) == 0;
