@@ -11,6 +11,7 @@
 #include <coulomb_adapt/contact/newton_diagnostics.h>
 #include <coulomb_adapt/contact/row_replacing_contact_system.h>
 #include <coulomb_adapt/contact/set_change_control.h>
+#include <coulomb_adapt/contact/tighter_krylov_solve.h>
 
 #include <algorithm>
 #include <array>
@@ -56,6 +57,7 @@ namespace coulomb_adapt
                              restriction_allowed(),
                              pcout);
     linear_tolerance_factor                   = 1;
+    residual_before_tighter_solve             = 0;
     unsigned int              n_turning_steps = 0;
     std::vector<unsigned int> last_changed;
     // The first load step without sets from another mesh (those are kept
@@ -230,11 +232,11 @@ namespace coulomb_adapt
   // tolerance, or below the round-off of the multipliers, which are
   // differences of nodal forces (with a stiff, nearly incompressible body
   // 1 that floor lies above the tolerance). Unchanged sets above both stop
-  // the solve, unless the linear solve was a Krylov solve: its tolerance
-  // on |b| does not bound the multipliers node by node, and the same
-  // system is solved again from this solution with a tighter tolerance
-  // (once: near what GMRES reaches in double precision; few iterations,
-  // and the AMG hierarchy is reused). Changed sets go to SetChangeControl.
+  // the solve, unless the linear solve was a Krylov solve: the same
+  // system is then solved again from this solution with a tighter
+  // tolerance (few iterations, and the AMG hierarchy is reused), up to
+  // twice (contact/tighter_krylov_solve.h). Changed sets go to
+  // SetChangeControl.
   ContactSolver::NextStep
   ContactSolver::next_step(const unsigned int                 k,
                            const SetChangeControl::SetUpdate &update,
@@ -256,10 +258,13 @@ namespace coulomb_adapt
         return NextStep::converged;
       }
     if (update.n_changed == 0 && iterative &&
-        report.n_tighter_linear_solves == 0)
+        repeat_krylov_solve_tighter(report.n_tighter_linear_solves,
+                                    residual,
+                                    residual_before_tighter_solve))
       {
-        report.n_tighter_linear_solves = 1;
-        linear_tolerance_factor        = 1e-2;
+        ++report.n_tighter_linear_solves;
+        residual_before_tighter_solve = residual;
+        linear_tolerance_factor *= tighter_krylov_factor;
         pcout << "    sets unchanged, residual above the tolerance: "
               << "step " << k << "'s linear solve is repeated with its "
               << "tolerance reduced to " << linear_tolerance_factor << " times"

@@ -49,7 +49,7 @@ namespace coulomb_adapt
      * before the step was solved again from the previous step's sets. */
     unsigned int newton_iterations_of_stopped_prediction = 0;
     /** Krylov solves repeated with a tighter tolerance because unchanged
-     * sets missed Contact/Tolerance (0 or 1). */
+     * sets missed Contact/Tolerance (0, 1 or 2: ContactSolver::next_step). */
     unsigned int n_tighter_linear_solves = 0;
     bool         frictionless            = false;
     /** The converged sets and body 1's Dirichlet data leave its rigid
@@ -278,9 +278,11 @@ namespace coulomb_adapt
     /** rigid_body_modes() of this load step, for the AMG path; empty for
      * direct solves. */
     std::vector<std::vector<double>> near_null_space;
-    /** Factor on the Krylov tolerance: 1, and 1e-2 when unchanged
-     * sets miss the complementarity tolerance (ContactSolver::solve). */
+    /** Factor on the Krylov tolerance: 1, then 1e-2 and 1e-4 when
+     * unchanged sets miss the complementarity tolerance (next_step). */
     double linear_tolerance_factor = 1;
+    /** The residual of the step's solve before its last tighter repeat. */
+    double residual_before_tighter_solve = 0;
 
     std::vector<ContactNodeState> states;
     /** States of a previous mesh to start from (warm_start_from). */
