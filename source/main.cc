@@ -23,6 +23,8 @@ main(int argc, char *argv[])
   // Threads: as many as the cores left to this rank (one per core in all;
   // DEAL_II_NUM_THREADS limits them). They run the cells of the cre
   // estimator and deal.II's own threaded loops (DataOut).
+  // Before MPI_Init: a run without a launcher skips Open MPI's probing of
+  // network layers it never uses (app/single_process_messaging.h).
   prefer_shared_memory_messaging_for_single_process();
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   const MPI_Comm                   comm = MPI_COMM_WORLD;
