@@ -6,9 +6,10 @@
 //  - each launcher variable alone (mpirun's OMPI_COMM_WORLD_SIZE, PMIx's
 //    PMIX_RANK, PMI's PMI_RANK / PMI_SIZE, Slurm's SLURM_PROCID) leaves
 //    OMPI_MCA_pml unset, false;
-//  - as this test was started: true on 1 rank (ctest starts it alone),
-//    false under mpirun (2 ranks); then MPI starts with that choice and
-//    a sum over the ranks is right.
+//  - as this test was started: chosen without a launcher and without the
+//    user's OMPI_MCA_pml (ctest starts the 1-rank variant alone), not
+//    under mpirun (2 ranks); then MPI starts with that choice and a sum
+//    over the ranks is right.
 // The launcher's own variables are restored before MPI_Init.
 
 #include <deal.II/base/mpi.h>
@@ -66,7 +67,12 @@ main(int argc, char *argv[])
   for (const std::string &name : launcher_variables)
     as_started[name] = get(name);
   as_started["OMPI_MCA_pml"] = get("OMPI_MCA_pml");
-  const bool launched        = as_started["OMPI_COMM_WORLD_SIZE"].has_value();
+  // Any launcher's variable, not only mpirun's: ctest may run inside a
+  // Slurm allocation, or with the user's own OMPI_MCA_pml.
+  bool launched = false;
+  for (const std::string &name : launcher_variables)
+    launched = launched || as_started[name].has_value();
+  const bool user_pml = as_started["OMPI_MCA_pml"].has_value();
 
   std::ostringstream log;
   bool               all_right = true;
@@ -111,11 +117,18 @@ main(int argc, char *argv[])
   // does, and start MPI with it.
   for (const auto &[name, value] : as_started)
     set(name, value);
-  check("as started",
-        prefer_shared_memory_messaging_for_single_process(),
-        !launched && !as_started["OMPI_MCA_pml"],
-        launched || as_started["OMPI_MCA_pml"] ? as_started["OMPI_MCA_pml"] :
-                                                 std::string("ob1"));
+  const bool chosen = prefer_shared_memory_messaging_for_single_process();
+  const bool expected_chosen = !launched && !user_pml;
+  const std::optional<std::string> expected_pml =
+    expected_chosen ? std::string("ob1") : as_started["OMPI_MCA_pml"];
+  const bool as_expected =
+    chosen == expected_chosen && get("OMPI_MCA_pml") == expected_pml;
+  all_right = all_right && as_expected;
+  // Printed without the values, which depend on how ctest was started.
+  log << "as started (" << (launched ? "with" : "without") << " a launcher): "
+      << (as_expected ? std::string("as expected") :
+                        "WRONG: " + describe(chosen))
+      << "\n";
 
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();

@@ -19,18 +19,20 @@ namespace coulomb_adapt
   {
     // Solve the contact problem on @p bodies (set up and assembled here),
     // warm-started from @p states when there are any; @p states receives
-    // the solution's sets and @p level what the solve did.
+    // the solution's sets, and @p levels gets @p level (which meshes) with
+    // what the solve did.
     //
-    // A level whose solve stops with a diagnosis is left out (false, no
-    // record): the coarsest meshes are the least reliable (dovetail's
+    // A level whose solve stops with a diagnosis is left out (no record):
+    // the coarsest meshes are the least reliable (dovetail's
     // .geo at 8x its mesh size: "would slide" in its second step), and the
     // next finer level starts from the initial gap instead.
-    bool
-    solve_level(const ElasticBodies            &bodies,
-                const parameters::Contact      &contact_parameters,
-                const parameters::LinearSolver &solver_parameters,
-                std::vector<ContactNodeState>  &states,
-                NestedIterationLevel           &level)
+    void
+    solve_level(const ElasticBodies               &bodies,
+                const parameters::Contact         &contact_parameters,
+                const parameters::LinearSolver    &solver_parameters,
+                std::vector<ContactNodeState>     &states,
+                NestedIterationLevel               level,
+                std::vector<NestedIterationLevel> &levels)
     {
       // The coarse solves' Newton lines would drown the fine one's: each
       // level is reported by the caller in one line instead.
@@ -53,7 +55,7 @@ namespace coulomb_adapt
       catch (const ContactDiagnosis &)
         {
           states.clear();
-          return false;
+          return;
         }
       states = solver.node_states();
       timer.stop();
@@ -62,7 +64,7 @@ namespace coulomb_adapt
       level.newton_iterations = report.newton_iterations;
       level.n_active          = report.n_active;
       level.wall_time         = timer.wall_time();
-      return true;
+      levels.push_back(level);
     }
 
 
@@ -227,9 +229,8 @@ namespace coulomb_adapt
             body->refine_uniformly();
         NestedIterationLevel level;
         level.global_refinements = r;
-        if (solve_level(
-              bodies, contact_parameters, solver_parameters, states, level))
-          levels.push_back(level);
+        solve_level(
+          bodies, contact_parameters, solver_parameters, states, level, levels);
       }
     return states;
   }
@@ -278,9 +279,8 @@ namespace coulomb_adapt
         NestedIterationLevel level;
         level.from_own_hierarchy = true;
         level.finest_cell_level  = L;
-        if (solve_level(
-              bodies, contact_parameters, solver_parameters, states, level))
-          levels.push_back(level);
+        solve_level(
+          bodies, contact_parameters, solver_parameters, states, level, levels);
       }
     return states;
   }
@@ -315,9 +315,8 @@ namespace coulomb_adapt
           make_bodies(mpi_communicator, *coarser, cell_type, 0, fe_parameters);
         NestedIterationLevel level;
         level.coarsening = k;
-        if (solve_level(
-              bodies, contact_parameters, solver_parameters, states, level))
-          levels.push_back(level);
+        solve_level(
+          bodies, contact_parameters, solver_parameters, states, level, levels);
       }
     return states;
   }
