@@ -21,6 +21,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <coulomb_adapt/bodies/coarse_cell_indexed_triangulation.h>
+#include <coulomb_adapt/bodies/consistent_refinement_flags.h>
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 
@@ -189,7 +190,7 @@ namespace coulomb_adapt
           if (d > 1)
             again[cell->id()] = d - 1;
         }
-    tria->prepare_coarsening_and_refinement();
+    prepare_refinement_flags_consistently(*tria);
     tria->execute_coarsening_and_refinement();
 
     while (true)
@@ -212,7 +213,7 @@ namespace coulomb_adapt
               if (parent->second > 1)
                 again[cell->id()] = parent->second - 1;
             }
-        tria->prepare_coarsening_and_refinement();
+        prepare_refinement_flags_consistently(*tria);
         tria->execute_coarsening_and_refinement();
       }
   }
@@ -257,7 +258,7 @@ namespace coulomb_adapt
             }
         if (!Utilities::MPI::logical_or(any, mpi_communicator))
           break;
-        tria->prepare_coarsening_and_refinement();
+        prepare_refinement_flags_consistently(*tria);
         tria->execute_coarsening_and_refinement();
       }
   }
