@@ -175,28 +175,26 @@ namespace coulomb_adapt
                      const double                 max_ratio)
         : cells(cells)
         , comm(comm)
-        , degree(degree)
-        , min_ratio(min_ratio)
-        , max_ratio(max_ratio)
-      {}
-
-      double
-      lowest_ratio(const CellData &c) const
+        , log_max_ratio(std::log(max_ratio))
       {
-        return lowest_size_ratio(min_ratio, c.rate < degree);
+        // The bisections evaluate the model some 50 times per plan: per
+        // cell one exp() per evaluation, from these logarithms.
+        terms.reserve(cells.size());
+        for (const auto &c : cells)
+          terms.push_back(
+            {c.epsilon_squared > 0 ?
+               std::log(dimension / (2 * c.rate * c.epsilon_squared)) :
+               0.,
+             1 / (2 * c.rate + dimension),
+             c.epsilon_squared > 0 ? std::log(c.epsilon_squared) : 0.,
+             std::log(lowest_size_ratio(min_ratio, c.rate < degree)),
+             c.epsilon_squared > 0});
       }
 
       double
-      ratio(const CellData &c, const double L, const bool lower_bound) const
+      ratio(const std::size_t cell, const double L) const
       {
-        if (c.epsilon_squared <= 0)
-          return max_ratio;
-        const double log_r =
-          (std::log(dimension / (2 * c.rate * c.epsilon_squared)) - L) /
-          (2 * c.rate + dimension);
-        return std::clamp(std::exp(std::clamp(log_r, -300., 300.)),
-                          lower_bound ? lowest_ratio(c) : 0.,
-                          max_ratio);
+        return std::exp(log_ratio(terms[cell], L, true));
       }
 
       // Decreases as L grows.
@@ -204,9 +202,11 @@ namespace coulomb_adapt
       predicted_error_squared(const double L, const bool lower_bound) const
       {
         double sum = 0;
-        for (const auto &c : cells)
-          sum +=
-            std::pow(ratio(c, L, lower_bound), 2 * c.rate) * c.epsilon_squared;
+        for (std::size_t i = 0; i < cells.size(); ++i)
+          if (terms[i].has_error)
+            sum +=
+              std::exp(2 * cells[i].rate * log_ratio(terms[i], L, lower_bound) +
+                       terms[i].log_epsilon_squared);
         return Utilities::MPI::sum(sum, comm);
       }
 
@@ -215,15 +215,40 @@ namespace coulomb_adapt
       predicted_n_cells(const double L) const
       {
         double sum = 0;
-        for (const auto &c : cells)
-          sum += std::pow(ratio(c, L, true), -dimension);
+        for (const auto &t : terms)
+          sum += std::exp(-dimension * log_ratio(t, L, true));
         return Utilities::MPI::sum(sum, comm);
       }
 
       const std::vector<CellData> &cells;
-      const MPI_Comm               comm;
-      const unsigned int           degree;
-      const double                 min_ratio, max_ratio;
+
+    private:
+      // log r_E = (log(d / (2 q_E epsilon_E^2)) - L) / (2 q_E + d), the
+      // Lagrange condition, and its bounds.
+      struct Terms
+      {
+        double log_optimum_scale, inverse_exponent, log_epsilon_squared,
+          log_lowest_ratio;
+        bool has_error;
+      };
+
+      double
+      log_ratio(const Terms &t, const double L, const bool lower_bound) const
+      {
+        if (!t.has_error)
+          return log_max_ratio;
+        const double log_r =
+          std::clamp((t.log_optimum_scale - L) * t.inverse_exponent,
+                     -300.,
+                     300.);
+        return std::min(lower_bound ? std::max(log_r, t.log_lowest_ratio) :
+                                      log_r,
+                        log_max_ratio);
+      }
+
+      const MPI_Comm     comm;
+      const double       log_max_ratio;
+      std::vector<Terms> terms;
     };
 
 
@@ -313,12 +338,14 @@ namespace coulomb_adapt
       }
 
     double n_cells = 0;
-    for (const auto &c : cells)
+    for (std::size_t i = 0; i < cells.size(); ++i)
       {
-        const double r                = model.ratio(c, L, true);
+        const CellData &c             = cells[i];
+        const double    r             = model.ratio(i, L);
         result.ratio[c.body](c.index) = r;
         n_cells += std::pow(r, -dimension);
-        result.n_at_min_ratio += (r <= model.lowest_ratio(c) * (1 + 1e-12));
+        result.n_at_min_ratio +=
+          (r <= lowest_size_ratio(min_ratio, c.rate < degree) * (1 + 1e-12));
         result.n_at_max_ratio += (r >= max_ratio * (1 - 1e-12));
       }
     result.predicted_n_cells = Utilities::MPI::sum(n_cells, comm);

@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <coulomb_adapt/adaptation/size_field.h>
+#include <coulomb_adapt/core/gather_numbers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -45,9 +46,7 @@ namespace coulomb_adapt
             local.push_back(cell->measure());
           }
       const auto gathered =
-        Utilities::MPI::gather(body.dof_handler().get_communicator(),
-                               local,
-                               root);
+        gather_numbers(body.dof_handler().get_communicator(), local, root);
       std::vector<PackedCell> cells;
       for (const auto &part : gathered)
         for (std::size_t c = 0; c < part.size(); c += n_values)
