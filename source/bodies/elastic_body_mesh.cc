@@ -24,6 +24,7 @@
 #include <coulomb_adapt/bodies/consistent_refinement_flags.h>
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
+#include <coulomb_adapt/bodies/triangle_mesh_description.h>
 
 #include <array>
 #include <cmath>
@@ -41,60 +42,92 @@ namespace coulomb_adapt
   // zero-area triangle), makes a singular or
   // non-finite stiffness matrix: the solver then reports garbage (a
   // MUMPS dump, "body 1 is not held") or a wrong equilibrium. Every rank
-  // holds the serial mesh, so every rank stops alike.
+  // holds the whole coarse or remeshed mesh, so every rank stops alike.
+  //
+  // The message is composed only for a bad cell: composing it for every
+  // cell (an ostringstream and the vertices printed) took about a third
+  // of the time of building a remeshed body's mesh (benchmarks/
+  // adaptive_run). @p polygon: the cell's n vertices in order around it.
+  void
+  check_cell(const std::array<Point<2>, 4> &polygon,
+             const unsigned int             n,
+             const std::string             &name,
+             const unsigned int             body_index)
+  {
+    bool   finite   = true;
+    double diameter = 0, area = 0;
+    for (unsigned int v = 0; v < n; ++v)
+      {
+        const Point<2> &a = polygon[v];
+        const Point<2> &b = polygon[(v + 1) % n];
+        finite = finite && std::isfinite(a[0]) && std::isfinite(a[1]);
+        for (unsigned int w = 0; w < n; ++w)
+          diameter = std::max(diameter, a.distance(polygon[w]));
+        area += a[0] * b[1] - b[0] * a[1];
+      }
+    area /= 2;
+    // Well below the round-off of the diameter squared there is no
+    // area (either orientation: gmsh's triangles may run clockwise).
+    if (finite && std::abs(area) > 1e-12 * diameter * diameter)
+      return;
+    std::ostringstream where;
+    where << "the mesh of body " << body_index + 1 << " (" << name
+          << ") has a cell with the vertices";
+    for (unsigned int v = 0; v < n; ++v)
+      where << (v == 0 ? " (" : ", (") << polygon[v][0] << ", " << polygon[v][1]
+            << ")";
+    if (!finite)
+      throw std::runtime_error(where.str() + ": a coordinate is not a finite "
+                                             "number");
+    throw std::runtime_error(
+      where.str() +
+      ": it has no area (a repeated node, or its vertices on one "
+      "line)" +
+      "; the stiffness matrix of such a cell is singular. Fix the "
+      "mesh");
+  }
+
+
+
   void
   check_mesh_cells(const Triangulation<2> &mesh,
                    const std::string      &name,
                    const unsigned int      body_index)
   {
-    // The message is composed only for a bad cell: composing it for every
-    // cell (an ostringstream and the vertices printed) took about a third
-    // of the time of building a remeshed body's mesh (benchmarks/
-    // adaptive_run).
-    std::array<Point<2>, 4> polygon;
     for (const auto &cell : mesh.active_cell_iterators())
       {
         const unsigned int n = cell->n_vertices();
         if (n == 3)
-          polygon = {{cell->vertex(0), cell->vertex(1), cell->vertex(2)}};
+          check_cell({{cell->vertex(0), cell->vertex(1), cell->vertex(2)}},
+                     3,
+                     name,
+                     body_index);
         else
-          polygon = {{cell->vertex(0),
-                      cell->vertex(1),
-                      cell->vertex(3),
-                      cell->vertex(2)}};
-        bool   finite   = true;
-        double diameter = 0, area = 0;
-        for (unsigned int v = 0; v < n; ++v)
-          {
-            const Point<2> &a = polygon[v];
-            const Point<2> &b = polygon[(v + 1) % n];
-            finite = finite && std::isfinite(a[0]) && std::isfinite(a[1]);
-            for (unsigned int w = 0; w < n; ++w)
-              diameter = std::max(diameter, a.distance(polygon[w]));
-            area += a[0] * b[1] - b[0] * a[1];
-          }
-        area /= 2;
-        // Well below the round-off of the diameter squared there is no
-        // area (either orientation: gmsh's triangles may run clockwise).
-        if (finite && std::abs(area) > 1e-12 * diameter * diameter)
-          continue;
-        std::ostringstream where;
-        where << "the mesh of body " << body_index + 1 << " (" << name
-              << ") has a cell with the vertices";
-        for (unsigned int v = 0; v < n; ++v)
-          where << (v == 0 ? " (" : ", (") << polygon[v][0] << ", "
-                << polygon[v][1] << ")";
-        if (!finite)
-          throw std::runtime_error(where.str() +
-                                   ": a coordinate is not a finite "
-                                   "number");
-        throw std::runtime_error(
-          where.str() +
-          ": it has no area (a repeated node, or its vertices on one "
-          "line)" +
-          "; the stiffness matrix of such a cell is singular. Fix the "
-          "mesh");
+          check_cell({{cell->vertex(0),
+                       cell->vertex(1),
+                       cell->vertex(3),
+                       cell->vertex(2)}},
+                     4,
+                     name,
+                     body_index);
       }
+  }
+
+
+
+  // The same for a remeshed body's triangles.
+  void
+  check_mesh_cells(const CoarseMeshData &mesh,
+                   const std::string    &name,
+                   const unsigned int    body_index)
+  {
+    for (const auto &cell : mesh.cells)
+      check_cell({{mesh.vertices[cell.vertices[0]],
+                   mesh.vertices[cell.vertices[1]],
+                   mesh.vertices[cell.vertices[2]]}},
+                 3,
+                 name,
+                 body_index);
   }
 
 
@@ -102,12 +135,33 @@ namespace coulomb_adapt
   // Builds the distributed mesh. Quadrilaterals: p4est from the coarse mesh,
   // refined in place. Triangles: the serial mesh is refined, partitioned
   // and handed to a fully distributed triangulation (each rank keeps its
-  // cells and a ghost layer).
+  // cells and a ghost layer). A remeshed body that is not refined further
+  // (every cycle of 'Strategy = remesh') skips the serial mesh: its
+  // description comes straight from the remesher's cells, and is the one
+  // the serial mesh would give (tests/triangle_mesh_description).
   void
   ElasticBody::create_mesh(const unsigned int n_refinements)
   {
     Triangulation<2> serial;
     create_scene_coarse_mesh(serial);
+    if (remeshed && n_refinements == 0)
+      {
+        check_mesh_cells(*remeshed, body_description.name, body_index);
+        simplex = true;
+        auto t =
+          std::make_unique<CoarseCellIndexedTriangulation>(mpi_communicator);
+        // The scene's manifolds: the remesher copied their ids.
+        for (const auto id : serial.get_manifold_ids())
+          if (id != numbers::flat_manifold_id)
+            t->set_manifold(id, serial.get_manifold(id));
+        t->create_triangulation(
+          describe_triangle_mesh(*remeshed, mpi_communicator));
+        // The DoFHandler must let go of the old mesh before it is
+        // destroyed.
+        dofs.reinit(*t);
+        tria = std::move(t);
+        return;
+      }
     if (remeshed)
       {
         // Keep the scene's manifolds: the remesher copied their ids. The
