@@ -7,6 +7,7 @@
 
 #include <coulomb_adapt/app/command_line.h>
 #include <coulomb_adapt/app/single_process_messaging.h>
+#include <coulomb_adapt/app/small_block_allocation.h>
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/core/parameters.h>
@@ -26,6 +27,9 @@ main(int argc, char *argv[])
   // Before MPI_Init: a run without a launcher skips Open MPI's probing of
   // network layers it never uses (app/single_process_messaging.h).
   prefer_shared_memory_messaging_for_single_process();
+  // Small blocks freed without glibc's fastbins: deal.II's output spent a
+  // third of its time merging them (app/small_block_allocation.h).
+  turn_off_malloc_fastbins();
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   const MPI_Comm                   comm = MPI_COMM_WORLD;
   const bool is_root = Utilities::MPI::this_mpi_process(comm) == 0;
