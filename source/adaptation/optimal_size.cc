@@ -173,8 +173,7 @@ namespace coulomb_adapt
                      const unsigned int           degree,
                      const double                 min_ratio,
                      const double                 max_ratio)
-        : cells(cells)
-        , comm(comm)
+        : comm(comm)
         , log_max_ratio(std::log(max_ratio))
       {
         // The bisections evaluate the model some 50 times per plan: per
@@ -186,6 +185,7 @@ namespace coulomb_adapt
                std::log(dimension / (2 * c.rate * c.epsilon_squared)) :
                0.,
              1 / (2 * c.rate + dimension),
+             2 * c.rate,
              c.epsilon_squared > 0 ? std::log(c.epsilon_squared) : 0.,
              std::log(lowest_size_ratio(min_ratio, c.rate < degree)),
              c.epsilon_squared > 0});
@@ -202,11 +202,10 @@ namespace coulomb_adapt
       predicted_error_squared(const double L, const bool lower_bound) const
       {
         double sum = 0;
-        for (std::size_t i = 0; i < cells.size(); ++i)
-          if (terms[i].has_error)
-            sum +=
-              std::exp(2 * cells[i].rate * log_ratio(terms[i], L, lower_bound) +
-                       terms[i].log_epsilon_squared);
+        for (const auto &t : terms)
+          if (t.has_error)
+            sum += std::exp(t.error_exponent * log_ratio(t, L, lower_bound) +
+                            t.log_epsilon_squared);
         return Utilities::MPI::sum(sum, comm);
       }
 
@@ -220,15 +219,15 @@ namespace coulomb_adapt
         return Utilities::MPI::sum(sum, comm);
       }
 
-      const std::vector<CellData> &cells;
-
     private:
       // log r_E = (log(d / (2 q_E epsilon_E^2)) - L) / (2 q_E + d), the
       // Lagrange condition, and its bounds.
       struct Terms
       {
-        double log_optimum_scale, inverse_exponent, log_epsilon_squared,
-          log_lowest_ratio;
+        // error_exponent = 2 q_E: the predicted error is r_E^{2 q_E}
+        // epsilon_E^2.
+        double log_optimum_scale, inverse_exponent, error_exponent,
+          log_epsilon_squared, log_lowest_ratio;
         bool has_error;
       };
 

@@ -132,6 +132,24 @@ namespace coulomb_adapt
 
 
 
+  // A fully distributed triangle mesh from @p description, with the
+  // manifolds of @p scene_mesh (the scene's coarse mesh, or its refinement:
+  // the remesher copied their ids).
+  std::unique_ptr<parallel::TriangulationBase<2>>
+  fully_distributed_mesh(
+    const TriangulationDescription::Description<2, 2> &description,
+    const Triangulation<2>                            &scene_mesh)
+  {
+    auto t = std::make_unique<CoarseCellIndexedTriangulation>(description.comm);
+    for (const auto id : scene_mesh.get_manifold_ids())
+      if (id != numbers::flat_manifold_id)
+        t->set_manifold(id, scene_mesh.get_manifold(id));
+    t->create_triangulation(description);
+    return t;
+  }
+
+
+
   // Builds the distributed mesh. Quadrilaterals: p4est from the coarse mesh,
   // refined in place. Triangles: the serial mesh is refined, partitioned
   // and handed to a fully distributed triangulation (each rank keeps its
@@ -144,24 +162,30 @@ namespace coulomb_adapt
   {
     Triangulation<2> serial;
     create_scene_coarse_mesh(serial);
+    std::unique_ptr<parallel::TriangulationBase<2>> new_tria;
     if (remeshed && n_refinements == 0)
       {
         check_mesh_cells(*remeshed, body_description.name, body_index);
-        simplex = true;
-        auto t =
-          std::make_unique<CoarseCellIndexedTriangulation>(mpi_communicator);
-        // The scene's manifolds: the remesher copied their ids.
-        for (const auto id : serial.get_manifold_ids())
-          if (id != numbers::flat_manifold_id)
-            t->set_manifold(id, serial.get_manifold(id));
-        t->create_triangulation(
-          describe_triangle_mesh(*remeshed, mpi_communicator));
-        // The DoFHandler must let go of the old mesh before it is
-        // destroyed.
-        dofs.reinit(*t);
-        tria = std::move(t);
-        return;
+        simplex  = true;
+        new_tria = fully_distributed_mesh(
+          describe_triangle_mesh(*remeshed, mpi_communicator), serial);
       }
+    else
+      new_tria = mesh_through_serial_triangulation(serial, n_refinements);
+    // The DoFHandler must let go of the old mesh before it is destroyed.
+    dofs.reinit(*new_tria);
+    tria = std::move(new_tria);
+  }
+
+
+
+  // The scene's coarse mesh (or the remeshed one) as @p serial, refined
+  // n_refinements times and made distributed.
+  std::unique_ptr<parallel::TriangulationBase<2>>
+  ElasticBody::mesh_through_serial_triangulation(
+    Triangulation<2>  &serial,
+    const unsigned int n_refinements)
+  {
     if (remeshed)
       {
         // Keep the scene's manifolds: the remesher copied their ids. The
@@ -178,7 +202,6 @@ namespace coulomb_adapt
     simplex = !serial.all_reference_cells_are_hyper_cube();
     check_mesh_cells(serial, body_description.name, body_index);
 
-    std::unique_ptr<parallel::TriangulationBase<2>> new_tria;
     if (!simplex)
       {
         auto t = std::make_unique<parallel::distributed::Triangulation<2>>(
@@ -188,26 +211,15 @@ namespace coulomb_adapt
         // element sizes too.
         scene.refine_initial_mesh(body_index, *t);
         t->refine_global(n_refinements);
-        new_tria = std::move(t);
+        return t;
       }
-    else
-      {
-        serial.refine_global(n_refinements);
-        GridTools::partition_triangulation(
-          Utilities::MPI::n_mpi_processes(mpi_communicator), serial);
-        const auto description = TriangulationDescription::Utilities::
-          create_description_from_triangulation(serial, mpi_communicator);
-        auto t =
-          std::make_unique<CoarseCellIndexedTriangulation>(mpi_communicator);
-        for (const auto id : serial.get_manifold_ids())
-          if (id != numbers::flat_manifold_id)
-            t->set_manifold(id, serial.get_manifold(id));
-        t->create_triangulation(description);
-        new_tria = std::move(t);
-      }
-    // The DoFHandler must let go of the old mesh before it is destroyed.
-    dofs.reinit(*new_tria);
-    tria = std::move(new_tria);
+    serial.refine_global(n_refinements);
+    GridTools::partition_triangulation(
+      Utilities::MPI::n_mpi_processes(mpi_communicator), serial);
+    return fully_distributed_mesh(
+      TriangulationDescription::Utilities::
+        create_description_from_triangulation(serial, mpi_communicator),
+      serial);
   }
 
 

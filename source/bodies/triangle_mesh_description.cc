@@ -19,13 +19,19 @@ namespace coulomb_adapt
   {
     constexpr unsigned int no_neighbor = numbers::invalid_unsigned_int;
 
+    // An edge by its two vertex indices, in either order.
+    std::uint64_t
+    edge_key(const unsigned int v, const unsigned int w)
+    {
+      const auto [a, b] = std::minmax(v, w);
+      return (std::uint64_t(a) << 32) | b;
+    }
+
     // deal.II's triangle: face f joins vertices f and f + 1 (mod 3).
     std::uint64_t
     edge_key(const CellData<2> &cell, const unsigned int face)
     {
-      const auto [a, b] =
-        std::minmax(cell.vertices[face], cell.vertices[(face + 1) % 3]);
-      return (std::uint64_t(a) << 32) | b;
+      return edge_key(cell.vertices[face], cell.vertices[(face + 1) % 3]);
     }
 
 
@@ -115,11 +121,9 @@ namespace coulomb_adapt
       };
       std::vector<Listed> listed;
       for (const auto &line : mesh.boundary_lines.boundary_lines)
-        {
-          const auto [a, b] = std::minmax(line.vertices[0], line.vertices[1]);
-          listed.push_back(
-            {(std::uint64_t(a) << 32) | b, line.boundary_id, line.manifold_id});
-        }
+        listed.push_back({edge_key(line.vertices[0], line.vertices[1]),
+                          line.boundary_id,
+                          line.manifold_id});
       std::sort(listed.begin(),
                 listed.end(),
                 [](const Listed &x, const Listed &y) { return x.key < y.key; });

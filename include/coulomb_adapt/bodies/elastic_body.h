@@ -182,6 +182,12 @@ namespace coulomb_adapt
     void
     create_mesh(const unsigned int n_global_refinements);
 
+    /** create_mesh() through a serial mesh (@p serial holds the scene's
+     * coarse mesh): quadrilaterals, and triangles refined uniformly. */
+    std::unique_ptr<parallel::TriangulationBase<2>>
+    mesh_through_serial_triangulation(Triangulation<2>  &serial,
+                                      const unsigned int n_refinements);
+
     void
     make_constraints();
 
