@@ -6,6 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <coulomb_adapt/app/command_line.h>
+#include <coulomb_adapt/app/parallel_file_io.h>
 #include <coulomb_adapt/app/single_process_messaging.h>
 #include <coulomb_adapt/app/small_block_allocation.h>
 #include <coulomb_adapt/app/two_body_problem.h>
@@ -30,6 +31,9 @@ main(int argc, char *argv[])
   // Small blocks freed without glibc's fastbins: deal.II's output spent a
   // third of its time merging them (app/small_block_allocation.h).
   turn_off_malloc_fastbins();
+  // Parallel HDF5 files through ROMIO: OMPIO's named semaphores, left
+  // locked by a killed run, hang later runs (app/parallel_file_io.h).
+  prefer_mpi_io_without_named_semaphores();
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
   const MPI_Comm                   comm = MPI_COMM_WORLD;
   const bool is_root = Utilities::MPI::this_mpi_process(comm) == 0;

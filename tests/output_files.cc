@@ -12,9 +12,13 @@
 //    each .pvd), the contact CSV and summary.json of every cycle;
 //  - Write cycles = none: no field file at all, CSV and summary.json still;
 //  - no temporary file (NAME.tmp) is left behind.
+// MPI-IO is chosen as main() chooses it (app/parallel_file_io.h): with
+// OMPIO, a locked semaphore of another run's body-1_000.h5.tmp
+// (bad_input.stale_io_semaphore plants one) would stop this test.
 
 #include <deal.II/base/mpi.h>
 
+#include <coulomb_adapt/app/parallel_file_io.h>
 #include <coulomb_adapt/app/two_body_problem.h>
 
 #include "program_run.h"
@@ -291,6 +295,7 @@ namespace
 int
 main(int argc, char **argv)
 {
+  prefer_mpi_io_without_named_semaphores();
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   auto                             out = testing::root_output();
   out << std::setprecision(6);
