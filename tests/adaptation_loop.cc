@@ -250,7 +250,7 @@ main(int argc, char **argv)
            out);
   {
     // cre's first plan from the coarse seed mesh lands below
-    // 0.8 epsilon_0 (3.93 %: the convergence rate at the upper block's
+    // 0.8 epsilon_0 (3.95 %: the convergence rate at the upper block's
     // corners is not yet what the plan assumes); with 'Over-refinement
     // ratio' the over-refined mesh is optimised again, coarser, and the
     // loop ends within [0.8, 1] epsilon_0 on fewer cells than the

@@ -1,15 +1,16 @@
 #!/usr/bin/python3
 """What the cre estimator costs against the contact solve (issue 17), two
 executables alternated run after run, for each 'CRE minimisation tolerance'
-(0 = the direct minimisation, the default), one thread:
+(0 = the direct minimisation; 1e-3, the truncated CG, is the default since
+the 23rd session), one thread:
 
     benchmarks/effectivity/run_cre_cost.py \
         --exe /work/main/build-lead/coulomb-adapt build/coulomb-adapt \
         --labels before,after --tolerances 0 1e-3 --repeats 2 \
         --csv benchmarks/effectivity/cre_cost.csv
 
-Each run is prm/blocks.prm with Estimator = cre, 3 global refinements and
-one cycle (26,724 DoFs) under DEAL_II_NUM_THREADS=1 and /usr/bin/time.
+Each run is prm/blocks.prm with Estimator = cre, 3 global refinements
+(26,724 DoFs; --refinements 1 2 3 for several sizes) and one cycle under DEAL_II_NUM_THREADS=1 and /usr/bin/time.
 Per run the CSV holds the timer sections 'contact solve', 'error
 indicator', 'error indicator: equilibration' and (where the executable has
 it) 'error indicator: cell forms' from summary.json, epsilon to all its
@@ -32,23 +33,25 @@ import common  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 SETTINGS = ["Error indicator/Estimator=cre", "Output/Write VTU=false",
-            "Mesh/Global refinements=3", "Adaptation/Number of cycles=1",
+            "Adaptation/Number of cycles=1",
             "Adaptation/Minimum number of cycles=1"]
 SECTIONS = {"contact_solve_s": "contact solve",
             "error_indicator_s": "error indicator",
             "equilibration_s": "error indicator: equilibration",
             "cell_forms_s": "error indicator: cell forms"}
-FIELDS = ["side", "tolerance", "repeat", "contact_solve_s",
+FIELDS = ["side", "refinements", "n_dofs", "tolerance", "repeat",
+          "contact_solve_s",
           "error_indicator_s", "equilibration_s", "cell_forms_s",
           "indicator_over_solve", "epsilon", "cg_steps", "peak_kb",
           "elapsed_s", "cpu_s", "load_average"]
 
 
-def run_once(exe, tolerance, outdir):
+def run_once(exe, tolerance, refinements, outdir):
     command = ["/usr/bin/time", "-f", "TIME %e s %M KB %U %S", exe,
                os.path.join(ROOT, "prm", "blocks.prm")]
     for s in SETTINGS + ["Error indicator/CRE minimisation tolerance=" +
-                         tolerance, "Output/Output directory=" + outdir]:
+                         tolerance, "Mesh/Global refinements=" + refinements,
+                         "Output/Output directory=" + outdir]:
         command += ["-s", s]
     env = dict(os.environ, DEAL_II_NUM_THREADS="1")
     load = os.getloadavg()[0]
@@ -63,6 +66,7 @@ def run_once(exe, tolerance, outdir):
     row["indicator_over_solve"] = round(row["error_indicator_s"] /
                                         row["contact_solve_s"], 2)
     row["epsilon"] = repr(cycle["epsilon"])
+    row["n_dofs"] = cycle["n_dofs"]
     row["cg_steps"] = cycle["cre"].get("optimisation_cg_steps", "")
     m = re.search(r"TIME ([0-9.]+) s ([0-9]+) KB ([0-9.]+) ([0-9.]+)",
                   out.stderr)
@@ -80,6 +84,9 @@ def main():
     parser.add_argument("--labels", default="before,after")
     parser.add_argument("--tolerances", nargs="+", default=["0", "1e-3"])
     parser.add_argument("--repeats", type=int, default=2)
+    parser.add_argument("--refinements", nargs="+", default=["3"],
+                        help="global refinements of blocks (3: 26,724 "
+                        "DoFs)")
     parser.add_argument("--csv", default=os.path.join(
         os.path.dirname(__file__), "cre_cost.csv"))
     args = parser.parse_args()
@@ -87,16 +94,17 @@ def main():
     rows, failed = [], False
     with tempfile.TemporaryDirectory() as outdir:
         for repeat in range(args.repeats):
-            for tolerance in args.tolerances:
-                for label, exe in zip(labels, args.exe):
-                    row = run_once(exe, tolerance, outdir)
-                    if row is None:
-                        failed = True
-                        continue
-                    row = dict(side=label, tolerance=tolerance,
-                               repeat=repeat, **row)
-                    print(row, flush=True)
-                    rows.append(row)
+            for refinements in args.refinements:
+                for tolerance in args.tolerances:
+                    for label, exe in zip(labels, args.exe):
+                        row = run_once(exe, tolerance, refinements, outdir)
+                        if row is None:
+                            failed = True
+                            continue
+                        row = dict(side=label, refinements=refinements,
+                                   tolerance=tolerance, repeat=repeat, **row)
+                        print(row, flush=True)
+                        rows.append(row)
     # All digits: the point is that the estimate did not change.
     common.write_csv(args.csv, rows, FIELDS, "%.17g")
     return 1 if failed else 0
