@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace coulomb_adapt
@@ -100,57 +101,56 @@ namespace coulomb_adapt
 
 
 
-    // The boundary id and manifold id that the listed lines give each
-    // cell's faces (boundary faces not listed: id 0; lines not listed:
-    // flat).
-    struct FaceIds
+    // The listed lines (boundary and manifold ids) by their edge key.
+    struct ListedLine
     {
-      std::array<types::boundary_id, 3> boundary_id;
-      std::array<types::manifold_id, 3> manifold_id;
+      std::uint64_t      key;
+      types::boundary_id boundary_id;
+      types::manifold_id manifold_id;
     };
 
-    std::vector<FaceIds>
-    face_ids(const CoarseMeshData                           &mesh,
-             const std::vector<std::array<unsigned int, 3>> &neighbors)
+    std::vector<ListedLine>
+    sorted_listed_lines(const CoarseMeshData &mesh)
     {
-      struct Listed
-      {
-        std::uint64_t      key;
-        types::boundary_id boundary_id;
-        types::manifold_id manifold_id;
-      };
-      std::vector<Listed> listed;
+      std::vector<ListedLine> listed;
       for (const auto &line : mesh.boundary_lines.boundary_lines)
         listed.push_back({edge_key(line.vertices[0], line.vertices[1]),
                           line.boundary_id,
                           line.manifold_id});
       std::sort(listed.begin(),
                 listed.end(),
-                [](const Listed &x, const Listed &y) { return x.key < y.key; });
+                [](const ListedLine &x, const ListedLine &y) {
+                  return x.key < y.key;
+                });
+      return listed;
+    }
 
-      std::vector<FaceIds> ids(mesh.cells.size());
-      for (unsigned int c = 0; c < mesh.cells.size(); ++c)
-        for (unsigned int f = 0; f < 3; ++f)
-          {
-            const bool at_boundary = neighbors[c][f] == no_neighbor;
-            ids[c].boundary_id[f] =
-              at_boundary ? 0 : numbers::internal_face_boundary_id;
-            ids[c].manifold_id[f]   = numbers::flat_manifold_id;
-            const std::uint64_t key = edge_key(mesh.cells[c], f);
-            const auto          line =
-              std::lower_bound(listed.begin(),
-                               listed.end(),
-                               key,
-                               [](const Listed &l, const std::uint64_t k) {
-                                 return l.key < k;
-                               });
-            if (line != listed.end() && line->key == key)
-              {
-                if (at_boundary)
-                  ids[c].boundary_id[f] = line->boundary_id;
-                ids[c].manifold_id[f] = line->manifold_id;
-              }
-          }
+    // The boundary id and manifold id that the listed lines give face @p f
+    // of @p cell (a boundary face not listed: id 0; a line not listed:
+    // flat).
+    std::pair<types::boundary_id, types::manifold_id>
+    face_ids(const std::vector<ListedLine> &listed,
+             const CellData<2>             &cell,
+             const unsigned int             f,
+             const bool                     at_boundary)
+    {
+      std::pair<types::boundary_id, types::manifold_id> ids(
+        at_boundary ? 0 : numbers::internal_face_boundary_id,
+        numbers::flat_manifold_id);
+      const std::uint64_t key = edge_key(cell, f);
+      const auto          line =
+        std::lower_bound(listed.begin(),
+                         listed.end(),
+                         key,
+                         [](const ListedLine &l, const std::uint64_t k) {
+                           return l.key < k;
+                         });
+      if (line != listed.end() && line->key == key)
+        {
+          if (at_boundary)
+            ids.first = line->boundary_id;
+          ids.second = line->manifold_id;
+        }
       return ids;
     }
   } // namespace
@@ -202,7 +202,8 @@ namespace coulomb_adapt
           description.coarse_cell_vertices.push_back(mesh.vertices[v]);
         }
 
-    const auto ids = face_ids(mesh, neighbors);
+    // Only the kept cells' faces are looked up.
+    const auto listed = sorted_listed_lines(mesh);
     description.cell_infos.resize(1);
     for (const unsigned int c : kept)
       {
@@ -222,9 +223,11 @@ namespace coulomb_adapt
         info.manifold_line_ids.fill(numbers::flat_manifold_id);
         for (unsigned int f = 0; f < 3; ++f)
           {
-            info.manifold_line_ids[f] = ids[c].manifold_id[f];
-            if (ids[c].boundary_id[f] != numbers::internal_face_boundary_id)
-              info.boundary_ids.emplace_back(f, ids[c].boundary_id[f]);
+            const auto [boundary_id, manifold_id] = face_ids(
+              listed, mesh.cells[c], f, neighbors[c][f] == no_neighbor);
+            info.manifold_line_ids[f] = manifold_id;
+            if (boundary_id != numbers::internal_face_boundary_id)
+              info.boundary_ids.emplace_back(f, boundary_id);
           }
         description.cell_infos[0].push_back(info);
       }

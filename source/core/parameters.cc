@@ -30,7 +30,11 @@ namespace coulomb_adapt
                           "whatever the number of ranks, for parallel runs. "
                           "Its data are uncompressed doubles: on one rank "
                           "the files are about 4 times larger than the "
-                          "compressed VTU and slower to write.");
+                          "compressed VTU and slower to write. With Open "
+                          "MPI the files go through ROMIO: the program sets "
+                          "OMPI_MCA_io=^ompio unless that variable is set "
+                          "(OMPIO's semaphores, left locked by a killed run, "
+                          "hung later runs; README).");
         prm.declare_entry("Write cycles",
                           "all",
                           Patterns::Selection(option_pattern<WriteCycles>()),
@@ -196,7 +200,8 @@ namespace coulomb_adapt
           "lowered a body's e^2 by less than this fraction of it: any "
           "iterate keeps sigma^ statically admissible, so the bound "
           "holds, and the estimate lies a little above the exact minimum "
-          "(1e-3: by 0.03-0.2 % of epsilon; on blocks the estimator takes "
+          "(1e-3: by 0.01-0.3 % of epsilon on benchmarks/effectivity's "
+          "meshes; on blocks the estimator takes "
           "1.7x less time than with the exact minimum at 6,836 DoFs, 2.2x "
           "less at 26,724, with 20 % less memory, as the factorisation's "
           "share grows with the mesh; doc/indicator.md). 0: the exact "

@@ -24,7 +24,9 @@ namespace coulomb_adapt
    * against OMPIO's 1.13-1.17 s).
    *
    * Nothing changes when the user chose an implementation (OMPI_MCA_io
-   * set, e.g. for a parallel file system OMPIO is tuned for). Other MPI
+   * set, also by `mpirun --mca io ...`, e.g. for a parallel file system
+   * OMPIO is tuned for). A choice in Open MPI's parameter files only is
+   * overridden: the environment takes precedence over them. Other MPI
    * implementations ignore the variable. Returns whether the choice was
    * made.
    */
