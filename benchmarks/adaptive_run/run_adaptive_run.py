@@ -8,12 +8,14 @@ the cycles; the wall time is the process's.
 
   benchmarks/adaptive_run/run_adaptive_run.py [--exe build/coulomb-adapt]
       [--baseline EXE] [--repeat N] [--ranks 1,2] [--targets 0.25,1]
-      [--variants vtu,...] [--set "Path/Entry=value" ...] [--csv results.csv]
+      [--variants vtu,...] [--set "Path/Entry=value" ...]
+      [--baseline-set "Path/Entry=value" ...] [--csv results.csv]
 
 --baseline runs an older executable (e.g. a copy of main's build) with the
 variant 'vtu' only (older builds know no Output/Format). --set adds a
 setting (as -s) to every run of --exe, not of --baseline (e.g.
-"Adaptation/Remeshing split above cells=0"). --ranks runs each
+"Adaptation/Remeshing split above cells=0"); --baseline-set does so for
+--baseline (which may be --exe: two settings of one build). --ranks runs each
 case on each number of MPI ranks (mpirun; the phase times are rank 0's).
 Writes results.csv (or --csv) beside this script and prints a Markdown
 table. The machine is shared:
@@ -88,6 +90,11 @@ def main():
     parser.add_argument("--set", action="append", default=[],
                         metavar="PATH=VALUE",
                         help="a setting for the runs of --exe (repeatable)")
+    parser.add_argument("--baseline-set", action="append", default=[],
+                        metavar="PATH=VALUE",
+                        help="a setting for the runs of --baseline "
+                        "(repeatable): with --baseline = --exe, compares "
+                        "two settings of one build")
     parser.add_argument("--csv", default="results.csv")
     args = parser.parse_args()
     ranks = [int(r) for r in args.ranks.split(",")]
@@ -101,7 +108,8 @@ def main():
                args.set)]
     if args.baseline:
         builds.insert(0, ("baseline", common.check_executable(args.baseline),
-                          [v for v in variants if v == "vtu"], []))
+                          [v for v in variants if v == "vtu"],
+                          args.baseline_set))
     common.print_header(builds[-1][1])
     rows = []
     for _ in range(args.repeat):

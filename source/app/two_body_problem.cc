@@ -480,7 +480,8 @@ namespace coulomb_adapt
         body_outputs[b] =
           std::make_unique<BodyOutput>(parameters.output.directory,
                                        "body-" + std::to_string(b + 1),
-                                       parameters.output.format);
+                                       parameters.output.format,
+                                       parameters.output.cells_per_vtu_piece);
       }
     contact_output =
       std::make_unique<ContactOutput>(parameters.output.directory,

@@ -13,10 +13,12 @@ namespace coulomb_adapt
 {
   BodyOutput::BodyOutput(const std::string &directory,
                          const std::string &base_name,
-                         const OutputFormat format)
+                         const OutputFormat format,
+                         const unsigned int cells_per_vtu_piece)
     : directory(directory)
     , base_name(base_name)
     , format(format)
+    , cells_per_vtu_piece(cells_per_vtu_piece)
   {}
 
 
@@ -101,7 +103,7 @@ namespace coulomb_adapt
         scaled_recovered_stress(*error_fields.recovered, scales.stress) :
         std::array<RecoveredStress::VectorType, 3>();
 
-    DataOut<2> data_out;
+    DataOutInPieces data_out;
     data_out.attach_dof_handler(body.dof_handler());
     const DisplacementStressPostprocessor fields(body.material(),
                                                  scale ? scales.displacement :
@@ -149,16 +151,20 @@ namespace coulomb_adapt
   // them no longer dominates an adaptive run (benchmarks/adaptive_run).
   // No date in the header: two identical runs write identical files.
   void
-  BodyOutput::write_vtu_cycle(DataOut<2>        &data_out,
+  BodyOutput::write_vtu_cycle(DataOutInPieces   &data_out,
                               const MPI_Comm     comm,
                               const unsigned int cycle)
   {
     DataOutBase::VtkFlags vtk_flags;
     vtk_flags.compression_level   = DataOutBase::VtkFlags::best_speed;
     vtk_flags.print_date_and_time = false;
-    data_out.set_flags(vtk_flags);
     const std::string pvtu =
-      write_vtu_with_pvtu_record(comm, data_out, directory, base_name, cycle);
+      write_vtu_with_pvtu_record(comm,
+                                 data_out.take_pieces(cells_per_vtu_piece),
+                                 vtk_flags,
+                                 directory,
+                                 base_name,
+                                 cycle);
     pvd_records.emplace_back(cycle, pvtu);
     write_file(comm,
                directory + "/" + base_name + ".pvd",

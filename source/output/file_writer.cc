@@ -1,5 +1,6 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/thread_management.h>
 #include <deal.II/base/utilities.h>
 
 #include <deal.II/grid/reference_cell.h>
@@ -141,43 +142,81 @@ namespace coulomb_adapt
 
 
   std::string
-  write_vtu_with_pvtu_record(const MPI_Comm                comm,
-                             const DataOutInterface<2, 2> &data_out,
-                             const std::string            &directory,
-                             const std::string            &base_name,
-                             const unsigned int            cycle)
+  write_vtu_with_pvtu_record(
+    const MPI_Comm                                comm,
+    const std::vector<std::unique_ptr<VtuPiece>> &pieces,
+    const DataOutBase::VtkFlags                  &flags,
+    const std::string                            &directory,
+    const std::string                            &base_name,
+    const unsigned int                            cycle)
   {
-    // deal.II's file names (DataOutInterface::write_vtu_with_pvtu_record
-    // with one file per rank), so that a run looks the same as before.
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+    AssertThrow(!pieces.empty(), ExcInternalError());
+    // The pieces are numbered over all ranks, rank by rank: with one piece
+    // per rank these are deal.II's names (DataOutInterface::
+    // write_vtu_with_pvtu_record), so that a small run looks as before.
+    const std::vector<unsigned int> pieces_per_rank =
+      Utilities::MPI::all_gather(comm,
+                                 static_cast<unsigned int>(pieces.size()));
+    unsigned int n_pieces = 0, first_own_piece = 0;
+    for (unsigned int r = 0; r < pieces_per_rank.size(); ++r)
+      {
+        if (r == Utilities::MPI::this_mpi_process(comm))
+          first_own_piece = n_pieces;
+        n_pieces += pieces_per_rank[r];
+      }
     const unsigned int n_digits =
-      Utilities::needed_digits(n_ranks > 1 ? n_ranks - 1 : 0);
+      Utilities::needed_digits(n_pieces > 1 ? n_pieces - 1 : 0);
     const std::string stem =
       base_name + "_" + Utilities::int_to_string(cycle, 3);
-    std::vector<std::string> pieces;
-    for (unsigned int r = 0; r < n_ranks; ++r)
-      pieces.push_back(stem + "." + Utilities::int_to_string(r, n_digits) +
-                       ".vtu");
+    std::vector<std::string> piece_names;
+    for (unsigned int p = 0; p < n_pieces; ++p)
+      piece_names.push_back(stem + "." + Utilities::int_to_string(p, n_digits) +
+                            ".vtu");
+    std::vector<std::string> own_paths;
+    for (unsigned int p = 0; p < pieces.size(); ++p)
+      own_paths.push_back(directory + "/" + piece_names[first_own_piece + p]);
 
-    // Every rank writes its piece to a temporary file; only when all have
-    // succeeded are they renamed, and only then the record that lists them
-    // is written. Every rank learns of any rank's failure.
-    const std::string piece =
-      directory + "/" + pieces[Utilities::MPI::this_mpi_process(comm)];
-    std::string error =
-      first_error(comm, write_temporary(piece, [&](std::ostream &out) {
-                    data_out.write_vtu(out);
-                  }));
+    // Every rank writes its pieces to temporary files, on concurrent tasks
+    // (deal.II's writer encodes and compresses one file on one thread);
+    // only when all ranks have succeeded are they renamed, and only then
+    // the record that lists them is written. Every rank learns of any
+    // rank's failure.
+    std::vector<std::string> errors(pieces.size());
+    {
+      Threads::TaskGroup<> tasks;
+      for (unsigned int p = 0; p < pieces.size(); ++p)
+        {
+          pieces[p]->set_flags(flags);
+          tasks += Threads::new_task([&, p]() {
+            errors[p] = write_temporary(own_paths[p], [&](std::ostream &out) {
+              pieces[p]->write_vtu(out);
+            });
+          });
+        }
+      tasks.join_all();
+    }
+    std::string own_error;
+    for (const std::string &e : errors)
+      if (own_error.empty())
+        own_error = e;
+    std::string error = first_error(comm, own_error);
     if (!error.empty())
       {
-        std::remove((piece + ".tmp").c_str());
+        for (const std::string &path : own_paths)
+          std::remove((path + ".tmp").c_str());
         AssertThrow(false, ExcMessage(error));
       }
-    error = first_error(comm, rename_temporary(piece));
+    own_error.clear();
+    for (const std::string &path : own_paths)
+      if (own_error.empty())
+        own_error = rename_temporary(path);
+      else
+        std::remove((path + ".tmp").c_str());
+    error = first_error(comm, own_error);
     AssertThrow(error.empty(), ExcMessage(error));
 
     write_file(comm, directory + "/" + stem + ".pvtu", [&](std::ostream &out) {
-      data_out.write_pvtu_record(out, pieces);
+      pieces[0]->write_pvtu_record(out, piece_names);
     });
     return stem + ".pvtu";
   }

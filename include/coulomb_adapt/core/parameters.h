@@ -26,6 +26,7 @@ namespace coulomb_adapt
       std::string  directory;
       OutputFormat format;
       WriteCycles  write_cycles;
+      unsigned int cells_per_vtu_piece;
 
       static void
       declare_parameters(ParameterHandler &prm);

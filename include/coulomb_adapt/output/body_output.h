@@ -11,6 +11,7 @@
 #include <coulomb_adapt/core/options.h>
 #include <coulomb_adapt/core/units.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
+#include <coulomb_adapt/output/vtu_pieces.h>
 
 #include <string>
 #include <utility>
@@ -29,16 +30,19 @@ namespace coulomb_adapt
   /**
    * Writes one body's fields per cycle, and an index of all cycles written
    * so far, so that ParaView shows the cycles as a time series (the cycle
-   * number is the time). @p format "vtu": `<base>_<cycle>.pvtu` (+ one
-   * `.vtu` per rank) indexed by `<base>.pvd`; "hdf5": `<base>_<cycle>.h5`
-   * (all ranks write into one file) indexed by `<base>.xdmf`.
+   * number is the time). @p format "vtu": `<base>_<cycle>.pvtu` (+ the
+   * `.vtu` pieces, at least one per rank, of at most
+   * @p cells_per_vtu_piece cells each, 0: one per rank) indexed by
+   * `<base>.pvd`; "hdf5": `<base>_<cycle>.h5` (all ranks write into one
+   * file) indexed by `<base>.xdmf`.
    */
   class BodyOutput
   {
   public:
     BodyOutput(const std::string &directory,
                const std::string &base_name,
-               const OutputFormat format);
+               const OutputFormat format,
+               const unsigned int cells_per_vtu_piece);
 
     /** With @p scales other than 1 (core/units.h), the body's solution
      * is that of the scaled problem: with format "hdf5" (doubles) the
@@ -58,16 +62,17 @@ namespace coulomb_adapt
     write_hdf5_cycle(const DataOut<2>       &data_out,
                      const Triangulation<2> &tria,
                      const unsigned int      cycle);
-    /** The cycle's `.pvtu` (+ one `.vtu` per rank) and the index
+    /** The cycle's `.pvtu` (+ its `.vtu` pieces) and the index
      * `<base>.pvd`. */
     void
-    write_vtu_cycle(DataOut<2>        &data_out,
+    write_vtu_cycle(DataOutInPieces   &data_out,
                     const MPI_Comm     comm,
                     const unsigned int cycle);
 
     const std::string                           directory;
     const std::string                           base_name;
     const OutputFormat                          format;
+    const unsigned int                          cells_per_vtu_piece;
     std::vector<std::pair<double, std::string>> pvd_records;
     std::vector<XDMFEntry>                      xdmf_entries;
   };

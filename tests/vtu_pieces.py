@@ -1,0 +1,186 @@
+#!/usr/bin/python3
+"""Output/Cells per VTU piece: a body's fields written in several .vtu
+pieces per rank (by concurrent tasks) hold exactly what one piece per rank
+holds.
+
+Runs blocks (P1 triangles, two uniform cycles) twice with the same ranks:
+with 'Cells per VTU piece = 0' (one piece per rank) and with 50 cells per
+piece. For every body and cycle it checks that the .pvtu lists pieces
+numbered 0 ... n-1 that all exist, none with more than 50 cells, at least
+ceil(cells / 50) of them and at most one more per further rank, and that
+the pieces' points with all their field values, decoded (zlib), are the
+same multiset as in the single-piece run, bit for bit. No temporary file
+may be left behind, and a later run into the same directory with one
+piece per rank removes the extra pieces.
+
+usage: vtu_pieces.py [--mpiexec MPIEXEC --ranks N] EXE OUTPUT_DIR
+"""
+
+import argparse
+import base64
+import math
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import xml.etree.ElementTree as ElementTree
+import zlib
+
+MAX_CELLS = 50
+
+
+def run(args, directory, cells_per_piece):
+    shutil.rmtree(directory, ignore_errors=True)
+    os.makedirs(directory)
+    settings = {
+        "Scene/Name": "blocks",
+        "Scene/Blocks/Upper body subdivisions": "2, 2",
+        "Scene/Blocks/Lower body subdivisions": "4, 4",
+        "Contact/Friction coefficient": "0.3",
+        "Mesh/Cell type": "triangle",
+        "Adaptation/Strategy": "uniform",
+        "Adaptation/Target error": "0",
+        "Adaptation/Number of cycles": "2",
+        "Output/Cells per VTU piece": str(cells_per_piece),
+        "Output/Output directory": directory,
+    }
+    command = [args.exe]
+    if args.mpiexec:
+        command = [args.mpiexec, "-np", str(args.ranks)] + command
+    for key, value in settings.items():
+        command += ["-s", key + "=" + value]
+    result = subprocess.run(command, capture_output=True, text=True)
+    if result.returncode != 0:
+        sys.exit("run failed (%s):\n%s%s" %
+                 (" ".join(command), result.stdout, result.stderr))
+
+
+def decode(text):
+    """A deal.II binary DataArray, zlib-compressed: the base64 header of
+    four UInt32 (1 block, its size twice, the compressed size), then the
+    base64 of the compressed block."""
+    text = text.strip()
+    header = base64.b64decode(text[:24])
+    n_blocks, size, last_size, compressed_size = struct.unpack("<4I", header)
+    if n_blocks != 1:
+        sys.exit("unexpected number of compressed blocks: %d" % n_blocks)
+    data = zlib.decompress(base64.b64decode(text[24:]))
+    if len(data) != size:
+        sys.exit("decompressed size %d, header says %d" % (len(data), size))
+    return data
+
+
+def point_rows(path):
+    """The cells' count and the points' rows (coordinates, then every
+    point field), as tuples of the stored 32-bit floats."""
+    piece = ElementTree.parse(path).getroot().find("UnstructuredGrid/Piece")
+    n_points = int(piece.get("NumberOfPoints"))
+    n_cells = int(piece.get("NumberOfCells"))
+    columns = []
+    arrays = [piece.find("Points/DataArray")] + \
+        list(piece.find("PointData") if piece.find("PointData") is not None
+             else [])
+    for array in arrays:
+        if n_points == 0:
+            break
+        n_components = int(array.get("NumberOfComponents", "1"))
+        values = struct.unpack("<%df" % (n_points * n_components),
+                               decode(array.text))
+        for c in range(n_components):
+            columns.append(values[c::n_components])
+    rows = list(zip(*columns)) if columns else []
+    return n_cells, rows
+
+
+def pieces_of(directory, record):
+    root = ElementTree.parse(os.path.join(directory, record)).getroot()
+    return [p.get("Source") for p in root.iter("Piece")]
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--mpiexec")
+    parser.add_argument("--ranks", type=int, default=1)
+    parser.add_argument("exe")
+    parser.add_argument("output")
+    args = parser.parse_args()
+
+    whole = os.path.join(args.output, "one_piece_per_rank")
+    split = os.path.join(args.output, "pieces")
+    run(args, whole, 0)
+    run(args, split, MAX_CELLS)
+
+    failures = []
+    for body in ("body-1", "body-2"):
+        for cycle in (0, 1):
+            stem = "%s_%03d" % (body, cycle)
+            whole_pieces = pieces_of(whole, stem + ".pvtu")
+            split_pieces = pieces_of(split, stem + ".pvtu")
+            n = len(split_pieces)
+            digits = len(str(n - 1)) if n > 1 else 1
+            expected_names = ["%s.%0*d.vtu" % (stem, digits, p)
+                              for p in range(n)]
+            if split_pieces != expected_names:
+                failures.append("%s.pvtu lists %s, expected %s" %
+                                (stem, split_pieces, expected_names))
+                continue
+            cells_whole, rows_whole = 0, []
+            for name in whole_pieces:
+                c, r = point_rows(os.path.join(whole, name))
+                cells_whole += c
+                rows_whole += r
+            cells_split, rows_split, largest = 0, [], 0
+            for name in split_pieces:
+                c, r = point_rows(os.path.join(split, name))
+                cells_split += c
+                rows_split += r
+                largest = max(largest, c)
+            fewest = math.ceil(cells_whole / MAX_CELLS)
+            most = fewest + args.ranks - 1
+            print("%s: %d cells, %d pieces of at most %d cells "
+                  "(one per rank: %d)" %
+                  (stem, cells_split, n, largest, len(whole_pieces)))
+            if cells_split != cells_whole:
+                failures.append("%s: %d cells in the pieces, %d in one per "
+                                "rank" % (stem, cells_split, cells_whole))
+            if largest > MAX_CELLS:
+                failures.append("%s: a piece has %d cells > %d" %
+                                (stem, largest, MAX_CELLS))
+            if not fewest <= n <= most:
+                failures.append("%s: %d pieces, expected %d ... %d" %
+                                (stem, n, fewest, most))
+            if sorted(rows_split) != sorted(rows_whole):
+                failures.append("%s: the pieces' points and fields differ "
+                                "from those of one piece per rank" % stem)
+    for directory in (whole, split):
+        for name in os.listdir(directory):
+            if name.endswith(".tmp"):
+                failures.append("temporary file left: " + name)
+
+    # A run with one piece per rank into the directory of the split run
+    # removes the split run's pieces: only the listed ones remain.
+    run(args, split, 0)
+    listed = set()
+    for record in os.listdir(split):
+        if record.endswith(".pvtu"):
+            listed.update(pieces_of(split, record))
+    written = set(name for name in os.listdir(split) if name.endswith(".vtu")
+                  and re.fullmatch(r"body-[12]_.*", name))
+    if written != listed:
+        failures.append("after a run with one piece per rank, pieces not "
+                        "listed in any .pvtu: %s" % sorted(written - listed))
+    else:
+        print("rerun with one piece per rank: %d pieces, all listed" %
+              len(written))
+
+    if failures:
+        print("FAILED:\n  " + "\n  ".join(failures))
+        return 1
+    print("OK")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
