@@ -11,7 +11,9 @@ ceil(cells / 50) of them and at most one more per further rank, and that
 the pieces' points with all their field values, decoded (zlib), are the
 same multiset as in the single-piece run, bit for bit. No temporary file
 may be left behind, and a later run into the same directory with one
-piece per rank removes the extra pieces.
+piece per rank removes the extra pieces. A piece that cannot be written
+stops the run with a message naming it; the other pieces' temporary
+files are removed and the earlier cycle stays intact.
 
 usage: vtu_pieces.py [--mpiexec MPIEXEC --ranks N] EXE OUTPUT_DIR
 """
@@ -31,9 +33,10 @@ import zlib
 MAX_CELLS = 50
 
 
-def run(args, directory, cells_per_piece):
-    shutil.rmtree(directory, ignore_errors=True)
-    os.makedirs(directory)
+def run(args, directory, cells_per_piece, clean=True, must_succeed=True):
+    if clean:
+        shutil.rmtree(directory, ignore_errors=True)
+        os.makedirs(directory)
     settings = {
         "Scene/Name": "blocks",
         "Scene/Blocks/Upper body subdivisions": "2, 2",
@@ -52,9 +55,10 @@ def run(args, directory, cells_per_piece):
     for key, value in settings.items():
         command += ["-s", key + "=" + value]
     result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
+    if must_succeed and result.returncode != 0:
         sys.exit("run failed (%s):\n%s%s" %
                  (" ".join(command), result.stdout, result.stderr))
+    return result
 
 
 def decode(text):
@@ -174,6 +178,37 @@ def main():
     else:
         print("rerun with one piece per rank: %d pieces, all listed" %
               len(written))
+
+    # One piece that cannot be written (a directory where its temporary
+    # file goes) among the concurrent ones: the run stops with a message
+    # naming that piece, removes the other pieces' temporary files and
+    # leaves the earlier cycle's record as it was.
+    failing = os.path.join(args.output, "failing_piece")
+    shutil.rmtree(failing, ignore_errors=True)
+    os.makedirs(os.path.join(failing, "body-2_001.05.vtu.tmp"))
+    result = run(args, failing, MAX_CELLS, clean=False, must_succeed=False)
+    message = "output file '%s/body-2_001.05.vtu': cannot open it for " \
+        "writing" % failing
+    left = sorted(name for name in os.listdir(failing)
+                  if name.endswith(".tmp") and
+                  name != "body-2_001.05.vtu.tmp")
+    earlier = [name for name in pieces_of(failing, "body-2_000.pvtu")
+               if not os.path.exists(os.path.join(failing, name))]
+    if result.returncode == 0:
+        failures.append("a piece that cannot be written: the run succeeded")
+    elif message not in result.stdout + result.stderr:
+        failures.append("a piece that cannot be written: no message '%s' "
+                        "in:\n%s%s" % (message, result.stdout,
+                                       result.stderr[-2000:]))
+    elif left or earlier or \
+            os.path.exists(os.path.join(failing, "body-2_001.pvtu")):
+        failures.append("a piece that cannot be written: temporary files "
+                        "left %s, cycle 0's missing pieces %s, or a record "
+                        "of cycle 1" % (left, earlier))
+    else:
+        print("a piece that cannot be written: exit %d, named in the "
+              "message, no other temporary file, cycle 0 intact" %
+              result.returncode)
 
     if failures:
         print("FAILED:\n  " + "\n  ".join(failures))
