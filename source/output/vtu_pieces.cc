@@ -14,14 +14,6 @@ namespace coulomb_adapt
 
 
 
-  unsigned int
-  VtuPiece::n_cells() const
-  {
-    return patches.size();
-  }
-
-
-
   const std::vector<VtuPiece::Patch> &
   VtuPiece::get_patches() const
   {

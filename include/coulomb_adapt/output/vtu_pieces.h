@@ -34,10 +34,6 @@ namespace coulomb_adapt
              std::vector<std::string> names,
              NonscalarRanges          nonscalar_ranges);
 
-    /** The number of cells in this piece. */
-    unsigned int
-    n_cells() const;
-
   protected:
     const std::vector<Patch> &
     get_patches() const override;
