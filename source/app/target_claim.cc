@@ -8,12 +8,19 @@ namespace coulomb_adapt
   TargetClaim
   make_target_claim(const ErrorEstimator         estimator,
                     const double                 friction_coefficient,
-                    const std::optional<double> &epsilon_exact)
+                    const std::optional<double> &epsilon_exact,
+                    const bool                   reaction_not_carried)
   {
     TargetClaim claim;
     claim.epsilon_exact = epsilon_exact;
     if (estimator != ErrorEstimator::cre)
       claim.kind_of_estimate = "a recovery estimate, not a bound";
+    else if (friction_coefficient == 0 && reaction_not_carried)
+      // sigma^ misses a held line's reaction: admissible only up to it.
+      claim.kind_of_estimate =
+        "an upper bound for mu = 0 up to its local problems' "
+        "discretisation, but not proven here: sigma^ does not carry the "
+        "reaction of the held nodes";
     else if (friction_coefficient == 0)
       {
         // theory.md section 7: sigma^ statically admissible, so the CRE

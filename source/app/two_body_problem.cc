@@ -435,7 +435,8 @@ namespace coulomb_adapt
         const TargetClaim claim =
           make_target_claim(error_estimate->estimator,
                             parameters.contact.friction_coefficient,
-                            cycle_report->exact_error());
+                            cycle_report->exact_error(),
+                            error_estimate->misses_held_reaction());
         s << "target reached: epsilon = " << std::setprecision(4)
           << 100 * error_estimate->epsilon
           << " % <= epsilon_0 = " << 100 * a.target_error << " %"

@@ -297,6 +297,17 @@ namespace coulomb_adapt
           << std::setprecision(1) << e.node_system_defect
           << ", local problems' rigid-motion load " << e.local_problem_defect
           << std::defaultfloat << std::endl;
+    if (e.misses_held_reaction())
+      pcout << "  cre: warning: a body is held at nodes inside it or on "
+               "its boundary by the scene's point constraints ('Hold centre "
+               "line', 'Hold axis', a mesh file's point supports), and the "
+               "equilibrated stress does not carry their reaction, which the "
+               "FE solution has where the mesh is not symmetric about a held "
+               "line: the local problems' loads miss equilibrium by the "
+               "rigid-motion load above, so sigma^ is not exactly statically "
+               "admissible and epsilon is not a guaranteed bound "
+               "(doc/indicator.md)"
+            << std::endl;
     if (e.optimisation_parameters > 0)
       pcout << "  cre: edge tractions optimised (" << e.optimisation_parameters
             << " parameters; prolongation conditions "
@@ -357,6 +368,7 @@ namespace coulomb_adapt
         {"degree_increase", cre_degree_increase},
         {"node_system_defect", e.node_system_defect},
         {"local_problem_defect", e.local_problem_defect},
+        {"held_line", e.held_line},
         {"optimisation_parameters", e.optimisation_parameters},
         {"optimisation_cg_steps", e.optimisation_steps},
         {"exact_minimisation_too_large", e.exact_minimisation_too_large},

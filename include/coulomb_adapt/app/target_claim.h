@@ -20,7 +20,8 @@ namespace coulomb_adapt
    */
   struct TargetClaim
   {
-    /** "recovery estimate, not a bound", "an upper bound for mu = 0, ...", ... */
+    /** "recovery estimate, not a bound", "an upper bound for mu = 0, ...", ...
+     */
     std::string kind_of_estimate;
     /** Whether the estimate bounds the error from above. */
     bool is_upper_bound = false;
@@ -38,10 +39,15 @@ namespace coulomb_adapt
     qualifier(const double target) const;
   };
 
+  /** @p reaction_not_carried: cre's sigma^ misses the reaction of nodes
+   * held by the scene's point constraints (ErrorEstimate::held_line with a
+   * defect above round-off), so it is not a proven bound even for
+   * mu = 0. */
   TargetClaim
   make_target_claim(const ErrorEstimator         estimator,
                     const double                 friction_coefficient,
-                    const std::optional<double> &epsilon_exact);
+                    const std::optional<double> &epsilon_exact,
+                    const bool                   reaction_not_carried);
 } // namespace coulomb_adapt
 
 #endif

@@ -45,6 +45,21 @@ namespace coulomb_adapt
      * larger of the two bodies'. */
     double node_system_defect   = 0;
     double local_problem_defect = 0;
+    /** cre: a body is held at nodes by the scene's point constraints
+     * ('Hold centre line', 'Hold axis': a line of nodes; a mesh file's
+     * point supports). The equilibrated stress does not carry their
+     * reaction, which the FE solution has wherever the mesh is not
+     * symmetric about a held line: the local problems' loads then miss
+     * equilibrium by local_problem_defect. */
+    bool held_line = false;
+    /** cre: sigma^ misses the held nodes' reaction beyond round-off (a
+     * mesh not symmetric about a held line), so it is not exactly
+     * statically admissible. */
+    bool
+    misses_held_reaction() const
+    {
+      return held_line && local_problem_defect > 1e-8;
+    }
     /** cre: the estimate with the classical edge tractions (closest to the
      * averaged traction), before its free parameters are optimised, and
      * the CG steps of that optimisation (0: not optimised). */
