@@ -16,11 +16,12 @@ namespace coulomb_adapt
     if (estimator != ErrorEstimator::cre)
       claim.kind_of_estimate = "a recovery estimate, not a bound";
     else if (friction_coefficient == 0 && reaction_not_carried)
-      // sigma^ misses a held line's reaction: admissible only up to it.
+      // sigma^ misses point supports' reactions: admissible only up to
+      // them.
       claim.kind_of_estimate =
         "an upper bound for mu = 0 up to its local problems' "
         "discretisation, but not proven here: sigma^ does not carry the "
-        "reaction of the held nodes";
+        "reaction of the point supports";
     else if (friction_coefficient == 0)
       {
         // theory.md section 7: sigma^ statically admissible, so the CRE

@@ -110,6 +110,9 @@ namespace coulomb_adapt
         std::max(estimate.node_system_defect, errors.node_system_defect);
       estimate.local_problem_defect =
         std::max(estimate.local_problem_defect, errors.local_problem_defect);
+      estimate.uncarried_held_reaction =
+        std::max(estimate.uncarried_held_reaction,
+                 errors.uncarried_held_reaction);
       return Utilities::MPI::sum(estimate.contribution_squared[b].l1_norm(),
                                  body.triangulation().get_communicator());
     }

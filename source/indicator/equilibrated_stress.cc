@@ -18,6 +18,7 @@
 #include <coulomb_adapt/indicator/equilibrated_stress.h>
 #include <coulomb_adapt/indicator/equilibration_mesh.h>
 #include <coulomb_adapt/indicator/equilibration_node_systems.h>
+#include <coulomb_adapt/indicator/held_reactions.h>
 #include <coulomb_adapt/indicator/local_neumann_problem.h>
 #include <coulomb_adapt/indicator/local_problem_loads.h>
 #include <coulomb_adapt/indicator/traction_optimisation.h>
@@ -394,6 +395,15 @@ namespace coulomb_adapt
           if (n > 0)
             face.mass_inverse.gauss_jordan();
           update_coefficients(face);
+          if (!face.held_moments.empty())
+            {
+              face.held_coefficients.assign(n, {{0., 0.}});
+              for (unsigned int k = 0; k < n; ++k)
+                for (unsigned int l = 0; l < n; ++l)
+                  for (unsigned int c = 0; c < 2; ++c)
+                    face.held_coefficients[k][c] +=
+                      face.mass_inverse(k, l) * face.held_moments[l][c];
+            }
         }
     }
 
@@ -478,12 +488,14 @@ namespace coulomb_adapt
     std::vector<FaceData>          faces = collect_faces(body, cells);
     set_prescribed_moments(body, cells, faces);
     add_contact_moments(cells, slot_of, contact, faces);
+    EquilibratedStressErrors result;
+    result.uncarried_held_reaction = Utilities::MPI::max(
+      carry_held_reactions(body.description(), cells, faces).uncarried, comm);
     set_averaged_moments(body, u, cells, faces);
 
     // 3. The node systems, for every node of a locally owned cell (its
     // star is then all local: the ghost layer holds every cell that shares
     // a vertex with an owned cell).
-    EquilibratedStressErrors result;
     solve_node_systems(cells, faces, base.n_dofs_per_cell(), result);
 
     // 4. F on each face.

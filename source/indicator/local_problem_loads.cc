@@ -110,6 +110,27 @@ namespace coulomb_adapt
                   }
             }
         }
+      // A held line's traction g, the same on both sides of its faces.
+      for (const unsigned int f : cell->face_indices())
+        {
+          const FaceData &face = faces[cells[slot].faces[f]];
+          if (face.held_coefficients.empty())
+            continue;
+          for (unsigned int q = 0; q < edge_rule.size(); ++q)
+            {
+              const double s   = edge_rule.point(q)[0];
+              const auto   phi = face_shape_values(face.s, s);
+              Tensor<1, 2> g;
+              for (unsigned int k = 0; k < face.nodes.size(); ++k)
+                for (unsigned int c = 0; c < 2; ++c)
+                  g[c] += phi[k] * face.held_coefficients[k][c];
+              local.add_traction(load,
+                                 face.v0 + s * (face.v1 - face.v0),
+                                 g,
+                                 edge_rule.weight(q) * face.length,
+                                 {{true, true}});
+            }
+        }
       if (const auto c = contact.find(cell->id()); c != contact.end())
         for (const auto &point : c->second)
           local.add_traction(

@@ -298,14 +298,14 @@ namespace coulomb_adapt
           << ", local problems' rigid-motion load " << e.local_problem_defect
           << std::defaultfloat << std::endl;
     if (e.misses_held_reaction())
-      pcout << "  cre: warning: a body is held at nodes inside it or on "
-               "its boundary by the scene's point constraints ('Hold centre "
-               "line', 'Hold axis', a mesh file's point supports), and the "
-               "equilibrated stress does not carry their reaction, which the "
-               "FE solution has where the mesh is not symmetric about a held "
-               "line: the local problems' loads miss equilibrium by the "
-               "rigid-motion load above, so sigma^ is not exactly statically "
-               "admissible and epsilon is not a guaranteed bound "
+      pcout << "  cre: warning: the reaction of nodes held by the scene's "
+               "point constraints but on no held line of faces (a mesh "
+               "file's point supports) is not carried by the equilibrated "
+               "stress: up to "
+            << std::scientific << std::setprecision(1)
+            << e.uncarried_held_reaction << std::defaultfloat
+            << " of the largest element residual, so sigma^ is not exactly "
+               "statically admissible and epsilon is not a guaranteed bound "
                "(doc/indicator.md)"
             << std::endl;
     if (e.optimisation_parameters > 0)
@@ -369,6 +369,7 @@ namespace coulomb_adapt
         {"node_system_defect", e.node_system_defect},
         {"local_problem_defect", e.local_problem_defect},
         {"held_line", e.held_line},
+        {"uncarried_held_reaction", e.uncarried_held_reaction},
         {"optimisation_parameters", e.optimisation_parameters},
         {"optimisation_cg_steps", e.optimisation_steps},
         {"exact_minimisation_too_large", e.exact_minimisation_too_large},

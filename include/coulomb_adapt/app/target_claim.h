@@ -40,9 +40,9 @@ namespace coulomb_adapt
   };
 
   /** @p reaction_not_carried: cre's sigma^ misses the reaction of nodes
-   * held by the scene's point constraints (ErrorEstimate::held_line with a
-   * defect above round-off), so it is not a proven bound even for
-   * mu = 0. */
+   * held by the scene's point constraints off any held line (point
+   * supports; ErrorEstimate::misses_held_reaction()), so it is not a
+   * proven bound even for mu = 0. */
   TargetClaim
   make_target_claim(const ErrorEstimator         estimator,
                     const double                 friction_coefficient,

@@ -47,6 +47,10 @@ namespace coulomb_adapt
      * the load's size: the local problems' data are self-equilibrated to
      * this accuracy. */
     double local_problem_defect = 0;
+    /** The largest reaction of a node held by the scene's point
+     * constraints that sigma^ does not carry (held_reactions.h), relative
+     * to the largest element residual (every rank). */
+    double uncarried_held_reaction = 0;
     /** sum over all cells of ||sigma^ - sigma_c||^2 with the edge
      * tractions closest to the averaged traction (before the free
      * parameters are optimised; equal to the sum of error_squared when

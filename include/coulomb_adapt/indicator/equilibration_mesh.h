@@ -73,6 +73,10 @@ namespace coulomb_adapt
        * of the edge mass matrix that maps moments to them. */
       std::vector<std::array<double, 2>> coefficients;
       FullMatrix<double>                 mass_inverse;
+      /** On a face of a held line (held_reactions.h), the moments and
+       * nodal coefficients of the traction g that both its cells carry
+       * besides eta F; empty elsewhere. */
+      std::vector<std::array<double, 2>> held_moments, held_coefficients;
     };
 
     // Lagrange polynomials of the face's nodes at parameter s (p <= 2:

@@ -47,18 +47,18 @@ namespace coulomb_adapt
     double local_problem_defect = 0;
     /** cre: a body is held at nodes by the scene's point constraints
      * ('Hold centre line', 'Hold axis': a line of nodes; a mesh file's
-     * point supports). The equilibrated stress does not carry their
-     * reaction, which the FE solution has wherever the mesh is not
-     * symmetric about a held line: the local problems' loads then miss
-     * equilibrium by local_problem_defect. */
-    bool held_line = false;
-    /** cre: sigma^ misses the held nodes' reaction beyond round-off (a
-     * mesh not symmetric about a held line), so it is not exactly
-     * statically admissible. */
+     * point supports). sigma^ carries the reaction of held lines
+     * (held_reactions.h), not that of held nodes off a line of faces:
+     * the largest such reaction, relative to the largest element
+     * residual. */
+    bool   held_line               = false;
+    double uncarried_held_reaction = 0;
+    /** cre: sigma^ misses a held node's reaction beyond round-off, so it
+     * is not exactly statically admissible. */
     bool
     misses_held_reaction() const
     {
-      return held_line && local_problem_defect > 1e-8;
+      return held_line && uncarried_held_reaction > 1e-8;
     }
     /** cre: the estimate with the classical edge tractions (closest to the
      * averaged traction), before its free parameters are optimised, and

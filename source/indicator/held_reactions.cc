@@ -1,0 +1,142 @@
+#include <coulomb_adapt/indicator/held_reactions.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace coulomb_adapt
+{
+  namespace equilibration
+  {
+    namespace
+    {
+      // Whether some point constraint holds component @p c at @p x.
+      bool
+      held(const BodyDescription &description,
+           const Point<2>        &x,
+           const unsigned int     c)
+      {
+        for (const auto &constraint : description.point_constraints)
+          if (constraint.components[c] && constraint.selects(x))
+            return true;
+        return false;
+      }
+    } // namespace
+
+
+
+    HeldReactions
+    carry_held_reactions(const BodyDescription &description,
+                         std::vector<CellData> &cells,
+                         std::vector<FaceData> &faces)
+    {
+      HeldReactions result;
+      if (description.point_constraints.empty())
+        return result;
+
+      std::map<types::global_dof_index, Point<2>> position;
+      for (const auto &cell : cells)
+        for (unsigned int k = 0; k < cell.nodes.size(); ++k)
+          position.emplace(cell.nodes[k], cell.points[k]);
+
+      // The held faces per component: inside the body, every node held.
+      std::array<std::vector<unsigned int>, 2> held_faces;
+      for (unsigned int f = 0; f < faces.size(); ++f)
+        if (faces[f].plus >= 0 && faces[f].minus >= 0 && !faces[f].at_boundary)
+          for (unsigned int c = 0; c < 2; ++c)
+            {
+              bool all_held = true;
+              for (const auto node : faces[f].nodes)
+                all_held = all_held && held(description, position.at(node), c);
+              if (all_held)
+                held_faces[c].push_back(f);
+            }
+
+      // R_k: the residuals of the cells around node k less its known
+      // boundary moments. A Dirichlet face at the node (unknown moments
+      // on the boundary) takes the reaction already.
+      std::map<types::global_dof_index, std::array<double, 2>> reaction;
+      std::map<types::global_dof_index, std::array<bool, 2>>   supported;
+      for (const auto &cell : cells)
+        for (unsigned int k = 0; k < cell.nodes.size(); ++k)
+          for (unsigned int c = 0; c < 2; ++c)
+            reaction[cell.nodes[k]][c] += cell.residual[k][c];
+      for (const auto &face : faces)
+        if (face.at_boundary)
+          for (unsigned int k = 0; k < face.nodes.size(); ++k)
+            for (unsigned int c = 0; c < 2; ++c)
+              {
+                if (face.unknown[c])
+                  supported[face.nodes[k]][c] = true;
+                else
+                  reaction[face.nodes[k]][c] -= face.moments[k][c];
+              }
+
+      // Each node's held faces share its reaction by their lengths.
+      std::map<types::global_dof_index, std::array<double, 2>> held_length;
+      for (unsigned int c = 0; c < 2; ++c)
+        for (const unsigned int f : held_faces[c])
+          for (const auto node : faces[f].nodes)
+            held_length[node][c] += faces[f].length;
+
+      // What no held face carries: held nodes of owned cells (whose
+      // stars, hence reactions, are complete here) off the held lines.
+      double largest_residual = 0;
+      for (const auto &cell : cells)
+        for (const auto &r : cell.residual)
+          largest_residual =
+            std::max({largest_residual, std::abs(r[0]), std::abs(r[1])});
+      for (const auto &cell : cells)
+        if (cell.owned)
+          for (unsigned int k = 0; k < cell.nodes.size(); ++k)
+            for (unsigned int c = 0; c < 2; ++c)
+              {
+                const auto node = cell.nodes[k];
+                const auto s    = supported.find(node);
+                const auto l    = held_length.find(node);
+                if (held(description, cell.points[k], c) &&
+                    !(s != supported.end() && s->second[c]) &&
+                    !(l != held_length.end() && l->second[c] > 0) &&
+                    largest_residual > 0)
+                  result.uncarried =
+                    std::max(result.uncarried,
+                             std::abs(reaction.at(node)[c]) / largest_residual);
+              }
+
+      std::map<unsigned int, bool> is_held_face;
+      for (unsigned int c = 0; c < 2; ++c)
+        for (const unsigned int f : held_faces[c])
+          {
+            FaceData &face = faces[f];
+            if (face.held_moments.empty())
+              face.held_moments.assign(face.nodes.size(), {{0., 0.}});
+            is_held_face[f] = true;
+            for (unsigned int k = 0; k < face.nodes.size(); ++k)
+              {
+                const auto node = face.nodes[k];
+                const auto s    = supported.find(node);
+                if (s != supported.end() && s->second[c])
+                  continue;
+                face.held_moments[k][c] = 0.5 * reaction.at(node)[c] *
+                                          face.length / held_length.at(node)[c];
+              }
+          }
+
+      // Both cells of a held face carry g: their residuals less its
+      // moments (the local node k of the cell is found by its DoF).
+      for (auto &cell : cells)
+        for (const unsigned int f : cell.faces)
+          if (is_held_face.count(f) > 0)
+            {
+              const FaceData &face = faces[f];
+              for (unsigned int j = 0; j < face.nodes.size(); ++j)
+                for (unsigned int k = 0; k < cell.nodes.size(); ++k)
+                  if (cell.nodes[k] == face.nodes[j])
+                    for (unsigned int c = 0; c < 2; ++c)
+                      cell.residual[k][c] -= face.held_moments[j][c];
+            }
+      result.n_held_faces = is_held_face.size();
+      return result;
+    }
+  } // namespace equilibration
+} // namespace coulomb_adapt
