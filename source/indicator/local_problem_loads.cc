@@ -23,13 +23,14 @@ namespace coulomb_adapt
 
 
     void
-    LocalProblemLoads::add_face_traction(const LocalNeumannProblem &local,
-                                         Vector<double>            &load,
-                                         const unsigned int         slot,
-                                         const FaceData            &face,
-                                         const std::array<bool, 2> &mask) const
+    LocalProblemLoads::add_face_polynomial(
+      const LocalNeumannProblem                &local,
+      Vector<double>                           &load,
+      const FaceData                           &face,
+      const std::vector<std::array<double, 2>> &coefficients,
+      const double                              sign,
+      const std::array<bool, 2>                &mask) const
     {
-      const double eta = face.plus == static_cast<int>(slot) ? 1 : -1;
       for (unsigned int q = 0; q < edge_rule.size(); ++q)
         {
           const double s   = edge_rule.point(q)[0];
@@ -37,10 +38,10 @@ namespace coulomb_adapt
           Tensor<1, 2> F;
           for (unsigned int k = 0; k < face.nodes.size(); ++k)
             for (unsigned int c = 0; c < 2; ++c)
-              F[c] += phi[k] * face.coefficients[k][c];
+              F[c] += phi[k] * coefficients[k][c];
           local.add_traction(load,
                              face.v0 + s * (face.v1 - face.v0),
-                             eta * F,
+                             sign * F,
                              edge_rule.weight(q) * face.length,
                              mask);
         }
@@ -92,7 +93,12 @@ namespace coulomb_adapt
           const std::array<bool, 2> solved = {
             {face.unknown[0], face.unknown[1]}};
           if (solved[0] || solved[1])
-            add_face_traction(local, load, slot, face, solved);
+            add_face_polynomial(local,
+                                load,
+                                face,
+                                face.coefficients,
+                                face.plus == static_cast<int>(slot) ? 1 : -1,
+                                solved);
           const std::array<bool, 2> prescribed = {{!solved[0], !solved[1]}};
           if (face.at_boundary && (prescribed[0] || prescribed[1]))
             {
@@ -114,22 +120,9 @@ namespace coulomb_adapt
       for (const unsigned int f : cell->face_indices())
         {
           const FaceData &face = faces[cells[slot].faces[f]];
-          if (face.held_coefficients.empty())
-            continue;
-          for (unsigned int q = 0; q < edge_rule.size(); ++q)
-            {
-              const double s   = edge_rule.point(q)[0];
-              const auto   phi = face_shape_values(face.s, s);
-              Tensor<1, 2> g;
-              for (unsigned int k = 0; k < face.nodes.size(); ++k)
-                for (unsigned int c = 0; c < 2; ++c)
-                  g[c] += phi[k] * face.held_coefficients[k][c];
-              local.add_traction(load,
-                                 face.v0 + s * (face.v1 - face.v0),
-                                 g,
-                                 edge_rule.weight(q) * face.length,
-                                 {{true, true}});
-            }
+          if (!face.held_coefficients.empty())
+            add_face_polynomial(
+              local, load, face, face.held_coefficients, 1, {{true, true}});
         }
       if (const auto c = contact.find(cell->id()); c != contact.end())
         for (const auto &point : c->second)

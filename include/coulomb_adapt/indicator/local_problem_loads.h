@@ -23,9 +23,10 @@ namespace coulomb_adapt
      * equilibration: on each face the traction eta F (F from the face's
      * nodal coefficients (the classical moments), eta = +1 on the face's plus
      * cell and -1 on the other) where the moments were solved for, the
-     * prescribed traction elsewhere on the boundary, the contact traction, and
-     * the body force. Also the work of a face's traction basis on a cell's
-     * monomials, which the optimisation of the free parameters needs.
+     * prescribed traction elsewhere on the boundary, the contact traction, a
+     * held line's traction (held_reactions.h), and the body force. Also the
+     * work of a face's traction basis on a cell's monomials, which the
+     * optimisation of the free parameters needs.
      *
      * Read-only: several threads may use one object, each with its own
      * LocalNeumannProblem.
@@ -58,14 +59,17 @@ namespace coulomb_adapt
                 FullMatrix<double>        &W) const;
 
     private:
-      // eta F on the components in @p mask, from @p face's current nodal
-      // coefficients.
+      // The traction sign * (the polynomial of @p face with nodal
+      // @p coefficients) on the components in @p mask: eta F from the
+      // face's coefficients, or a held line's g.
       void
-      add_face_traction(const LocalNeumannProblem &local,
-                        Vector<double>            &load,
-                        const unsigned int         slot,
-                        const FaceData            &face,
-                        const std::array<bool, 2> &mask) const;
+      add_face_polynomial(
+        const LocalNeumannProblem                &local,
+        Vector<double>                           &load,
+        const FaceData                           &face,
+        const std::vector<std::array<double, 2>> &coefficients,
+        const double                              sign,
+        const std::array<bool, 2>                &mask) const;
 
       const std::vector<CellData>                           &cells;
       const std::vector<FaceData>                           &faces;
