@@ -134,9 +134,6 @@ namespace coulomb_adapt
     ErrorEstimate estimate;
     estimate.estimator   = ErrorEstimator::cre;
     estimate.has_contact = (contact_solver != nullptr);
-    for (const ElasticBody *body : bodies)
-      estimate.held_line =
-        estimate.held_line || !body->description().point_constraints.empty();
     std::array<ContactTractionData, 2> contact;
     const CorrectedContactSolution     equilibrium =
       correct_contact_solutions(bodies,

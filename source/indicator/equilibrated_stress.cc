@@ -357,20 +357,31 @@ namespace coulomb_adapt
 
 
 
-    // F on a face: the polynomial of degree p with the face's moments
-    // (the inverse edge mass matrix on the chord).
-    void
-    update_coefficients(FaceData &face)
+    // The nodal coefficients of the polynomial of degree p on @p face
+    // with @p moments (the inverse edge mass matrix on the chord).
+    std::vector<std::array<double, 2>>
+    coefficients_of(const FaceData                           &face,
+                    const std::vector<std::array<double, 2>> &moments)
     {
-      const unsigned int n = face.nodes.size();
-      face.coefficients.assign(n, {{0., 0.}});
-      if (face.plus < 0 || (!face.unknown[0] && !face.unknown[1]))
-        return;
+      const unsigned int                 n = face.nodes.size();
+      std::vector<std::array<double, 2>> coefficients(n, {{0., 0.}});
       for (unsigned int k = 0; k < n; ++k)
         for (unsigned int l = 0; l < n; ++l)
           for (unsigned int c = 0; c < 2; ++c)
-            face.coefficients[k][c] +=
-              face.mass_inverse(k, l) * face.moments[l][c];
+            coefficients[k][c] += face.mass_inverse(k, l) * moments[l][c];
+      return coefficients;
+    }
+
+
+
+    // F on a face: the polynomial with the face's moments.
+    void
+    update_coefficients(FaceData &face)
+    {
+      if (face.plus < 0 || (!face.unknown[0] && !face.unknown[1]))
+        face.coefficients.assign(face.nodes.size(), {{0., 0.}});
+      else
+        face.coefficients = coefficients_of(face, face.moments);
     }
 
 
@@ -396,14 +407,7 @@ namespace coulomb_adapt
             face.mass_inverse.gauss_jordan();
           update_coefficients(face);
           if (!face.held_moments.empty())
-            {
-              face.held_coefficients.assign(n, {{0., 0.}});
-              for (unsigned int k = 0; k < n; ++k)
-                for (unsigned int l = 0; l < n; ++l)
-                  for (unsigned int c = 0; c < 2; ++c)
-                    face.held_coefficients[k][c] +=
-                      face.mass_inverse(k, l) * face.held_moments[l][c];
-            }
+            face.held_coefficients = coefficients_of(face, face.held_moments);
         }
     }
 
@@ -490,7 +494,7 @@ namespace coulomb_adapt
     add_contact_moments(cells, slot_of, contact, faces);
     EquilibratedStressErrors result;
     result.uncarried_held_reaction = Utilities::MPI::max(
-      carry_held_reactions(body.description(), cells, faces).uncarried, comm);
+      carry_held_reactions(body.description(), cells, faces), comm);
     set_averaged_moments(body, u, cells, faces);
 
     // 3. The node systems, for every node of a locally owned cell (its

@@ -214,11 +214,7 @@ namespace coulomb_adapt
         if (cell.owned)
           owned_nodes.insert(cell.nodes.begin(), cell.nodes.end());
 
-      double largest_residual = 0;
-      for (const auto &cell : cells)
-        for (const auto &r : cell.residual)
-          largest_residual =
-            std::max({largest_residual, std::abs(r[0]), std::abs(r[1])});
+      const double largest_residual = largest_cell_residual(cells);
 
       // The node systems are independent: WorkStream solves them on the
       // threads deal.II may use, and writes their moments in the nodes'

@@ -25,14 +25,14 @@ namespace coulomb_adapt
 
 
 
-    HeldReactions
+    double
     carry_held_reactions(const BodyDescription &description,
                          std::vector<CellData> &cells,
                          std::vector<FaceData> &faces)
     {
-      HeldReactions result;
+      double uncarried = 0;
       if (description.point_constraints.empty())
-        return result;
+        return uncarried;
 
       std::map<types::global_dof_index, Point<2>> position;
       for (const auto &cell : cells)
@@ -71,6 +71,11 @@ namespace coulomb_adapt
                 else
                   reaction[face.nodes[k]][c] -= face.moments[k][c];
               }
+      const auto is_supported = [&](const types::global_dof_index node,
+                                    const unsigned int            c) {
+        const auto s = supported.find(node);
+        return s != supported.end() && s->second[c];
+      };
 
       // Each node's held faces share its reaction by their lengths.
       std::map<types::global_dof_index, std::array<double, 2>> held_length;
@@ -81,41 +86,33 @@ namespace coulomb_adapt
 
       // What no held face carries: held nodes of owned cells (whose
       // stars, hence reactions, are complete here) off the held lines.
-      double largest_residual = 0;
-      for (const auto &cell : cells)
-        for (const auto &r : cell.residual)
-          largest_residual =
-            std::max({largest_residual, std::abs(r[0]), std::abs(r[1])});
+      const double largest_residual = largest_cell_residual(cells);
       for (const auto &cell : cells)
         if (cell.owned)
           for (unsigned int k = 0; k < cell.nodes.size(); ++k)
             for (unsigned int c = 0; c < 2; ++c)
               {
                 const auto node = cell.nodes[k];
-                const auto s    = supported.find(node);
                 const auto l    = held_length.find(node);
                 if (held(description, cell.points[k], c) &&
-                    !(s != supported.end() && s->second[c]) &&
+                    !is_supported(node, c) &&
                     !(l != held_length.end() && l->second[c] > 0) &&
                     largest_residual > 0)
-                  result.uncarried =
-                    std::max(result.uncarried,
+                  uncarried =
+                    std::max(uncarried,
                              std::abs(reaction.at(node)[c]) / largest_residual);
               }
 
-      std::map<unsigned int, bool> is_held_face;
       for (unsigned int c = 0; c < 2; ++c)
         for (const unsigned int f : held_faces[c])
           {
             FaceData &face = faces[f];
             if (face.held_moments.empty())
               face.held_moments.assign(face.nodes.size(), {{0., 0.}});
-            is_held_face[f] = true;
             for (unsigned int k = 0; k < face.nodes.size(); ++k)
               {
                 const auto node = face.nodes[k];
-                const auto s    = supported.find(node);
-                if (s != supported.end() && s->second[c])
+                if (is_supported(node, c))
                   continue;
                 face.held_moments[k][c] = 0.5 * reaction.at(node)[c] *
                                           face.length / held_length.at(node)[c];
@@ -126,7 +123,7 @@ namespace coulomb_adapt
       // moments (the local node k of the cell is found by its DoF).
       for (auto &cell : cells)
         for (const unsigned int f : cell.faces)
-          if (is_held_face.count(f) > 0)
+          if (!faces[f].held_moments.empty())
             {
               const FaceData &face = faces[f];
               for (unsigned int j = 0; j < face.nodes.size(); ++j)
@@ -135,8 +132,7 @@ namespace coulomb_adapt
                     for (unsigned int c = 0; c < 2; ++c)
                       cell.residual[k][c] -= face.held_moments[j][c];
             }
-      result.n_held_faces = is_held_face.size();
-      return result;
+      return uncarried;
     }
   } // namespace equilibration
 } // namespace coulomb_adapt

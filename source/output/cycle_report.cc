@@ -368,7 +368,6 @@ namespace coulomb_adapt
         {"degree_increase", cre_degree_increase},
         {"node_system_defect", e.node_system_defect},
         {"local_problem_defect", e.local_problem_defect},
-        {"held_line", e.held_line},
         {"uncarried_held_reaction", e.uncarried_held_reaction},
         {"optimisation_parameters", e.optimisation_parameters},
         {"optimisation_cg_steps", e.optimisation_steps},

@@ -9,6 +9,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -78,6 +79,18 @@ namespace coulomb_adapt
        * besides eta F; empty elsewhere. */
       std::vector<std::array<double, 2>> held_moments, held_coefficients;
     };
+
+    // The largest entry of the cells' element residuals: the scale of the
+    // node systems' defects.
+    inline double
+    largest_cell_residual(const std::vector<CellData> &cells)
+    {
+      double largest = 0;
+      for (const auto &cell : cells)
+        for (const auto &r : cell.residual)
+          largest = std::max({largest, std::abs(r[0]), std::abs(r[1])});
+      return largest;
+    }
 
     // Lagrange polynomials of the face's nodes at parameter s (p <= 2:
     // at most three nodes; a fixed array, as this is called per

@@ -45,20 +45,17 @@ namespace coulomb_adapt
      * larger of the two bodies'. */
     double node_system_defect   = 0;
     double local_problem_defect = 0;
-    /** cre: a body is held at nodes by the scene's point constraints
-     * ('Hold centre line', 'Hold axis': a line of nodes; a mesh file's
-     * point supports). sigma^ carries the reaction of held lines
-     * (held_reactions.h), not that of held nodes off a line of faces:
-     * the largest such reaction, relative to the largest element
-     * residual. */
-    bool   held_line               = false;
+    /** cre: the largest reaction of a node held by the scene's point
+     * constraints that sigma^ does not carry, relative to the largest
+     * element residual. Held lines ('Hold centre line', 'Hold axis') are
+     * carried (held_reactions.h); a mesh file's point supports are not. */
     double uncarried_held_reaction = 0;
     /** cre: sigma^ misses a held node's reaction beyond round-off, so it
      * is not exactly statically admissible. */
     bool
     misses_held_reaction() const
     {
-      return held_line && uncarried_held_reaction > 1e-8;
+      return uncarried_held_reaction > 1e-8;
     }
     /** cre: the estimate with the classical edge tractions (closest to the
      * averaged traction), before its free parameters are optimised, and

@@ -32,18 +32,13 @@ namespace coulomb_adapt
      * (a point support) has no face to carry it: its reaction stays in
      * the defects. Call after the prescribed and contact moments are set,
      * before the node systems.
+     *
+     * Returns the largest reaction of a held node (of a locally owned
+     * cell) that no held face carries, relative to the largest cell
+     * residual (as the node systems' defect): 0 where every held node lies
+     * on a held line or a Dirichlet face.
      */
-    struct HeldReactions
-    {
-      unsigned int n_held_faces = 0;
-      /** The largest reaction of a held node (of a locally owned cell)
-       * that no held face carries, relative to the largest cell residual
-       * (as the node systems' defect): 0 where every held node lies on a
-       * held line or a Dirichlet face. */
-      double uncarried = 0;
-    };
-
-    HeldReactions
+    double
     carry_held_reactions(const BodyDescription &description,
                          std::vector<CellData> &cells,
                          std::vector<FaceData> &faces);
