@@ -6,8 +6,8 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <coulomb_adapt/app/command_line.h>
+#include <coulomb_adapt/app/one_node_messaging.h>
 #include <coulomb_adapt/app/parallel_file_io.h>
-#include <coulomb_adapt/app/single_process_messaging.h>
 #include <coulomb_adapt/app/small_block_allocation.h>
 #include <coulomb_adapt/app/two_body_problem.h>
 #include <coulomb_adapt/core/parameter_error.h>
@@ -25,9 +25,9 @@ main(int argc, char *argv[])
   // Threads: as many as the cores left to this rank (one per core in all;
   // DEAL_II_NUM_THREADS limits them). They run the cells of the cre
   // estimator and deal.II's own threaded loops (DataOut).
-  // Before MPI_Init: a run without a launcher skips Open MPI's probing of
-  // network layers it never uses (app/single_process_messaging.h).
-  prefer_shared_memory_messaging_for_single_process();
+  // Before MPI_Init: ranks all on one node skip Open MPI's probing of
+  // network layers they never use (app/one_node_messaging.h).
+  prefer_shared_memory_messaging_on_one_node();
   // Small blocks freed without glibc's fastbins: deal.II's output spent a
   // third of its time merging them (app/small_block_allocation.h).
   turn_off_malloc_fastbins();

@@ -9,13 +9,15 @@ the cycles; the wall time is the process's.
   benchmarks/adaptive_run/run_adaptive_run.py [--exe build/coulomb-adapt]
       [--baseline EXE] [--repeat N] [--ranks 1,2] [--targets 0.25,1]
       [--variants vtu,...] [--set "Path/Entry=value" ...]
-      [--baseline-set "Path/Entry=value" ...] [--csv results.csv]
+      [--baseline-set "Path/Entry=value" ...] [--baseline-env NAME=VALUE ...]
+      [--csv results.csv]
 
 --baseline runs an older executable (e.g. a copy of main's build) with the
 variant 'vtu' only (older builds know no Output/Format). --set adds a
 setting (as -s) to every run of --exe, not of --baseline (e.g.
 "Adaptation/Remeshing split above cells=0"); --baseline-set does so for
---baseline (which may be --exe: two settings of one build). --ranks runs each
+--baseline (which may be --exe: two settings of one build); --baseline-env sets an environment variable
+for --baseline's runs. --ranks runs each
 case on each number of MPI ranks (mpirun; the phase times are rank 0's).
 Writes results.csv (or --csv) beside this script and prints a Markdown
 table. The machine is shared:
@@ -47,14 +49,16 @@ FIELDS = (["build", "ranks", "target_percent", "variant", "cycles", "dofs", "eps
              "command"])
 
 
-def one_run(build, exe, target, variant, ranks, settings=()):
+def one_run(build, exe, target, variant, ranks, settings=(), environment=()):
     out_dir = tempfile.mkdtemp(prefix="coulomb-bench-")
     args = common.program_command(
         exe, ["Adaptation/Target error=" + target]
         + VARIANTS[variant] + list(settings)
         + ["Output/Output directory=" + out_dir],
         prm=os.path.join(common.PRM_DIR, "blocks.prm"), ranks=ranks)
-    run = common.run(args, 1800, common.program_env(exe))
+    env = common.program_env(exe)
+    env.update(e.split("=", 1) for e in environment)
+    run = common.run(args, 1800, env)
     summary = common.read_summary(out_dir)
     shutil.rmtree(out_dir, ignore_errors=True)
     if run.failure() or not summary:
@@ -95,6 +99,11 @@ def main():
                         help="a setting for the runs of --baseline "
                         "(repeatable): with --baseline = --exe, compares "
                         "two settings of one build")
+    parser.add_argument("--baseline-env", action="append", default=[],
+                        metavar="NAME=VALUE",
+                        help="an environment variable for the runs of "
+                        "--baseline (repeatable), e.g. an MPI setting the "
+                        "program would otherwise choose itself")
     parser.add_argument("--csv", default="results.csv")
     args = parser.parse_args()
     ranks = [int(r) for r in args.ranks.split(",")]
@@ -105,20 +114,20 @@ def main():
             raise SystemExit("--variants: '%s' is not one of %s"
                              % (v, ", ".join(VARIANTS)))
     builds = [("this", common.check_executable(args.exe), variants,
-               args.set)]
+               args.set, [])]
     if args.baseline:
         builds.insert(0, ("baseline", common.check_executable(args.baseline),
                           [v for v in variants if v == "vtu"],
-                          args.baseline_set))
+                          args.baseline_set, args.baseline_env))
     common.print_header(builds[-1][1])
     rows = []
     for _ in range(args.repeat):
         for target in targets:
             for n in ranks:
-                for build, exe, build_variants, settings in builds:
+                for build, exe, build_variants, settings, env in builds:
                     for variant in build_variants:
                         rows.append(one_run(build, exe, target, variant, n,
-                                            settings))
+                                            settings, env))
                         common.write_csv(os.path.join(HERE, args.csv),
                                          rows, FIELDS)
     print("| build | ranks | eps0 % | output | cycles | DoFs | wall s | output s "
