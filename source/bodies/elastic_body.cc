@@ -1,4 +1,5 @@
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/work_stream.h>
 
 #include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/distributed/tria.h>
@@ -11,6 +12,7 @@
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/fe/mapping_q.h>
 
+#include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria_description.h>
 
@@ -269,47 +271,86 @@ namespace coulomb_adapt
     matrix = 0;
     rhs    = 0;
 
-    FEValues<2>     fe_values(*mapping_,
-                          *fe,
-                          *quadrature,
-                          update_values | update_gradients |
-                            update_quadrature_points | update_JxW_values);
-    FEFaceValues<2> fe_face_values(*mapping_,
-                                   *fe,
-                                   *face_quadrature,
-                                   update_values | update_quadrature_points |
-                                     update_normal_vectors | update_JxW_values);
+    // Scratch of one thread: the FEValues and the strains of one cell.
+    struct Scratch
+    {
+      Scratch(const Mapping<2>       &mapping,
+              const FiniteElement<2> &fe,
+              const Quadrature<2>    &quadrature,
+              const Quadrature<1>    &face_quadrature)
+        : fe_values(mapping,
+                    fe,
+                    quadrature,
+                    update_values | update_gradients |
+                      update_quadrature_points | update_JxW_values)
+        , fe_face_values(mapping,
+                         fe,
+                         face_quadrature,
+                         update_values | update_quadrature_points |
+                           update_normal_vectors | update_JxW_values)
+        , strain(fe.n_dofs_per_cell())
+        , divergence(fe.n_dofs_per_cell())
+      {}
 
-    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(dofs_per_cell, dofs_per_cell);
-    Vector<double>     cell_rhs(dofs_per_cell);
-    std::vector<types::global_dof_index> local_dof_indices(dofs_per_cell);
-    std::vector<SymmetricTensor<2, 2>>   strain(dofs_per_cell);
-    std::vector<double>                  divergence(dofs_per_cell);
+      Scratch(const Scratch &other)
+        : Scratch(other.fe_values.get_mapping(),
+                  other.fe_values.get_fe(),
+                  other.fe_values.get_quadrature(),
+                  other.fe_face_values.get_quadrature())
+      {}
+
+      FEValues<2>                        fe_values;
+      FEFaceValues<2>                    fe_face_values;
+      std::vector<SymmetricTensor<2, 2>> strain;
+      std::vector<double>                divergence;
+    };
+    // What one cell adds to the matrix and the load.
+    struct Copy
+    {
+      FullMatrix<double>                   cell_matrix;
+      Vector<double>                       cell_rhs;
+      std::vector<types::global_dof_index> local_dof_indices;
+    };
 
     std::map<types::boundary_id, const TractionFunction *> traction_on;
     for (const auto &t : body_description.tractions)
       traction_on[t.boundary_id] = &t.traction;
 
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          cell_matrix = 0;
-          cell_rhs    = 0;
-          fe_values.reinit(cell);
-          add_cell_terms(fe_values,
-                         elastic_material.lambda(),
-                         elastic_material.mu(),
-                         body_description,
-                         strain,
-                         divergence,
-                         cell_matrix,
-                         cell_rhs);
-          add_traction_terms(cell, traction_on, fe_face_values, cell_rhs);
-          cell->get_dof_indices(local_dof_indices);
-          constraints_.distribute_local_to_global(
-            cell_matrix, cell_rhs, local_dof_indices, matrix, rhs);
-        }
+    // The cells are independent until they are added: WorkStream computes
+    // them on the threads deal.II may use and adds them in the cells'
+    // order, so the matrix and the load agree to round-off on any number
+    // of threads (FEValues reuses the geometry of a translated previous
+    // cell, and each thread has its own previous cell).
+    const unsigned int dofs_per_cell = fe->n_dofs_per_cell();
+    using OwnedCell = FilteredIterator<DoFHandler<2>::active_cell_iterator>;
+    WorkStream::run(
+      OwnedCell(IteratorFilters::LocallyOwnedCell(), dofs.begin_active()),
+      OwnedCell(IteratorFilters::LocallyOwnedCell(), dofs.end()),
+      [&](const OwnedCell &cell, Scratch &scratch, Copy &copy) {
+        copy.cell_matrix.reinit(dofs_per_cell, dofs_per_cell);
+        copy.cell_rhs.reinit(dofs_per_cell);
+        copy.local_dof_indices.resize(dofs_per_cell);
+        scratch.fe_values.reinit(cell);
+        add_cell_terms(scratch.fe_values,
+                       elastic_material.lambda(),
+                       elastic_material.mu(),
+                       body_description,
+                       scratch.strain,
+                       scratch.divergence,
+                       copy.cell_matrix,
+                       copy.cell_rhs);
+        add_traction_terms(cell,
+                           traction_on,
+                           scratch.fe_face_values,
+                           copy.cell_rhs);
+        cell->get_dof_indices(copy.local_dof_indices);
+      },
+      [&](const Copy &copy) {
+        constraints_.distribute_local_to_global(
+          copy.cell_matrix, copy.cell_rhs, copy.local_dof_indices, matrix, rhs);
+      },
+      Scratch(*mapping_, *fe, *quadrature, *face_quadrature),
+      Copy());
     matrix.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);
   }
