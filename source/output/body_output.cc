@@ -149,7 +149,8 @@ namespace coulomb_adapt
   // zlib's fastest level instead of deal.II's default, the best
   // compression: on these fields the files are hardly larger, and writing
   // them no longer dominates an adaptive run (benchmarks/adaptive_run).
-  // No date in the header: two identical runs write identical files.
+  // No date in the .vtu headers: two identical runs write identical
+  // pieces (deal.II dates the .pvtu and .pvd records whatever the flags).
   void
   BodyOutput::write_vtu_cycle(DataOutInPieces   &data_out,
                               const MPI_Comm     comm,

@@ -142,21 +142,20 @@ namespace coulomb_adapt
 
 
   std::string
-  write_vtu_with_pvtu_record(
-    const MPI_Comm                                comm,
-    const std::vector<std::unique_ptr<VtuPiece>> &pieces,
-    const DataOutBase::VtkFlags                  &flags,
-    const std::string                            &directory,
-    const std::string                            &base_name,
-    const unsigned int                            cycle)
+  write_vtu_with_pvtu_record(const MPI_Comm               comm,
+                             const VtuPieces             &pieces,
+                             const DataOutBase::VtkFlags &flags,
+                             const std::string           &directory,
+                             const std::string           &base_name,
+                             const unsigned int           cycle)
   {
-    AssertThrow(!pieces.empty(), ExcInternalError());
+    const unsigned int n_own_pieces = pieces.patches.size();
+    AssertThrow(n_own_pieces > 0, ExcInternalError());
     // The pieces are numbered over all ranks, rank by rank: with one piece
     // per rank these are deal.II's names (DataOutInterface::
     // write_vtu_with_pvtu_record), so that a small run looks as before.
     const std::vector<unsigned int> pieces_per_rank =
-      Utilities::MPI::all_gather(comm,
-                                 static_cast<unsigned int>(pieces.size()));
+      Utilities::MPI::all_gather(comm, n_own_pieces);
     unsigned int n_pieces = 0, first_own_piece = 0;
     for (unsigned int r = 0; r < pieces_per_rank.size(); ++r)
       {
@@ -173,7 +172,7 @@ namespace coulomb_adapt
       piece_names.push_back(stem + "." + Utilities::int_to_string(p, n_digits) +
                             ".vtu");
     std::vector<std::string> own_paths;
-    for (unsigned int p = 0; p < pieces.size(); ++p)
+    for (unsigned int p = 0; p < n_own_pieces; ++p)
       own_paths.push_back(directory + "/" + piece_names[first_own_piece + p]);
 
     // Every rank writes its pieces to temporary files, on concurrent tasks
@@ -181,18 +180,19 @@ namespace coulomb_adapt
     // only when all ranks have succeeded are they renamed, and only then
     // the record that lists them is written. Every rank learns of any
     // rank's failure.
-    std::vector<std::string> errors(pieces.size());
+    std::vector<std::string> errors(n_own_pieces);
     {
       Threads::TaskGroup<> tasks;
-      for (unsigned int p = 0; p < pieces.size(); ++p)
-        {
-          pieces[p]->set_flags(flags);
-          tasks += Threads::new_task([&, p]() {
-            errors[p] = write_temporary(own_paths[p], [&](std::ostream &out) {
-              pieces[p]->write_vtu(out);
-            });
+      for (unsigned int p = 0; p < n_own_pieces; ++p)
+        tasks += Threads::new_task([&, p]() {
+          errors[p] = write_temporary(own_paths[p], [&](std::ostream &out) {
+            DataOutBase::write_vtu(pieces.patches[p],
+                                   pieces.names,
+                                   pieces.nonscalar_ranges,
+                                   flags,
+                                   out);
           });
-        }
+        });
       tasks.join_all();
     }
     std::string own_error;
@@ -216,7 +216,8 @@ namespace coulomb_adapt
     AssertThrow(error.empty(), ExcMessage(error));
 
     write_file(comm, directory + "/" + stem + ".pvtu", [&](std::ostream &out) {
-      pieces[0]->write_pvtu_record(out, piece_names);
+      DataOutBase::write_pvtu_record(
+        out, piece_names, pieces.names, pieces.nonscalar_ranges, flags);
     });
     return stem + ".pvtu";
   }

@@ -8,7 +8,6 @@
 #include <coulomb_adapt/output/vtu_pieces.h>
 
 #include <functional>
-#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -45,24 +44,23 @@ namespace coulomb_adapt
 
   /**
    * DataOutInterface::write_vtu_with_pvtu_record for this rank's
-   * @p pieces (each written with @p flags to its own file, by concurrent
-   * tasks), made atomic and collective: the pieces are numbered over all
-   * ranks, rank by rank (`BASE_CCC.N.vtu`; with one piece per rank, N is
-   * the rank as in deal.II's names), and `BASE_CCC.pvtu` lists them. Each
-   * piece is written to NAME.tmp and renamed only when every rank has
+   * @p pieces (each written by DataOutBase::write_vtu with @p flags to its
+   * own file, by concurrent tasks), made atomic and collective: the pieces are
+   * numbered over all ranks, rank by rank (`BASE_CCC.N.vtu`; with one piece per
+   * rank, N is the rank as in deal.II's names), and `BASE_CCC.pvtu` lists them.
+   * Each piece is written to NAME.tmp and renamed only when every rank has
    * written its own, then the record through write_file. A failure on any
    * rank throws the same error, naming the file and the system's reason,
    * on every rank. Every rank needs at least one piece (perhaps empty).
    * Returns the record's name (relative to @p directory, for a .pvd).
    */
   std::string
-  write_vtu_with_pvtu_record(
-    const MPI_Comm                                comm,
-    const std::vector<std::unique_ptr<VtuPiece>> &pieces,
-    const dealii::DataOutBase::VtkFlags          &flags,
-    const std::string                            &directory,
-    const std::string                            &base_name,
-    const unsigned int                            cycle);
+  write_vtu_with_pvtu_record(const MPI_Comm                       comm,
+                             const VtuPieces                     &pieces,
+                             const dealii::DataOutBase::VtkFlags &flags,
+                             const std::string                   &directory,
+                             const std::string                   &base_name,
+                             const unsigned int                   cycle);
 
   /**
    * Write the HDF5 file @p path through @p write, which every rank of
