@@ -21,15 +21,19 @@ namespace coulomb_adapt
    *
    * What it saves at every start (Debian 12's Open MPI 4.1, this
    * 2-core machine, `prm/blocks.prm`, whole runs of 0.3-1.3 s; numbers in
-   * benchmarks/adaptive_run/README.md): about 0.1 s on 1 rank, where the
+   * benchmarks/adaptive_run/README.md): 0.05-0.1 s on 1 rank, where the
    * daemon was forked (the choice of ob1 alone saved 0.2 s before), and
-   * 0.2 s on 2 ranks.
+   * 0.20-0.26 s on 2 ranks.
    *
    * Nothing changes for a variable the user set (OMPI_MCA_pml,
    * OMPI_MCA_ess_singleton_isolated, also through `mpirun --mca`), for
    * ranks on several nodes, and for other launchers (srun, PMIx's or
-   * PMI's): their messaging is the cluster's choice. Other MPI
-   * implementations ignore the variables.
+   * PMI's): their messaging is the cluster's choice. A choice made only
+   * in Open MPI's parameter files (`pml = ...` in
+   * /etc/openmpi/openmpi-mca-params.conf or ~/.openmpi/mca-params.conf)
+   * is overridden on one node: the environment takes precedence over
+   * them (Debian's file only excludes ucx, which ob1 respects). Other
+   * MPI implementations ignore the variables.
    *
    * Returns whether anything was chosen.
    */
