@@ -15,7 +15,14 @@
 //    steps in every cycle, its coarser levels included.
 //  - the solution does not depend on the start: both runs end every cycle
 //    with the same meshes, sets, contact tractions (1e-8 of the largest
-//    pressure) and epsilon (1e-9 relative);
+//    pressure) and epsilon (1e-9 relative). Remeshing: the cycles after a
+//    remesh from the nested start's solution only to 1e-3 of the largest
+//    pressure and 1e-4 in epsilon, with the same DoFs and sets. gmsh
+//    meshes the size field, whose last digits follow the solutions' (the
+//    starts agree to the Krylov tolerance, 1e-12), and gmsh's interior
+//    nodes move with them: on the seed's mesh below the second adapted
+//    meshes had the same DoFs and contact nodes, epsilon 7e-6 apart and
+//    pressures 5e-4 of the largest (one run is repeated bit for bit);
 //  - locally refined meshes start from their own hierarchy, their finest
 //    cell levels coarsened: punch, refine (Q1), epsilon_0 = 0.5 %, 162 ->
 //    28,722 DoFs, at most 4 Newton steps per solve (from the uniform
@@ -144,6 +151,7 @@ namespace
   compare(const std::string  &title,
           const Settings     &settings,
           const bool          check_warm_start_is_slow,
+          const bool          remeshed,
           ConditionalOStream &out)
   {
     out << title << std::endl;
@@ -178,9 +186,14 @@ namespace
           AssertThrow(a[key] == b[key],
                       ExcMessage(std::string("cycle ") + std::to_string(c) +
                                  ": " + key + " differ between the starts"));
-        const double eps_a = a["epsilon"].get<double>();
-        const double eps_b = b["epsilon"].get<double>();
-        AssertThrow(std::abs(eps_a - eps_b) <= 1e-9 * eps_b,
+        // Cycle 2 is the first whose mesh gmsh made from solutions of
+        // different starts.
+        const bool   gmsh_mesh_of_round_off = remeshed && c >= 2;
+        const double epsilon_tolerance  = gmsh_mesh_of_round_off ? 1e-4 : 1e-9;
+        const double traction_tolerance = gmsh_mesh_of_round_off ? 1e-3 : 1e-8;
+        const double eps_a              = a["epsilon"].get<double>();
+        const double eps_b              = b["epsilon"].get<double>();
+        AssertThrow(std::abs(eps_a - eps_b) <= epsilon_tolerance * eps_b,
                     ExcMessage("cycle " + std::to_string(c) +
                                ": epsilon differs between the starts"));
         const auto ta =
@@ -194,7 +207,7 @@ namespace
             for (unsigned int k = 0; k < 2; ++k)
               difference = std::max(difference, std::abs(ta[j][k] - tb[j][k]));
           }
-        AssertThrow(difference <= 1e-8 * p_max,
+        AssertThrow(difference <= traction_tolerance * p_max,
                     ExcMessage("cycle " + std::to_string(c) +
                                ": the contact tractions differ between the "
                                "starts by " +
@@ -204,6 +217,9 @@ namespace
     out << "  every cycle as with the warm start: the same DoFs and sets, "
            "tractions within 1e-8 of the largest pressure, epsilon within "
            "1e-9"
+        << (remeshed ? " (after a remesh from the two starts' solutions: "
+                       "1e-3 and 1e-4)" :
+                       "")
         << std::endl;
     out << "  at most 4 Newton steps per solve: "
         << (most_nested <= 4 ? "yes" : "no") << std::endl;
@@ -235,6 +251,7 @@ main(int argc, char **argv)
   compare("blocks, refine (Q1, size ratio), epsilon_0 = 0.5 %",
           blocks("quadrilateral", "refine", "output-refine"),
           true,
+          false,
           out);
   {
     // punch (prm/punch.prm, Q1): the first adaptation step goes from 162
@@ -249,7 +266,8 @@ main(int argc, char **argv)
                                {"Adaptation/Minimum number of cycles", "1"},
                                {"Output/Write VTU", "false"},
                                {"Output/Output directory", "output-punch"}};
-    compare("punch, refine (Q1), epsilon_0 = 0.5 %", settings, false, out);
+    compare(
+      "punch, refine (Q1), epsilon_0 = 0.5 %", settings, false, false, out);
   }
   {
     // The seed's mesh (prm/blocks.prm): 408 triangles.
@@ -258,6 +276,7 @@ main(int argc, char **argv)
     settings.push_back({"Scene/Blocks/Lower body subdivisions", "6, 7"});
     compare("blocks (the seed's mesh), remesh (P1), epsilon_0 = 0.5 %",
             settings,
+            true,
             true,
             out);
   }

@@ -95,7 +95,8 @@ namespace
                    states,
                    parameters.adaptation,
                    parameters.finite_elements.degree,
-                   parameters.adaptation.target_error);
+                   parameters.adaptation.target_error,
+                   false);
       solve();
     }
   };

@@ -20,6 +20,8 @@
 //  - two plans before one measurement: the later plan is checked
 //    (plans 0.01 then 0.02, achieved 0.03: c = 1.5);
 //  - safety 1, first cycle: aim = epsilon_0.
+// model_checked() is false until the first plan has been checked (an
+// achieved epsilon without a plan does not count), true after.
 // 1 rank.
 
 #include <coulomb_adapt/adaptation/target_calibration.h>
@@ -61,10 +63,24 @@ main(int argc, char *argv[])
   check("first cycle, no plan", calibration, 1., 0.04);
   calibration.record_achieved(0.07);
   check("achieved 0.07 without a plan", calibration, 1., 0.04);
+  const auto check_checked = [&](const std::string       &step,
+                                 const TargetCalibration &calibration,
+                                 const bool               expected) {
+    out << step << ": model checked " << calibration.model_checked()
+        << std::endl;
+    AssertThrow(calibration.model_checked() == expected,
+                ExcMessage(step + ": model_checked() is wrong"));
+  };
+  check_checked("before any plan", calibration, false);
+  calibration.record_plan(0.04);
+  check_checked("a plan, not yet measured", calibration, false);
+  calibration.record_achieved(0.);
+  check_checked("a plan, achieved 0", calibration, false);
 
   calibration.record_plan(0.04);
   calibration.record_achieved(0.05);
   check("plan 0.04, achieved 0.05", calibration, 1.25, 0.032);
+  check_checked("plan 0.04, achieved 0.05", calibration, true);
   calibration.record_achieved(0.1);
   check("achieved 0.1, the plan already used", calibration, 1.25, 0.032);
 

@@ -2,6 +2,8 @@
 #include <coulomb_adapt/adaptation/mesh_adaptation.h>
 #include <coulomb_adapt/adaptation/optimal_size.h>
 
+#include <cmath>
+
 namespace coulomb_adapt
 {
   namespace
@@ -17,6 +19,7 @@ namespace coulomb_adapt
                       const parameters::Adaptation             &parameters,
                       const unsigned int                        degree,
                       const double                              aimed_error,
+                      const bool                                model_checked,
                       MeshAdaptationReport                     &report)
     {
       double n_cells = 0, n_dofs = 0;
@@ -25,17 +28,30 @@ namespace coulomb_adapt
           n_cells += body->triangulation().n_global_active_cells();
           n_dofs += body->dof_handler().n_dofs();
         }
-      const double      max_n_cells = parameters.max_dofs * n_cells / n_dofs;
-      OptimalSizeRatios ratios =
-        optimal_size_ratios(bodies,
-                            estimate,
-                            find_singular_points(bodies, contact_states),
-                            aimed_error,
-                            degree,
-                            parameters.singular_rate,
-                            parameters.min_size_ratio,
-                            parameters.max_size_ratio,
-                            max_n_cells);
+      const double max_n_cells = parameters.max_dofs * n_cells / n_dofs;
+      const std::vector<Point<2>> singular_points =
+        find_singular_points(bodies, contact_states);
+      const auto plan = [&](const double min_size_ratio) {
+        report.min_size_ratio = min_size_ratio;
+        return optimal_size_ratios(bodies,
+                                   estimate,
+                                   singular_points,
+                                   aimed_error,
+                                   degree,
+                                   parameters.singular_rate,
+                                   min_size_ratio,
+                                   parameters.max_size_ratio,
+                                   max_n_cells);
+      };
+      OptimalSizeRatios ratios = plan(parameters.min_size_ratio);
+      // A plan limited by the cell count is short of its aim anyway.
+      if (model_checked && parameters.strategy == AdaptationStrategy::remesh &&
+          !ratios.limited_by_max_n_cells && ratios.n_at_min_ratio > 0 &&
+          ratios.predicted_epsilon > aimed_error * (1 + 1e-6))
+        {
+          report.unrelaxed_predicted_epsilon = ratios.predicted_epsilon;
+          ratios = plan(std::pow(parameters.min_size_ratio, 1.5));
+        }
       report.aimed_epsilon       = aimed_error;
       report.predicted_n_cells   = ratios.predicted_n_cells;
       report.predicted_epsilon   = ratios.predicted_epsilon;
@@ -55,7 +71,8 @@ namespace coulomb_adapt
                const std::vector<ContactNodeState> &contact_states,
                const parameters::Adaptation        &parameters,
                const unsigned int                   degree,
-               const double                         aimed_error)
+               const double                         aimed_error,
+               const bool                           model_checked)
   {
     MeshAdaptationReport report;
     report.strategy = parameters.strategy;
@@ -74,6 +91,7 @@ namespace coulomb_adapt
                                  parameters,
                                  degree,
                                  aimed_error,
+                                 model_checked,
                                  report);
     strategy.change_meshes(
       bodies, estimate, ratios, parameters, degree, aimed_error, report);

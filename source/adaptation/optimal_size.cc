@@ -118,11 +118,10 @@ namespace coulomb_adapt
           for (const auto &cell : tria.active_cell_iterators())
             if (cell->is_locally_owned())
               {
-                const unsigned int   i   = cell->active_cell_index();
-                double               q   = degree;
-                const BoundingBox<2> box = cell->bounding_box();
+                const unsigned int i = cell->active_cell_index();
+                double             q = degree;
                 for (const auto &p : singular_points)
-                  if (box.point_inside(p, 1e-10))
+                  if (near_singular_point(cell, p))
                     {
                       q = std::min<double>(degree, singular_rate);
                       ++result.n_singular_cells;
@@ -290,6 +289,39 @@ namespace coulomb_adapt
       return L_fewer;
     }
   } // namespace
+
+
+
+  bool
+  near_singular_point(const Triangulation<2>::active_cell_iterator &cell,
+                      const Point<2>                               &p)
+  {
+    const double         reach = 0.5 * cell->diameter();
+    const BoundingBox<2> box   = cell->bounding_box();
+    if (box.point_inside(p, 1e-10))
+      return true;
+    double box_distance_squared = 0;
+    for (unsigned int d = 0; d < 2; ++d)
+      box_distance_squared +=
+        std::pow(std::max(
+                   {0., box.lower_bound(d) - p[d], p[d] - box.upper_bound(d)}),
+                 2);
+    if (box_distance_squared >= reach * reach)
+      return false;
+    // Outside the box, so outside the cell: the distance to the cell is
+    // that to its nearest face (straight between its vertices).
+    for (const auto &face : cell->face_iterators())
+      {
+        const Tensor<1, 2> edge = face->vertex(1) - face->vertex(0);
+        const double       t =
+          std::clamp(((p - face->vertex(0)) * edge) / edge.norm_square(),
+                     0.,
+                     1.);
+        if ((p - (face->vertex(0) + t * edge)).norm() < reach)
+          return true;
+      }
+    return false;
+  }
 
 
 

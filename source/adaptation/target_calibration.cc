@@ -49,9 +49,12 @@ namespace coulomb_adapt
     // the finiteness of epsilon is checked where it is computed.
     if (pending_prediction > 0 && std::isfinite(pending_prediction) &&
         epsilon > 0)
-      correction_factor = std::clamp(epsilon / pending_prediction,
-                                     min_correction,
-                                     max_correction);
+      {
+        correction_factor = std::clamp(epsilon / pending_prediction,
+                                       min_correction,
+                                       max_correction);
+        checked           = true;
+      }
     pending_prediction = -1;
   }
 
@@ -61,5 +64,13 @@ namespace coulomb_adapt
   TargetCalibration::correction() const
   {
     return correction_factor;
+  }
+
+
+
+  bool
+  TargetCalibration::model_checked() const
+  {
+    return checked;
   }
 } // namespace coulomb_adapt

@@ -381,7 +381,8 @@ namespace coulomb_adapt
                                    previous_contact_states,
                                    a,
                                    parameters.finite_elements.degree,
-                                   target_calibration.aim(a.target_error));
+                                   target_calibration.aim(a.target_error),
+                                   target_calibration.model_checked());
     if (last_adaptation->predicted_epsilon > 0)
       target_calibration.record_plan(last_adaptation->predicted_epsilon);
     error_estimate.reset();

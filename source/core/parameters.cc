@@ -442,7 +442,11 @@ namespace coulomb_adapt
                           "0.1",
                           Patterns::Double(0.001, 1),
                           "Lower bound of r_E = h*_E / h_E: how much finer "
-                          "one cycle may make a cell.");
+                          "one cycle may make a cell (near a singular point "
+                          "this to the power 3/2). remesh: once a plan has "
+                          "been checked against the mesh it built, a plan "
+                          "that the bound keeps from its aim is made again "
+                          "with the bounds to the power 3/2.");
         prm.declare_entry("Maximum size ratio",
                           "4",
                           Patterns::Double(1, 100),
@@ -452,10 +456,12 @@ namespace coulomb_adapt
                           "0.5",
                           Patterns::Double(0.01, 10),
                           "Local convergence rate q used in r_E for cells "
-                          "at a singular point (ends of the contact zone, "
+                          "near a singular point (ends of the contact zone, "
                           "points where a clamped or contact boundary "
-                          "meets another boundary condition): min(p, this). "
-                          "Elsewhere q = p, the polynomial degree.");
+                          "meets another boundary condition; near: the point "
+                          "in the cell or closer to it than half the cell's "
+                          "diameter): min(p, this). Elsewhere q = p, the "
+                          "polynomial degree.");
       }
     } // namespace
 

@@ -29,13 +29,19 @@ namespace coulomb_adapt
             << "): N* = " << std::llround(r.predicted_n_cells)
             << " cells, predicted epsilon " << std::setprecision(3)
             << 100 * r.predicted_epsilon << " % (r_E bounded to ["
-            << a.min_size_ratio << " ("
-            << lowest_size_ratio(a.min_size_ratio, true)
-            << " at singular points), " << a.max_size_ratio
+            << r.min_size_ratio << " ("
+            << lowest_size_ratio(r.min_size_ratio, true)
+            << " near singular points), " << a.max_size_ratio
             << "]: " << r.n_at_min_ratio << " cells at the lower, "
             << r.n_at_max_ratio << " at the upper bound; q reduced to "
             << std::min<double>(degree, a.singular_rate) << " in "
-            << r.n_singular_cells << " cells at singular points)";
+            << r.n_singular_cells << " cells near singular points)";
+    if (r.unrelaxed_predicted_epsilon > 0)
+      pcout << "; lower bound relaxed from " << a.min_size_ratio
+            << " (the model checked on the last mesh, the plan with it "
+               "predicted "
+            << std::setprecision(3) << 100 * r.unrelaxed_predicted_epsilon
+            << " %, above the aim)";
     if (r.limited_by_max_dofs)
       pcout << "; more cells than 'Maximum number of DoFs' = " << a.max_dofs
             << " allows: the optimal mesh of that size instead (predicted "
@@ -96,6 +102,8 @@ namespace coulomb_adapt
                                 {"calibration", calibration},
                                 {"obtained_n_cells", obtained},
                                 {"singular_cells", a.n_singular_cells},
+                                {"min_size_ratio", a.min_size_ratio},
+                                {"cells_at_min_ratio", a.n_at_min_ratio},
                                 {"limited_by_max_dofs", a.limited_by_max_dofs}};
       }
     if (a.n_triangle_splits[0] + a.n_triangle_splits[1] > 0)

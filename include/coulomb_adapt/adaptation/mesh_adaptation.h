@@ -25,6 +25,12 @@ namespace coulomb_adapt
     double       aimed_epsilon    = -1;
     unsigned int n_singular_cells = 0;
     unsigned int n_at_min_ratio = 0, n_at_max_ratio = 0;
+    /** The lower bound of r_E the plan used ('Minimum size ratio', or its
+     * power 3/2 when relaxed; at singular points its power 3/2 again). */
+    double min_size_ratio = -1;
+    /** When the lower bound was relaxed: what the plan with 'Minimum size
+     * ratio' predicted (above the aim); -1 otherwise. */
+    double unrelaxed_predicted_epsilon = -1;
     /** Whether the optimal mesh for epsilon_0 exceeded 'Maximum number of
      * DoFs' and the optimal mesh of that size was taken instead. */
     bool limited_by_max_dofs = false;
@@ -44,6 +50,20 @@ namespace coulomb_adapt
    * are released. @p degree is the polynomial degree p. The size-ratio
    * strategies plan the mesh for @p aimed_error, epsilon_0 corrected by
    * what the previous plans achieved (TargetCalibration).
+   *
+   * The plan bounds r_E below by 'Minimum size ratio' (min_ratio^{3/2} at
+   * singular points): the error model, an asymptotic one, is not trusted
+   * over more refinement than that in one step from a mesh it has not
+   * been checked on. With remesh, once @p model_checked (a previous
+   * plan's prediction was compared with the mesh it built, and
+   * @p aimed_error corrects for the difference), a plan that these bounds
+   * keep from its aim is made again with both bounds raised to the power
+   * 3/2 (0.1 -> 0.0316, and 0.0316 -> 0.0056 near singular points):
+   * otherwise the next mesh misses epsilon_0 by the model alone, and a
+   * whole cycle follows (punch, epsilon_0 = 0.25 %: two adaptation steps
+   * instead of three). refine keeps the bounds: there the relaxed plan's
+   * mesh missed its prediction by 1.6x and the run still took three steps
+   * to a larger mesh (benchmarks/adaptation_steps).
    */
   MeshAdaptationReport
   adapt_meshes(const std::array<ElasticBody *, 2>  &bodies,
@@ -51,7 +71,8 @@ namespace coulomb_adapt
                const std::vector<ContactNodeState> &contact_states,
                const parameters::Adaptation        &parameters,
                const unsigned int                   degree,
-               const double                         aimed_error);
+               const double                         aimed_error,
+               const bool                           model_checked);
 } // namespace coulomb_adapt
 
 #endif

@@ -52,6 +52,28 @@ namespace coulomb_adapt
   }
 
   /**
+   * Whether the error of @p cell falls at the singular rate near the
+   * singular point @p p: the point lies in the cell, or closer to it than
+   * half the cell's diameter (the distance to its straight faces).
+   *
+   * Why not only the cells that touch the point: the end of the contact
+   * zone lies on the other body's contact face, a straight line that gmsh
+   * meshes without a node there, and the nearest node can lie a few
+   * hundredths of a cell from the point. The cells around that node are
+   * as close to the singularity as those that touch it. On punch (remesh,
+   * epsilon_0 = 0.25 %) these cells of the block held most of the error
+   * near the punch's corners, and between two cycles their error fell with
+   * the refinement ratio to the power 0.2-0.8 instead of q = p = 1, while
+   * the cells 0.7 diameters and more from the corner fell at 0.75-1.5
+   * (benchmarks/adaptation_steps, "Cells near a singular point").
+   */
+  bool
+  near_singular_point(const Triangulation<2>::active_cell_iterator &cell,
+                      const Point<2>                               &p);
+
+
+
+  /**
    * Points where the displacement is expected to be singular, the same on
    * every rank: the ends of the active contact zone (from @p contact_states,
    * may be empty), and the boundary vertices where a clamped or a contact
@@ -68,13 +90,12 @@ namespace coulomb_adapt
    * (the predicted epsilon is then above epsilon_0 and the next cycle goes
    * on): r_E >= @p min_ratio where q_E = p and r_E >= @p min_ratio^{3/2}
    * at singular points, where the error falls more slowly with h. q_E = p (@p
-   * degree) except in cells
-   * touching a point of @p singular_points, where q_E = min(p,
-   * @p singular_rate). With one q for all cells this is the closed form of
-   * theory.md section 4; with several, the Lagrange condition
-   * r_E^{2 q_E + d} = d / (2 Lambda q_E epsilon_E^2) holds in every cell and
-   * the multiplier Lambda is found by bisection (the predicted error is
-   * monotone in it).
+   * degree) except in cells near a point of @p singular_points
+   * (near_singular_point), where q_E = min(p, @p singular_rate). With one
+   * q for all cells this is the closed form of theory.md section 4; with
+   * several, the Lagrange condition r_E^{2 q_E + d} = d / (2 Lambda q_E
+   * epsilon_E^2) holds in every cell and the multiplier Lambda is found by
+   * bisection (the predicted error is monotone in it).
    *
    * If that mesh would have more than @p max_n_cells cells (0: no limit),
    * Lambda is lowered until it has at most that many: the same Lagrange

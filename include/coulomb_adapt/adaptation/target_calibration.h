@@ -52,6 +52,12 @@ namespace coulomb_adapt
     double
     correction() const;
 
+    /** Whether a plan has been checked against the mesh it built: the
+     * model's error is then known, and a plan may refine further in one
+     * step (adapt_meshes). */
+    bool
+    model_checked() const;
+
   private:
     double safety_factor;
     /** Bounds of c: a plan missed by more than a factor 2 says more about
@@ -60,6 +66,7 @@ namespace coulomb_adapt
     static constexpr double min_correction = 0.5, max_correction = 2;
     double                  correction_factor  = 1;
     double                  pending_prediction = -1;
+    bool                    checked            = false;
   };
 } // namespace coulomb_adapt
 
