@@ -26,6 +26,7 @@
 #include <coulomb_adapt/bodies/rigid_motion_gram.h>
 #include <coulomb_adapt/bodies/triangle_mesh_description.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -287,15 +288,18 @@ namespace coulomb_adapt
 
 
   std::set<CellId>
-  ElasticBody::refined_cells() const
+  ElasticBody::refined_cells(const unsigned int below_level) const
   {
     // A cell refined on this rank's part of the mesh is refined in the
     // whole mesh (the local tree is a coarsening of the global one); the
     // union over the ranks has every refined cell.
     std::vector<CellId> local;
-    for (const auto &cell : tria->cell_iterators())
-      if (cell->has_children())
-        local.push_back(cell->id());
+    for (unsigned int level = 0;
+         level < std::min(below_level, tria->n_levels());
+         ++level)
+      for (const auto &cell : tria->cell_iterators_on_level(level))
+        if (cell->has_children())
+          local.push_back(cell->id());
     std::set<CellId> all;
     for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
       all.insert(part.begin(), part.end());

@@ -250,19 +250,21 @@ namespace coulomb_adapt
     std::vector<NestedIterationLevel>        &levels)
   {
     levels.clear();
-    std::array<std::set<CellId>, 2> refined;
-    unsigned int                    finest = 0;
+    unsigned int finest = 0;
     for (unsigned int b = 0; b < 2; ++b)
-      {
-        refined[b] = fine_bodies[b]->refined_cells();
-        finest =
-          std::max(finest,
-                   fine_bodies[b]->triangulation().n_global_levels() - 1);
-      }
+      finest =
+        std::max(finest, fine_bodies[b]->triangulation().n_global_levels() - 1);
     const std::vector<unsigned int> cell_levels =
       coarser_cell_levels(fine_bodies, finest, n_levels);
     if (cell_levels.empty())
       return {};
+    // The rebuilt hierarchies need only the refined cells below the finest
+    // of their levels (refine_as): the parents of the cycle's finest cells
+    // are not gathered (punch refine 0.25 %: 49,150 cell ids of 75,370 on
+    // the block, 4,984 of 7,210 on the punch).
+    std::array<std::set<CellId>, 2> refined;
+    for (unsigned int b = 0; b < 2; ++b)
+      refined[b] = fine_bodies[b]->refined_cells(cell_levels.back());
     // The levels are built as every other body is (make_bodies(): the
     // scene's coarse meshes, manifolds and boundary ids) and refined by the
     // cycle's refined cell ids, which gives the same meshes on any number

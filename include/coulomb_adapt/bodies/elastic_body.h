@@ -77,11 +77,13 @@ namespace coulomb_adapt
     void
     refine_and_coarsen(const std::vector<signed char> &decisions);
 
-    /** The cells of this mesh that have children, on every rank: the
-     * hierarchy of a locally refined mesh, which refine_as() rebuilds on
-     * another body of the same scene. */
+    /** The cells of this mesh of a level below @p below_level that have
+     * children, on every rank: the hierarchy of a locally refined mesh up
+     * to that level, which refine_as() rebuilds on another body of the
+     * same scene. Only the levels asked for are gathered: every rank
+     * holds the set. */
     std::set<CellId>
-    refined_cells() const;
+    refined_cells(const unsigned int below_level) const;
 
     /** Refine, up to level @p finest_level, every cell that is in
      * @p refined (another body's refined_cells() of the same scene and
