@@ -45,8 +45,8 @@ namespace coulomb_adapt
       };
       OptimalSizeRatios ratios = plan(parameters.min_size_ratio);
       // A plan limited by the cell count is short of its aim anyway.
-      if (model_checked && parameters.strategy == AdaptationStrategy::remesh &&
-          !ratios.limited_by_max_n_cells && ratios.n_at_min_ratio > 0 &&
+      if (model_checked && !ratios.limited_by_max_n_cells &&
+          ratios.n_at_min_ratio > 0 &&
           ratios.predicted_epsilon > aimed_error * (1 + 1e-6))
         {
           report.unrelaxed_predicted_epsilon = ratios.predicted_epsilon;

@@ -443,10 +443,10 @@ namespace coulomb_adapt
                           Patterns::Double(0.001, 1),
                           "Lower bound of r_E = h*_E / h_E: how much finer "
                           "one cycle may make a cell (near a singular point "
-                          "this to the power 3/2). remesh: once a plan has "
-                          "been checked against the mesh it built, a plan "
-                          "that the bound keeps from its aim is made again "
-                          "with the bounds to the power 3/2.");
+                          "this to the power 3/2). Once a plan has been "
+                          "checked against the mesh it built, a plan that "
+                          "the bound keeps from its aim is made again with "
+                          "the bounds to the power 3/2.");
         prm.declare_entry("Maximum size ratio",
                           "4",
                           Patterns::Double(1, 100),

@@ -54,16 +54,14 @@ namespace coulomb_adapt
    * The plan bounds r_E below by 'Minimum size ratio' (min_ratio^{3/2} at
    * singular points): the error model, an asymptotic one, is not trusted
    * over more refinement than that in one step from a mesh it has not
-   * been checked on. With remesh, once @p model_checked (a previous
-   * plan's prediction was compared with the mesh it built, and
-   * @p aimed_error corrects for the difference), a plan that these bounds
-   * keep from its aim is made again with both bounds raised to the power
-   * 3/2 (0.1 -> 0.0316, and 0.0316 -> 0.0056 near singular points):
-   * otherwise the next mesh misses epsilon_0 by the model alone, and a
-   * whole cycle follows (punch, epsilon_0 = 0.25 %: two adaptation steps
-   * instead of three). refine keeps the bounds: there the relaxed plan's
-   * mesh missed its prediction by 1.6x and the run still took three steps
-   * to a larger mesh (benchmarks/adaptation_steps).
+   * been checked on. Once @p model_checked (a previous plan's prediction
+   * was compared with the mesh it built, and @p aimed_error corrects for
+   * the difference), a plan that these bounds keep from its aim is made
+   * again with both bounds raised to the power 3/2 (0.1 -> 0.0316, and
+   * 0.0316 -> 0.0056 near singular points): otherwise the next mesh
+   * misses epsilon_0 by the model alone, and a whole cycle follows (punch,
+   * epsilon_0 = 0.25 %: two adaptation steps instead of three, with both
+   * strategies; benchmarks/adaptation_steps).
    */
   MeshAdaptationReport
   adapt_meshes(const std::array<ElasticBody *, 2>  &bodies,
