@@ -26,7 +26,10 @@
 //  - locally refined meshes start from their own hierarchy, their finest
 //    cell levels coarsened: punch, refine (Q1), epsilon_0 = 0.5 %, 162 ->
 //    28,722 DoFs, at most 4 Newton steps per solve (from the uniform
-//    levels: 5);
+//    levels: 5). Its plans also show when r_E's lower bound is relaxed
+//    (adapt_meshes): not in the first, from the initial mesh, although
+//    the bound keeps it from its aim; in the second, once the model has
+//    been checked (0.1 -> 0.1^{3/2});
 //  - blocks on the seed's mesh, remesh (P1), epsilon_0 = 0.5 %: 488 ->
 //    ~48,000 DoFs, at most 4 Newton steps per solve (the warm start took
 //    5);
@@ -268,6 +271,34 @@ main(int argc, char **argv)
                                {"Output/Output directory", "output-punch"}};
     compare(
       "punch, refine (Q1), epsilon_0 = 0.5 %", settings, false, false, out);
+
+    // The same run's plans (adapt_meshes): the first, from the initial
+    // mesh, keeps r_E >= 0.1 although it leaves 58 cells at that bound and
+    // predicts more than its aim; the second, made once the first plan's
+    // prediction has been checked against its mesh, is kept from its aim
+    // by the bound too and is made again with 0.1^{3/2}.
+    nlohmann::json summary;
+    std::ifstream("output-punch/summary.json") >> summary;
+    const auto &cycles = summary["cycles"];
+    AssertThrow(cycles.size() == 3, ExcMessage("expected 3 cycles"));
+    const auto &first  = cycles[1]["adaptation"];
+    const auto &second = cycles[2]["adaptation"];
+    out << "  first plan: lower bound " << first["min_size_ratio"] << ", "
+        << first["cells_at_min_ratio"] << " cells at it, predicted "
+        << std::setprecision(3)
+        << 100 * first["predicted_epsilon"].get<double>() << " % for "
+        << 100 * first["aimed_epsilon"].get<double>() << " %" << std::endl;
+    out << "  second plan: lower bound " << std::setprecision(6)
+        << second["min_size_ratio"].get<double>()
+        << " (relaxed: the model checked)" << std::endl;
+    AssertThrow(first["min_size_ratio"].get<double>() == 0.1 &&
+                  first["cells_at_min_ratio"].get<unsigned int>() > 0 &&
+                  first["predicted_epsilon"].get<double>() >
+                    first["aimed_epsilon"].get<double>(),
+                ExcMessage("the first plan should be bounded by 0.1"));
+    AssertThrow(std::abs(second["min_size_ratio"].get<double>() -
+                         std::pow(0.1, 1.5)) <= 1e-15,
+                ExcMessage("the second plan should relax the bound"));
   }
   {
     // The seed's mesh (prm/blocks.prm): 408 triangles.
