@@ -12,20 +12,27 @@ e_new^2 = r^(2 q) e_old^2. d/h is the cell's distance to the point (its
 nearest vertex) over its diameter. At the end, the error-weighted rate of
 the cells nearer than half a diameter and of the others.
 
-usage: local_rates.py OUTPUT_DIR CYCLE --point X,Y [--point X,Y ...]
+usage: local_rates.py OUTPUT_DIR CYCLE --point=X,Y [--point=X,Y ...]
        [--within 3]
+       local_rates.py --smoke --exe EXE
 OUTPUT_DIR is a run's 'Output directory' with the fields of cycles C and
-C + 1 written (VTU, the default).
+C + 1 written (VTU, the default). --smoke runs punch (remesh, epsilon_0 =
+5 %) into a temporary directory and reads its cycle 1: it checks that the
+script runs, not the numbers.
 """
 
 import argparse
 import math
 import os
+import shutil
 import sys
+import tempfile
 import xml.etree.ElementTree as ElementTree
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)),
-                                "..", "..", "tests"))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tests"))
+import common  # noqa: E402
 from vtu_pieces import point_rows, pieces_of  # noqa: E402
 
 
@@ -70,27 +77,60 @@ def contains(t, x, y):
         (d1 <= 0 and d2 <= 0 and d3 <= 0)
 
 
+def smoke(exe):
+    """Punch remeshed for 5 % (552 -> 1,316 -> ... DoFs), fields
+    written; the rates of its cycle 1 at the punch's corners."""
+    directory = tempfile.mkdtemp(prefix="coulomb-local-rates-")
+    try:
+        result = common.run(common.program_command(
+            exe, ["Mesh/Cell type=triangle", "Adaptation/Strategy=remesh",
+                  "Adaptation/Target error=5",
+                  "Adaptation/Number of cycles=4",
+                  "Adaptation/Minimum number of cycles=1",
+                  "Output/Output directory=" + directory],
+            prm=os.path.join(common.ROOT, "prm/punch.prm")),
+            300, common.program_env(exe))
+        failure = result.failure()
+        if failure:
+            sys.exit("the punch run failed (%s): %s" % failure)
+        analyse(directory, 1, ["-10,0", "10,0"], 3)
+    finally:
+        shutil.rmtree(directory, ignore_errors=True)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("directory")
-    p.add_argument("cycle", type=int)
-    p.add_argument("--point", action="append", required=True)
+    p.add_argument("directory", nargs="?")
+    p.add_argument("cycle", type=int, nargs="?")
+    p.add_argument("--point", action="append")
     p.add_argument("--within", type=float, default=3)
+    p.add_argument("--smoke", action="store_true")
+    p.add_argument("--exe", default=os.path.join(common.ROOT,
+                                                 "build/coulomb-adapt"))
     a = p.parse_args()
-    old = triangles(a.directory, a.cycle)
-    new = triangles(a.directory, a.cycle + 1)
+    if a.smoke:
+        smoke(a.exe)
+    elif a.directory is None or a.cycle is None or not a.point:
+        p.error("OUTPUT_DIR, CYCLE and at least one --point are needed")
+    else:
+        analyse(a.directory, a.cycle, a.point, a.within)
+
+
+def analyse(directory, cycle, points, within):
+    old = triangles(directory, cycle)
+    new = triangles(directory, cycle + 1)
     centres = [((sum(v[0] for v in t) / 3, sum(v[1] for v in t) / 3), e,
                 area(t)) for t, e in new]
     weighted = {True: [0.0, 0.0], False: [0.0, 0.0]}
-    for text in a.point:
+    for text in points:
         point = tuple(float(x) for x in text.split(","))
         near = [(t, e) for t, e in old
                 if min(math.dist(v, point) for v in t) <
-                a.within * diameter(t)]
+                within * diameter(t)]
         reach = max(min(math.dist(v, point) for v in t) + diameter(t)
                     for t, _ in near)
         print("cycle %d, point (%g, %g): %d cells within %g diameters"
-              % (a.cycle, point[0], point[1], len(near), a.within))
+              % (cycle, point[0], point[1], len(near), within))
         print("  %7s %11s %7s %11s %7s" % ("d/h", "e_old^2", "r",
                                            "e_new^2", "q"))
         rows = []
