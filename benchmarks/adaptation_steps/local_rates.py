@@ -127,6 +127,10 @@ def analyse(directory, cycle, points, within):
         near = [(t, e) for t, e in old
                 if min(math.dist(v, point) for v in t) <
                 within * diameter(t)]
+        if not near:
+            print("cycle %d, point (%g, %g): no cell within %g diameters"
+                  % (cycle, point[0], point[1], within))
+            continue
         reach = max(min(math.dist(v, point) for v in t) + diameter(t)
                     for t, _ in near)
         print("cycle %d, point (%g, %g): %d cells within %g diameters"
@@ -151,6 +155,10 @@ def analyse(directory, cycle, points, within):
                 w = weighted[relative < 0.5]
                 w[0] += e
                 w[1] += e * q
+        if not rows:
+            print("  no cell of cycle %d near it holds cycle %d cells with "
+                  "an error" % (cycle, cycle + 1))
+            continue
         largest = max(row[1] for row in rows)
         for relative, e, r, e_new, q in sorted(rows):
             if e >= 1e-3 * largest:
