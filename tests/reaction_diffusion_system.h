@@ -44,12 +44,14 @@ namespace coulomb_adapt
       std::vector<std::vector<types::global_dof_index>> stars;
     };
 
+    // On the unit square refined @p n_refinements times.
     inline ReactionDiffusionSystem
-    reaction_diffusion_system(const MPI_Comm comm)
+    reaction_diffusion_system(const MPI_Comm     comm,
+                              const unsigned int n_refinements = 4)
     {
       parallel::distributed::Triangulation<2> triangulation(comm);
       GridGenerator::hyper_cube(triangulation);
-      triangulation.refine_global(4);
+      triangulation.refine_global(n_refinements);
       const FE_Q<2> fe(2);
       DoFHandler<2> dof_handler(triangulation);
       dof_handler.distribute_dofs(fe);

@@ -1,3 +1,4 @@
+#include <deal.II/base/thread_management.h>
 #include <deal.II/base/work_stream.h>
 
 #include <deal.II/dofs/dof_tools.h>
@@ -94,16 +95,14 @@ namespace coulomb_adapt
         std::vector<double> columns, gram;
       };
 
-      // What a cell adds: its quadratic form (H and g also for the global
-      // system; packed = H's lower triangle by rows, g, t) and the names of
-      // its parameters.
+      // What a cell adds: its quadratic form (packed = H's lower triangle
+      // by rows, g, t) and the names of its parameters.
       struct CellCopy
       {
         CellForm                             form;
         double                               defect = 0;
         std::vector<types::global_dof_index> names;
-        FullMatrix<double>                   H;
-        std::vector<double>                  g, packed;
+        std::vector<double>                  packed;
       };
 
       // What every cell reads.
@@ -324,15 +323,13 @@ namespace coulomb_adapt
           G[n * stride + n] +
           std::max(local.kinematic_energy() - G[(n + 1) * stride + n + 1], 0.);
         // packed = H's lower triangle by rows, g, t.
-        copy.H.reinit(n, n, true);
-        copy.g.resize(n);
         copy.packed.resize(n * (n + 1) / 2 + 2 * n);
         double *packed = copy.packed.data();
         for (unsigned int i = 0; i < n; ++i)
           for (unsigned int j = 0; j <= i; ++j)
-            *packed++ = copy.H(i, j) = copy.H(j, i) = G[i * stride + j];
+            *packed++ = G[i * stride + j];
         for (unsigned int i = 0; i < n; ++i)
-          *packed++ = copy.g[i] = G[n * stride + i];
+          *packed++ = G[n * stride + i];
         for (unsigned int i = 0; i < n; ++i)
           *packed++ = G[(n + 1) * stride + i];
       }
@@ -472,6 +469,32 @@ namespace coulomb_adapt
             }
           result.sum_norm_squared =
             Utilities::MPI::sum(sum_norm, alpha.get_mpi_communicator());
+        }
+
+        // Every cell's H and g added to the parameters' matrix @p H and
+        // vector @p g, in the cells' order (the copier's order).
+        void
+        add_to(TrilinosWrappers::SparseMatrix &H,
+               TrilinosWrappers::MPI::Vector  &g) const
+        {
+          std::vector<std::pair<int, unsigned int>> columns;
+          std::vector<types::global_dof_index>      cell_names;
+          FullMatrix<double>                        cell_H;
+          for (const CellForm &form : forms)
+            {
+              const unsigned int n = form.n;
+              if (n == 0)
+                continue;
+              cell_names.assign(names.begin() + form.names_offset,
+                                names.begin() + form.names_offset + n);
+              cell_H.reinit(n, n, true);
+              const double *packed = &data[form.data_offset];
+              for (unsigned int i = 0; i < n; ++i)
+                for (unsigned int j = 0; j <= i; ++j)
+                  cell_H(i, j) = cell_H(j, i) = *packed++;
+              add_cell_matrix(cell_names, cell_H, H, columns);
+              g.add(cell_names, std::vector<double>(packed, packed + n));
+            }
         }
 
       private:
@@ -707,6 +730,44 @@ namespace coulomb_adapt
       std::map<types::global_dof_index, bool> couple_allowed;
       if (relaxed)
         couple_allowed = vertices_with_couple_mode(faces);
+      // The cells are independent until their contributions are added:
+      // WorkStream runs cell_form() on the threads deal.II may use and
+      // the copier in the cells' order, so the sums and the result do not
+      // depend on the number of threads. It runs as a task while this
+      // thread (the one that makes MPI calls) builds H's pattern and
+      // matrix, which need no form; the forms are added to H once both
+      // are done, in the cells' order, the same sums as when the copier
+      // added them.
+      std::vector<unsigned int> owned_slots;
+      for (unsigned int slot = 0; slot < cells.size(); ++slot)
+        if (cells[slot].owned)
+          owned_slots.push_back(slot);
+      const FormInputs                    in{cells,
+                          faces,
+                          loads,
+                          u_kinematic,
+                          names,
+                          with_bubbles,
+                          relaxed ? &couple_allowed : nullptr};
+      CellForms                           forms;
+      std::optional<OptionalTimerSection> section;
+      section.emplace(timer, "error indicator: cell forms");
+      Threads::Task<void> forms_task = Threads::new_task([&]() {
+        WorkStream::run(
+          owned_slots.cbegin(),
+          owned_slots.cend(),
+          [&](const std::vector<unsigned int>::const_iterator &slot,
+              CellScratch                                     &scratch,
+              CellCopy &copy) { cell_form(in, *slot, scratch, copy); },
+          [&](const CellCopy &copy) {
+            result.local_problem_defect =
+              std::max(result.local_problem_defect, copy.defect);
+            forms.add(copy);
+          },
+          CellScratch(local, names.fe.n_dofs_per_cell()),
+          CellCopy());
+      });
+
       DynamicSparsityPattern dsp(names.relevant);
       DoFTools::make_sparsity_pattern(names.dof_handler, dsp);
       SparsityTools::distribute_sparsity_pattern(dsp,
@@ -716,44 +777,8 @@ namespace coulomb_adapt
       TrilinosWrappers::SparseMatrix H;
       H.reinit(names.owned, names.owned, dsp, comm);
       TrilinosWrappers::MPI::Vector g(names.owned, comm), alpha(g);
-
-      // The cells are independent until their contributions are added:
-      // WorkStream runs cell_form() on the threads deal.II may use and
-      // the copier in the cells' order, so the sums and the result do not
-      // depend on the number of threads.
-      std::vector<unsigned int> owned_slots;
-      for (unsigned int slot = 0; slot < cells.size(); ++slot)
-        if (cells[slot].owned)
-          owned_slots.push_back(slot);
-      const FormInputs                          in{cells,
-                          faces,
-                          loads,
-                          u_kinematic,
-                          names,
-                          with_bubbles,
-                          relaxed ? &couple_allowed : nullptr};
-      CellForms                                 forms;
-      std::vector<std::pair<int, unsigned int>> local_columns;
-      std::optional<OptionalTimerSection>       section;
-      section.emplace(timer, "error indicator: cell forms");
-      WorkStream::run(
-        owned_slots.cbegin(),
-        owned_slots.cend(),
-        [&](const std::vector<unsigned int>::const_iterator &slot,
-            CellScratch                                     &scratch,
-            CellCopy &copy) { cell_form(in, *slot, scratch, copy); },
-        [&](const CellCopy &copy) {
-          result.local_problem_defect =
-            std::max(result.local_problem_defect, copy.defect);
-          forms.add(copy);
-          if (copy.names.size() > 0)
-            {
-              add_cell_matrix(copy.names, copy.H, H, local_columns);
-              g.add(copy.names, copy.g);
-            }
-        },
-        CellScratch(local, names.fe.n_dofs_per_cell()),
-        CellCopy());
+      forms_task.join();
+      forms.add_to(H, g);
       H.compress(VectorOperation::add);
       g.compress(VectorOperation::add);
       section.reset();

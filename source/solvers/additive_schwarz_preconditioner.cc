@@ -1,4 +1,6 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parallel.h>
+#include <deal.II/base/thread_local_storage.h>
 
 #include <deal.II/lac/lapack_full_matrix.h>
 
@@ -79,18 +81,17 @@ namespace coulomb_adapt
 
 
 
-    // z += A_pp^-1 r on one patch: the gathered r, the product by the
-    // columns of A_pp^-1 (independent multiply-adds along a contiguous
-    // column, which vectorise, instead of a chain of dot products per
-    // row), scattered back.
+    // A_pp^-1 r on one patch into @p product: the gathered r, the product
+    // by the columns of A_pp^-1 (independent multiply-adds along a
+    // contiguous column, which vectorise, instead of a chain of dot
+    // products per row).
     void
-    add_patch_correction(const unsigned int *const positions,
-                         const std::size_t         m,
-                         const double *const       inverse,
-                         const double *const       r,
-                         double *const             z,
-                         double *const __restrict  gathered,
-                         double *const __restrict  product)
+    patch_correction(const unsigned int *const positions,
+                     const std::size_t         m,
+                     const double *const       inverse,
+                     const double *const       r,
+                     double *const __restrict gathered,
+                     double *const __restrict product)
     {
       for (std::size_t a = 0; a < m; ++a)
         gathered[a] = r[positions[a]];
@@ -102,9 +103,61 @@ namespace coulomb_adapt
           for (std::size_t a = 0; a < m; ++a)
             product[a] += column[a] * r_b;
         }
-      for (std::size_t a = 0; a < m; ++a)
-        z[positions[a]] += product[a];
     }
+
+
+
+    // The places in @p patch of its unknowns: the indices with a nonzero
+    // diagonal (@p full: the patch's dense block).
+    std::vector<std::size_t>
+    kept_unknowns(const std::vector<double> &full, const std::size_t size)
+    {
+      std::vector<std::size_t> kept_at;
+      for (std::size_t a = 0; a < size; ++a)
+        if (full[a * size + a] != 0)
+          kept_at.push_back(a);
+      return kept_at;
+    }
+
+
+
+    // The inverse of the block of @p patch's unknowns @p kept_at, by
+    // columns, into @p inverse (m^2 entries), and their local indices
+    // among the relevant ones into @p positions (m entries).
+    void
+    invert_patch(const Epetra_CrsMatrix                     &rows,
+                 const std::vector<types::global_dof_index> &patch,
+                 const std::vector<std::size_t>             &kept_at,
+                 const IndexSet                             &relevant,
+                 std::vector<int>                           &column_position,
+                 LAPACKFullMatrix<double>                   &block,
+                 unsigned int *const                         positions,
+                 double *const                               inverse)
+    {
+      const std::vector<double> full =
+        dense_block(rows, patch, column_position);
+      const std::size_t m = kept_at.size();
+      block.reinit(m, m);
+      block.set_property(LAPACKSupport::symmetric);
+      for (std::size_t a = 0; a < m; ++a)
+        for (std::size_t b = 0; b < m; ++b)
+          block(a, b) = full[kept_at[a] * patch.size() + kept_at[b]];
+      // LAPACK's Cholesky factor and inverse (potrf, potri; deal.II
+      // copies the lower triangle up, so it is exactly symmetric and its
+      // rows are its columns).
+      block.invert();
+      for (std::size_t b = 0; b < m; ++b)
+        for (std::size_t a = 0; a < m; ++a)
+          inverse[b * m + a] = block(a, b);
+      for (std::size_t a = 0; a < m; ++a)
+        positions[a] = relevant.index_within_set(patch[kept_at[a]]);
+    }
+
+
+
+    // Patches per task of the threaded loops: a patch is ~2 m^2 = 800
+    // flops on the estimator's vertex patches.
+    constexpr unsigned int patches_per_task = 256;
   } // namespace
 
 
@@ -125,39 +178,56 @@ namespace coulomb_adapt
 
     std::unique_ptr<Epetra_CrsMatrix> imported;
     const Epetra_CrsMatrix &rows = overlapping_rows(A, relevant, imported);
-    std::vector<int>        column_position(rows.ColMap().NumMyElements(), -1);
+    // The patches are inverted independently on the threads deal.II may
+    // use (each thread with its own column map), in two passes: the
+    // unknowns of each patch (dropping the indices with a zero diagonal),
+    // which give every patch its place in the arrays, then the inverses
+    // written there. The same preconditioner on any number of threads.
+    Threads::ThreadLocalStorage<std::vector<int>> column_positions(
+      std::vector<int>(rows.ColMap().NumMyElements(), -1));
+    std::vector<std::vector<std::size_t>> kept(patches.size());
+    parallel::apply_to_subranges(
+      std::size_t(0),
+      patches.size(),
+      [&](const std::size_t begin, const std::size_t end) {
+        for (std::size_t p = begin; p < end; ++p)
+          kept[p] =
+            kept_unknowns(dense_block(rows, patches[p], column_positions.get()),
+                          patches[p].size());
+      },
+      patches_per_task);
+    std::vector<std::size_t> kept_patches;
     starts.push_back(0);
     inverse_starts.push_back(0);
-    LAPACKFullMatrix<double> block;
-    for (const auto &patch : patches)
-      {
-        // Drop the indices without an unknown (zero diagonal).
-        const std::vector<double> full =
-          dense_block(rows, patch, column_position);
-        std::vector<std::size_t> kept_at;
-        for (std::size_t a = 0; a < patch.size(); ++a)
-          if (full[a * patch.size() + a] != 0)
-            kept_at.push_back(a);
-        if (kept_at.empty())
-          continue;
-        const std::size_t m = kept_at.size();
-        block.reinit(m, m);
-        block.set_property(LAPACKSupport::symmetric);
-        for (std::size_t a = 0; a < m; ++a)
-          for (std::size_t b = 0; b < m; ++b)
-            block(a, b) = full[kept_at[a] * patch.size() + kept_at[b]];
-        // LAPACK's Cholesky factor and inverse (potrf, potri; deal.II
-        // copies the lower triangle up, so it is exactly symmetric and its
-        // rows are its columns).
-        block.invert();
-        for (std::size_t b = 0; b < m; ++b)
-          for (std::size_t a = 0; a < m; ++a)
-            inverses.push_back(block(a, b));
-        for (const std::size_t a : kept_at)
-          positions.push_back(relevant.index_within_set(patch[a]));
-        starts.push_back(positions.size());
-        inverse_starts.push_back(inverses.size());
-      }
+    for (std::size_t p = 0; p < patches.size(); ++p)
+      if (const std::size_t m = kept[p].size(); m > 0)
+        {
+          kept_patches.push_back(p);
+          starts.push_back(starts.back() + m);
+          inverse_starts.push_back(inverse_starts.back() + m * m);
+        }
+    positions.resize(starts.back());
+    inverses.resize(inverse_starts.back());
+    Threads::ThreadLocalStorage<LAPACKFullMatrix<double>> blocks;
+    parallel::apply_to_subranges(
+      std::size_t(0),
+      kept_patches.size(),
+      [&](const std::size_t begin, const std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k)
+          {
+            const std::size_t p = kept_patches[k];
+            invert_patch(rows,
+                         patches[p],
+                         kept[p],
+                         relevant,
+                         column_positions.get(),
+                         blocks.get(),
+                         &positions[starts[k]],
+                         &inverses[inverse_starts[k]]);
+          }
+      },
+      patches_per_task);
+    corrections.resize(positions.size());
     const std::size_t n_local_patches = starts.size() - 1;
     n_global_patches = Utilities::MPI::sum(n_local_patches, comm);
     mean_size =
@@ -185,20 +255,29 @@ namespace coulomb_adapt
     z_relevant->PutScalar(0.);
     const double *const r = r_relevant->Values();
     double *const       z = z_relevant->Values();
-    std::vector<double> gathered, product;
-    for (std::size_t p = 0; p + 1 < starts.size(); ++p)
-      {
-        const std::size_t m = starts[p + 1] - starts[p];
-        gathered.resize(m);
-        product.resize(m);
-        add_patch_correction(&positions[starts[p]],
+    // The patches' corrections on the threads, each into its own slice of
+    // corrections; then added up in the patches' order, so that z does not
+    // depend on the number of threads.
+    parallel::apply_to_subranges(
+      std::size_t(0),
+      starts.size() - 1,
+      [&](const std::size_t begin, const std::size_t end) {
+        std::vector<double> gathered;
+        for (std::size_t p = begin; p < end; ++p)
+          {
+            const std::size_t m = starts[p + 1] - starts[p];
+            gathered.resize(m);
+            patch_correction(&positions[starts[p]],
                              m,
                              &inverses[inverse_starts[p]],
                              r,
-                             z,
                              gathered.data(),
-                             product.data());
-      }
+                             &corrections[starts[p]]);
+          }
+      },
+      patches_per_task);
+    for (std::size_t i = 0; i < positions.size(); ++i)
+      z[positions[i]] += corrections[i];
     // Each owned index is one relevant index of its own rank: the export
     // copies that one and adds the other ranks' ones.
     dst = 0;

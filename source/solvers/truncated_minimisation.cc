@@ -1,3 +1,4 @@
+#include <coulomb_adapt/solvers/threaded_matrix_product.h>
 #include <coulomb_adapt/solvers/truncated_minimisation.h>
 
 #include <deque>
@@ -18,6 +19,7 @@ namespace coulomb_adapt
     TruncatedMinimisation result;
     result.value = offset;
     x            = 0;
+    const ThreadedMatrixProduct   product(A);
     TrilinosWrappers::MPI::Vector r(b), z(b), p(b), Ap(b);
     P.vmult(z, r);
     p          = z;
@@ -26,7 +28,7 @@ namespace coulomb_adapt
     std::deque<double> recent;
     while (result.steps < max_steps && r_z > 0)
       {
-        A.vmult(Ap, p);
+        product.vmult(Ap, p);
         const double a = r_z / (p * Ap);
         x.add(a, p);
         r.add(-a, Ap);

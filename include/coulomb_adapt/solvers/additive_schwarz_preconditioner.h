@@ -73,8 +73,8 @@ namespace coulomb_adapt
   private:
     // The relevant indices' values: imported from the owned ones before
     // the patches are applied, their sums exported (added) after.
-    std::unique_ptr<Epetra_Map>    relevant_map;
-    std::unique_ptr<Epetra_Import> owned_to_relevant;
+    std::unique_ptr<Epetra_Map>            relevant_map;
+    std::unique_ptr<Epetra_Import>         owned_to_relevant;
     mutable std::unique_ptr<Epetra_Vector> r_relevant, z_relevant;
     // Patch p: its (nonzero-diagonal) indices' positions within the
     // relevant ones, positions[starts[p] .. starts[p + 1]), and A_pp^-1
@@ -82,8 +82,10 @@ namespace coulomb_adapt
     std::vector<unsigned int> positions;
     std::vector<std::size_t>  starts, inverse_starts;
     std::vector<double>       inverses;
-    std::size_t               n_global_patches = 0;
-    double                    mean_size        = 0;
+    // Scratch of vmult(): each patch's correction, at its positions.
+    mutable std::vector<double> corrections;
+    std::size_t                 n_global_patches = 0;
+    double                      mean_size        = 0;
   };
 } // namespace coulomb_adapt
 
