@@ -10,7 +10,9 @@ the 23rd session), one thread:
         --csv benchmarks/effectivity/cre_cost.csv
 
 Each run is prm/blocks.prm with Estimator = cre, 3 global refinements
-(26,724 DoFs; --refinements 1 2 3 for several sizes) and one cycle under DEAL_II_NUM_THREADS=1 and /usr/bin/time.
+(26,724 DoFs; --refinements 1 2 3 for several sizes) and one cycle under
+DEAL_II_NUM_THREADS=1 (--threads N for N threads per rank) and
+/usr/bin/time.
 Per run the CSV holds the timer sections 'contact solve', 'error
 indicator', 'error indicator: equilibration' and (where the executable has
 it) 'error indicator: cell forms' from summary.json, epsilon to all its
@@ -39,21 +41,21 @@ SECTIONS = {"contact_solve_s": "contact solve",
             "error_indicator_s": "error indicator",
             "equilibration_s": "error indicator: equilibration",
             "cell_forms_s": "error indicator: cell forms"}
-FIELDS = ["side", "refinements", "n_dofs", "tolerance", "repeat",
+FIELDS = ["side", "threads", "refinements", "n_dofs", "tolerance", "repeat",
           "contact_solve_s",
           "error_indicator_s", "equilibration_s", "cell_forms_s",
           "indicator_over_solve", "epsilon", "cg_steps", "peak_kb",
           "elapsed_s", "cpu_s", "load_average"]
 
 
-def run_once(exe, tolerance, refinements, outdir):
+def run_once(exe, tolerance, refinements, outdir, threads):
     command = ["/usr/bin/time", "-f", "TIME %e s %M KB %U %S", exe,
                os.path.join(ROOT, "prm", "blocks.prm")]
     for s in SETTINGS + ["Error indicator/CRE minimisation tolerance=" +
                          tolerance, "Mesh/Global refinements=" + refinements,
                          "Output/Output directory=" + outdir]:
         command += ["-s", s]
-    env = dict(os.environ, DEAL_II_NUM_THREADS="1")
+    env = dict(os.environ, DEAL_II_NUM_THREADS=str(threads))
     load = os.getloadavg()[0]
     out = subprocess.run(command, env=env, capture_output=True, text=True)
     if out.returncode != 0:
@@ -87,6 +89,8 @@ def main():
     parser.add_argument("--refinements", nargs="+", default=["3"],
                         help="global refinements of blocks (3: 26,724 "
                         "DoFs)")
+    parser.add_argument("--threads", type=int, default=1,
+                        help="DEAL_II_NUM_THREADS of every run")
     parser.add_argument("--csv", default=os.path.join(
         os.path.dirname(__file__), "cre_cost.csv"))
     args = parser.parse_args()
@@ -97,11 +101,13 @@ def main():
             for refinements in args.refinements:
                 for tolerance in args.tolerances:
                     for label, exe in zip(labels, args.exe):
-                        row = run_once(exe, tolerance, refinements, outdir)
+                        row = run_once(exe, tolerance, refinements, outdir,
+                                       args.threads)
                         if row is None:
                             failed = True
                             continue
-                        row = dict(side=label, refinements=refinements,
+                        row = dict(side=label, threads=args.threads,
+                                   refinements=refinements,
                                    tolerance=tolerance, repeat=repeat, **row)
                         print(row, flush=True)
                         rows.append(row)
