@@ -125,8 +125,8 @@ namespace coulomb_adapt
    *    removed; sigma^ = K eps(u^).
    *
    * With @p timer, the cells' quadratic forms (the local problems and the
-   * optimisation's products) are timed in its section
-   * "error indicator: cell forms".
+   * optimisation's products, with the parameters' matrix built meanwhile)
+   * are timed in its section "error indicator: cell forms".
    */
   EquilibratedStressErrors
   equilibrated_stress_errors(const ElasticBody                   &body,

@@ -23,8 +23,9 @@ namespace coulomb_adapt
      * copy of @p local each), and the errors at the minimum in @p result
      * (error_squared, sum_norm_squared and the classical estimate). The
      * faces keep the classical moments. With @p timer, the cells' quadratic
-     * forms and their assembly are timed in "error indicator: cell
-     * forms". */
+     * forms, the parameters' matrix (built on the calling thread while
+     * the forms are computed) and their assembly into it are timed in
+     * "error indicator: cell forms". */
     void
     optimise_free_parameters(const ElasticBody                   &body,
                              const std::vector<CellData>         &cells,
