@@ -20,6 +20,8 @@ namespace coulomb_adapt
     const TrilinosWrappers::SparseMatrix &A)
     : A(A)
   {
+    // Epetra hands out the pointers to its compressed rows only through a
+    // non-const member; nothing is written through them.
     Epetra_CrsMatrix &matrix =
       const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
     // The kernel writes y on the row map and reads x on the column map:
@@ -70,5 +72,13 @@ namespace coulomb_adapt
           }
       },
       rows_per_task);
+  }
+
+
+
+  bool
+  ThreadedMatrixProduct::threaded() const
+  {
+    return row_starts != nullptr;
   }
 } // namespace coulomb_adapt

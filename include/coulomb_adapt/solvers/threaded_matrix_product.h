@@ -34,6 +34,10 @@ namespace coulomb_adapt
     vmult(TrilinosWrappers::MPI::Vector       &dst,
           const TrilinosWrappers::MPI::Vector &src) const;
 
+    /** Whether vmult() runs on the threads (false: Epetra multiplies). */
+    bool
+    threaded() const;
+
   private:
     const TrilinosWrappers::SparseMatrix &A;
     // The rows in compressed form (null: Epetra multiplies).
