@@ -29,19 +29,18 @@ namespace coulomb_adapt
           n_dofs += body->dof_handler().n_dofs();
         }
       const double max_n_cells = parameters.max_dofs * n_cells / n_dofs;
-      const std::vector<Point<2>> singular_points =
-        find_singular_points(bodies, contact_states);
-      const auto plan = [&](const double min_size_ratio) {
+      const OptimalSizePlanner planner(bodies,
+                                       estimate,
+                                       find_singular_points(bodies,
+                                                            contact_states),
+                                       degree,
+                                       parameters.singular_rate);
+      const auto               plan = [&](const double min_size_ratio) {
         report.min_size_ratio = min_size_ratio;
-        return optimal_size_ratios(bodies,
-                                   estimate,
-                                   singular_points,
-                                   aimed_error,
-                                   degree,
-                                   parameters.singular_rate,
-                                   min_size_ratio,
-                                   parameters.max_size_ratio,
-                                   max_n_cells);
+        return planner.plan(aimed_error,
+                            min_size_ratio,
+                            parameters.max_size_ratio,
+                            max_n_cells);
       };
       OptimalSizeRatios ratios = plan(parameters.min_size_ratio);
       // A plan limited by the cell count is short of its aim anyway.

@@ -88,57 +88,37 @@ namespace coulomb_adapt
 
 
 
-    // Per owned cell: epsilon_E^2 and q_E; the cells of both bodies in one
-    // list, since the optimum is over the whole problem.
-    struct CellData
+    // Whether @p p is in @p cell or closer to it than @p reach, with
+    // @p box the cell's bounding box (near_singular_point's test; the box
+    // and the reach computed once per cell, not once per point).
+    bool
+    near_point(const Triangulation<2>::active_cell_iterator &cell,
+               const BoundingBox<2>                         &box,
+               const double                                  reach,
+               const Point<2>                               &p)
     {
-      unsigned int body, index;
-      double       epsilon_squared, rate;
-    };
-
-
-
-    // The cells' data, and in @p result the size of the ratio vectors, q_E
-    // per cell and the number of cells at singular points (all ranks).
-    std::vector<CellData>
-    owned_cell_data(const std::array<const ElasticBody *, 2> &bodies,
-                    const ErrorEstimate                      &estimate,
-                    const std::vector<Point<2>>              &singular_points,
-                    const unsigned int                        degree,
-                    const double                              singular_rate,
-                    OptimalSizeRatios                        &result)
-    {
-      std::vector<CellData> cells;
-      const double          D2 = estimate.normalisation_squared;
-      for (unsigned int b = 0; b < 2; ++b)
+      if (box.point_inside(p, 1e-10))
+        return true;
+      double box_distance_squared = 0;
+      for (unsigned int d = 0; d < 2; ++d)
+        box_distance_squared += std::pow(
+          std::max({0., box.lower_bound(d) - p[d], p[d] - box.upper_bound(d)}),
+          2);
+      if (box_distance_squared >= reach * reach)
+        return false;
+      // Outside the box, so outside the cell: the distance to the cell is
+      // that to its nearest face (straight between its vertices).
+      for (const auto &face : cell->face_iterators())
         {
-          const auto &tria = bodies[b]->triangulation();
-          result.ratio[b].reinit(tria.n_active_cells());
-          result.rate[b].reinit(tria.n_active_cells());
-          for (const auto &cell : tria.active_cell_iterators())
-            if (cell->is_locally_owned())
-              {
-                const unsigned int i = cell->active_cell_index();
-                double             q = degree;
-                for (const auto &p : singular_points)
-                  if (near_singular_point(cell, p))
-                    {
-                      q = std::min<double>(degree, singular_rate);
-                      ++result.n_singular_cells;
-                      break;
-                    }
-                result.rate[b](i) = q;
-                cells.push_back(
-                  {b,
-                   i,
-                   std::max(0., estimate.contribution_squared[b](i) / D2),
-                   q});
-              }
+          const Tensor<1, 2> edge = face->vertex(1) - face->vertex(0);
+          const double       t =
+            std::clamp(((p - face->vertex(0)) * edge) / edge.norm_square(),
+                       0.,
+                       1.);
+          if ((p - (face->vertex(0) + t * edge)).norm() < reach)
+            return true;
         }
-      result.n_singular_cells =
-        Utilities::MPI::sum(result.n_singular_cells,
-                            bodies[0]->dof_handler().get_communicator());
-      return cells;
+      return false;
     }
 
 
@@ -167,11 +147,11 @@ namespace coulomb_adapt
     class SizeRatioModel
     {
     public:
-      SizeRatioModel(const std::vector<CellData> &cells,
-                     const MPI_Comm               comm,
-                     const unsigned int           degree,
-                     const double                 min_ratio,
-                     const double                 max_ratio)
+      SizeRatioModel(const std::vector<OptimalSizePlanner::Cell> &cells,
+                     const MPI_Comm                               comm,
+                     const unsigned int                           degree,
+                     const double                                 min_ratio,
+                     const double                                 max_ratio)
         : comm(comm)
         , log_max_ratio(std::log(max_ratio))
       {
@@ -296,31 +276,7 @@ namespace coulomb_adapt
   near_singular_point(const Triangulation<2>::active_cell_iterator &cell,
                       const Point<2>                               &p)
   {
-    const double         reach = 0.5 * cell->diameter();
-    const BoundingBox<2> box   = cell->bounding_box();
-    if (box.point_inside(p, 1e-10))
-      return true;
-    double box_distance_squared = 0;
-    for (unsigned int d = 0; d < 2; ++d)
-      box_distance_squared +=
-        std::pow(std::max(
-                   {0., box.lower_bound(d) - p[d], p[d] - box.upper_bound(d)}),
-                 2);
-    if (box_distance_squared >= reach * reach)
-      return false;
-    // Outside the box, so outside the cell: the distance to the cell is
-    // that to its nearest face (straight between its vertices).
-    for (const auto &face : cell->face_iterators())
-      {
-        const Tensor<1, 2> edge = face->vertex(1) - face->vertex(0);
-        const double       t =
-          std::clamp(((p - face->vertex(0)) * edge) / edge.norm_square(),
-                     0.,
-                     1.);
-        if ((p - (face->vertex(0) + t * edge)).norm() < reach)
-          return true;
-      }
-    return false;
+    return near_point(cell, cell->bounding_box(), 0.5 * cell->diameter(), p);
   }
 
 
@@ -343,23 +299,64 @@ namespace coulomb_adapt
 
 
 
+  OptimalSizePlanner::OptimalSizePlanner(
+    const std::array<const ElasticBody *, 2> &bodies,
+    const ErrorEstimate                      &estimate,
+    const std::vector<Point<2>>              &singular_points,
+    const unsigned int                        degree,
+    const double                              singular_rate)
+    : comm(bodies[0]->dof_handler().get_communicator())
+    , degree(degree)
+    , n_singular_cells(0)
+  {
+    // The cells of both bodies in one list: the optimum is over the whole
+    // problem.
+    const double D2 = estimate.normalisation_squared;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const auto &tria  = bodies[b]->triangulation();
+        n_active_cells[b] = tria.n_active_cells();
+        rate[b].reinit(tria.n_active_cells());
+        for (const auto &cell : tria.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const unsigned int   i     = cell->active_cell_index();
+              const double         reach = 0.5 * cell->diameter();
+              const BoundingBox<2> box   = cell->bounding_box();
+              double               q     = degree;
+              for (const auto &p : singular_points)
+                if (near_point(cell, box, reach, p))
+                  {
+                    q = std::min<double>(degree, singular_rate);
+                    ++n_singular_cells;
+                    break;
+                  }
+              rate[b](i) = q;
+              cells.push_back(
+                {b,
+                 i,
+                 std::max(0., estimate.contribution_squared[b](i) / D2),
+                 q});
+            }
+      }
+    n_singular_cells = Utilities::MPI::sum(n_singular_cells, comm);
+  }
+
+
+
   OptimalSizeRatios
-  optimal_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
-                      const ErrorEstimate                      &estimate,
-                      const std::vector<Point<2>>              &singular_points,
-                      const double                              target_error,
-                      const unsigned int                        degree,
-                      const double                              singular_rate,
-                      const double                              min_ratio,
-                      const double                              max_ratio,
-                      const double                              max_n_cells)
+  OptimalSizePlanner::plan(const double target_error,
+                           const double min_ratio,
+                           const double max_ratio,
+                           const double max_n_cells) const
   {
     Assert(target_error > 0, ExcMessage("a target error is needed"));
-    const MPI_Comm    comm = bodies[0]->dof_handler().get_communicator();
     OptimalSizeRatios result;
+    for (unsigned int b = 0; b < 2; ++b)
+      result.ratio[b].reinit(n_active_cells[b]);
+    result.rate             = rate;
+    result.n_singular_cells = n_singular_cells;
 
-    const std::vector<CellData> cells = owned_cell_data(
-      bodies, estimate, singular_points, degree, singular_rate, result);
     const SizeRatioModel model(cells, comm, degree, min_ratio, max_ratio);
     double               L = multiplier_for_error(model, target_error);
     if (max_n_cells > 0 && model.predicted_n_cells(L) > max_n_cells)
@@ -371,8 +368,8 @@ namespace coulomb_adapt
     double n_cells = 0;
     for (std::size_t i = 0; i < cells.size(); ++i)
       {
-        const CellData &c             = cells[i];
-        const double    r             = model.ratio(i, L);
+        const Cell  &c                = cells[i];
+        const double r                = model.ratio(i, L);
         result.ratio[c.body](c.index) = r;
         n_cells += std::pow(r, -dimension);
         result.n_at_min_ratio +=

@@ -94,7 +94,7 @@ namespace coulomb_adapt
     const MPI_Comm comm = bodies[0]->dof_handler().get_communicator();
     // Levels for r_E: the nearest power of 2 on a log scale, at least one
     // if r_E < r_refine, at most max_levels per cycle, -1 (coarsen) if
-    // r_E > 2. The lower bound of r_E (optimal_size_ratios) is what limits
+    // r_E > 2. The lower bound of r_E (OptimalSizePlanner) is what limits
     // the levels: 3 for r_E >= 0.1 in regular cells, 5 for r_E >= 0.03 near
     // singular points, and 5 and 7 when a checked plan relaxes the bound
     // (adapt_meshes); max_levels only guards against extreme bounds. (At 5

@@ -43,7 +43,7 @@ namespace coulomb_adapt
   /**
    * The lower bound of r_E in one cycle: @p min_ratio, and
    * @p min_ratio^{3/2} in cells whose rate is reduced at a singular point
-   * (optimal_size_ratios says why).
+   * (OptimalSizePlanner says why).
    */
   inline double
   lowest_size_ratio(const double min_ratio, const bool at_singular_point)
@@ -86,33 +86,59 @@ namespace coulomb_adapt
   /**
    * Minimise the cell count sum_E r_E^-d subject to the predicted error
    * sum_E r_E^{2 q_E} epsilon_E^2 = epsilon_0^2 (d = 2), with r_E <=
-   * @p max_ratio in the optimisation and a lower bound imposed afterwards
+   * max_ratio in the optimisation and a lower bound imposed afterwards
    * (the predicted epsilon is then above epsilon_0 and the next cycle goes
-   * on): r_E >= @p min_ratio where q_E = p and r_E >= @p min_ratio^{3/2}
-   * at singular points, where the error falls more slowly with h. q_E = p (@p
-   * degree) except in cells near a point of @p singular_points
-   * (near_singular_point), where q_E = min(p, @p singular_rate). With one
+   * on): r_E >= min_ratio where q_E = p and r_E >= min_ratio^{3/2} at
+   * singular points, where the error falls more slowly with h. q_E = p
+   * (the degree) except in cells near a singular point
+   * (near_singular_point), where q_E = min(p, singular_rate). With one
    * q for all cells this is the closed form of theory.md section 4; with
    * several, the Lagrange condition r_E^{2 q_E + d} = d / (2 Lambda q_E
    * epsilon_E^2) holds in every cell and the multiplier Lambda is found by
    * bisection (the predicted error is monotone in it).
    *
-   * If that mesh would have more than @p max_n_cells cells (0: no limit),
+   * If that mesh would have more than max_n_cells cells (0: no limit),
    * Lambda is lowered until it has at most that many: the same Lagrange
    * condition, so the mesh of the least predicted error for that cell
    * count. Without the limit, a small epsilon_0 asks for a mesh that
    * min_ratio lets grow up to 1/min_ratio^2 = 100-fold in one cycle.
+   *
+   * The cells' epsilon_E^2 and q_E are gathered once, at construction:
+   * the adaptation plans a second time with a relaxed lower bound when
+   * the first plan falls short of its aim, and finding the cells near
+   * the singular points was most of a plan's time (benchmarks/
+   * adaptive_run).
    */
-  OptimalSizeRatios
-  optimal_size_ratios(const std::array<const ElasticBody *, 2> &bodies,
-                      const ErrorEstimate                      &estimate,
-                      const std::vector<Point<2>>              &singular_points,
-                      const double                              target_error,
-                      const unsigned int                        degree,
-                      const double                              singular_rate,
-                      const double                              min_ratio,
-                      const double                              max_ratio,
-                      const double max_n_cells = 0);
+  class OptimalSizePlanner
+  {
+  public:
+    OptimalSizePlanner(const std::array<const ElasticBody *, 2> &bodies,
+                       const ErrorEstimate                      &estimate,
+                       const std::vector<Point<2>> &singular_points,
+                       const unsigned int           degree,
+                       const double                 singular_rate);
+
+    OptimalSizeRatios
+    plan(const double target_error,
+         const double min_ratio,
+         const double max_ratio,
+         const double max_n_cells = 0) const;
+
+    /** Per owned cell of both bodies: epsilon_E^2 / D^2 and q_E. */
+    struct Cell
+    {
+      unsigned int body, index;
+      double       epsilon_squared, rate;
+    };
+
+  private:
+    MPI_Comm                      comm;
+    unsigned int                  degree;
+    std::vector<Cell>             cells;
+    std::array<Vector<double>, 2> rate;
+    std::array<unsigned int, 2>   n_active_cells;
+    unsigned int                  n_singular_cells;
+  };
 } // namespace coulomb_adapt
 
 #endif
