@@ -4,6 +4,7 @@
 #include <coulomb_adapt/adaptation/optimal_size.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -156,7 +157,11 @@ namespace coulomb_adapt
         , log_max_ratio(std::log(max_ratio))
       {
         // The bisections evaluate the model some 50 times per plan: per
-        // cell one exp() per evaluation, from these logarithms.
+        // cell one exp() per evaluation, from these logarithms. The lower
+        // bound takes one of two values (regular, singular cell).
+        const std::array<double, 2> log_lowest_ratio = {
+          {std::log(lowest_size_ratio(min_ratio, false)),
+           std::log(lowest_size_ratio(min_ratio, true))}};
         terms.reserve(cells.size());
         for (const auto &c : cells)
           terms.push_back(
@@ -166,7 +171,7 @@ namespace coulomb_adapt
              1 / (2 * c.rate + dimension),
              2 * c.rate,
              c.epsilon_squared > 0 ? std::log(c.epsilon_squared) : 0.,
-             std::log(lowest_size_ratio(min_ratio, c.rate < degree)),
+             log_lowest_ratio[c.rate < degree],
              c.epsilon_squared > 0});
       }
 

@@ -5,7 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <tuple>
+#include <vector>
 
 namespace coulomb_adapt
 {
@@ -64,22 +65,45 @@ namespace coulomb_adapt
 
 
 
-    // The size at each vertex: the geometric mean of h*_E over the cells
-    // around it, since sizes vary over orders of magnitude.
-    std::map<VertexKey, double>
-    vertex_sizes(const std::vector<PackedCell> &cells)
+    // The size at each corner of each cell (index 3 c + v): the geometric
+    // mean of h*_E over the cells around its vertex, since sizes vary over
+    // orders of magnitude. The corners are sorted by vertex, and by index
+    // within a vertex, so that each vertex's logarithms are summed in the
+    // cells' order; a sorted vector instead of a map (ordered by vertex),
+    // which took about half of the size field's time on large meshes.
+    std::vector<double>
+    corner_sizes(const std::vector<PackedCell> &cells)
     {
-      std::map<VertexKey, std::pair<double, unsigned int>> log_sum;
-      for (const auto &cell : cells)
+      struct Corner
+      {
+        VertexKey   vertex;
+        std::size_t index;
+      };
+      std::vector<Corner> corners;
+      corners.reserve(3 * cells.size());
+      for (std::size_t c = 0; c < cells.size(); ++c)
         for (unsigned int v = 0; v < 3; ++v)
-          {
-            auto &entry = log_sum[{cell[2 * v], cell[2 * v + 1]}];
-            entry.first += std::log(cell[6]);
-            ++entry.second;
-          }
-      std::map<VertexKey, double> sizes;
-      for (const auto &[vertex, entry] : log_sum)
-        sizes.emplace(vertex, std::exp(entry.first / entry.second));
+          corners.push_back(
+            {{cells[c][2 * v], cells[c][2 * v + 1]}, 3 * c + v});
+      std::sort(corners.begin(),
+                corners.end(),
+                [](const Corner &x, const Corner &y) {
+                  return std::tie(x.vertex, x.index) <
+                         std::tie(y.vertex, y.index);
+                });
+      std::vector<double> sizes(corners.size());
+      for (std::size_t first = 0; first < corners.size();)
+        {
+          std::size_t end     = first;
+          double      log_sum = 0;
+          for (; end < corners.size() &&
+                 corners[end].vertex == corners[first].vertex;
+               ++end)
+            log_sum += std::log(cells[corners[end].index / 3][6]);
+          const double size = std::exp(log_sum / (end - first));
+          for (; first < end; ++first)
+            sizes[corners[first].index] = size;
+        }
       return sizes;
     }
 
@@ -122,14 +146,13 @@ namespace coulomb_adapt
                    const unsigned int    root)
   {
     const auto                     cells = gathered_cells(body, ratio, root);
-    const auto                     sizes = vertex_sizes(cells);
+    const std::vector<double>      sizes = corner_sizes(cells);
     std::vector<SizeFieldTriangle> field(cells.size());
     for (std::size_t c = 0; c < cells.size(); ++c)
       for (unsigned int v = 0; v < 3; ++v)
         {
-          const VertexKey vertex = {cells[c][2 * v], cells[c][2 * v + 1]};
-          field[c].vertices[v]   = Point<2>(vertex.first, vertex.second);
-          field[c].size[v]       = sizes.at(vertex);
+          field[c].vertices[v] = Point<2>(cells[c][2 * v], cells[c][2 * v + 1]);
+          field[c].size[v]     = sizes[3 * c + v];
         }
     scale_to_cell_count(cells, field);
     return field;

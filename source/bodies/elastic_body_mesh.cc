@@ -32,6 +32,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace coulomb_adapt
 {
@@ -336,12 +337,12 @@ namespace coulomb_adapt
 
 
   void
-  ElasticBody::replace_mesh(const CoarseMeshData &mesh)
+  ElasticBody::replace_mesh(CoarseMeshData mesh)
   {
     AssertThrow(simplex,
                 ExcMessage("remeshing produces triangles; this body has "
                            "quadrilaterals"));
-    remeshed             = mesh;
+    remeshed             = std::move(mesh);
     n_global_refinements = 0;
     create_mesh(0);
   }

@@ -95,9 +95,11 @@ namespace coulomb_adapt
 
     /** Replace the mesh by @p mesh (from the remesher), with the scene's
      * manifolds; it becomes the coarse mesh of later uniform refinements.
-     * Triangle meshes only. */
+     * Triangle meshes only. Taken by value: the remesher's mesh is moved
+     * in, not copied (a large body's cells each hold their vertices in a
+     * vector of their own). */
     void
-    replace_mesh(const CoarseMeshData &mesh);
+    replace_mesh(CoarseMeshData mesh);
 
     /** The scene's coarse mesh of this body, serial, with its boundary ids
      * and manifolds: the geometry a remesher needs. */
