@@ -20,6 +20,7 @@
 #include "test_utilities.h"
 
 #include <cmath>
+#include <iomanip>
 #include <map>
 
 using namespace coulomb_adapt;
