@@ -8,6 +8,7 @@
 
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
+#include <Epetra_Vector.h>
 
 #include <algorithm>
 
@@ -107,14 +108,31 @@ namespace coulomb_adapt
 
 
 
+    // The diagonal of @p rows, by local row.
+    std::vector<double>
+    row_diagonal(const Epetra_CrsMatrix &rows)
+    {
+      Epetra_Vector diagonal(rows.RowMap());
+      AssertThrow(rows.ExtractDiagonalCopy(diagonal) == 0,
+                  ExcMessage("additive Schwarz: extracting the diagonal "
+                             "failed"));
+      return std::vector<double>(diagonal.Values(),
+                                 diagonal.Values() + diagonal.MyLength());
+    }
+
+
+
     // The places in @p patch of its unknowns: the indices with a nonzero
-    // diagonal (@p full: the patch's dense block).
+    // diagonal (@p diagonal: that of @p rows).
     std::vector<std::size_t>
-    kept_unknowns(const std::vector<double> &full, const std::size_t size)
+    kept_unknowns(const std::vector<types::global_dof_index> &patch,
+                  const Epetra_CrsMatrix                     &rows,
+                  const std::vector<double>                  &diagonal)
     {
       std::vector<std::size_t> kept_at;
-      for (std::size_t a = 0; a < size; ++a)
-        if (full[a * size + a] != 0)
+      for (std::size_t a = 0; a < patch.size(); ++a)
+        if (diagonal[rows.RowMap().LID(
+              static_cast<TrilinosWrappers::types::int_type>(patch[a]))] != 0)
           kept_at.push_back(a);
       return kept_at;
     }
@@ -178,24 +196,17 @@ namespace coulomb_adapt
 
     std::unique_ptr<Epetra_CrsMatrix> imported;
     const Epetra_CrsMatrix &rows = overlapping_rows(A, relevant, imported);
-    // The patches are inverted independently on the threads deal.II may
-    // use (each thread with its own column map), in two passes: the
-    // unknowns of each patch (dropping the indices with a zero diagonal),
-    // which give every patch its place in the arrays, then the inverses
-    // written there. The same preconditioner on any number of threads.
+    // Each patch's unknowns (the indices with a nonzero diagonal) give it
+    // its place in the arrays; then the patches are inverted independently
+    // on the threads deal.II may use (each thread with its own column
+    // map), into those places. The same preconditioner on any number of
+    // threads.
+    const std::vector<double>             diagonal = row_diagonal(rows);
+    std::vector<std::vector<std::size_t>> kept(patches.size());
+    for (std::size_t p = 0; p < patches.size(); ++p)
+      kept[p] = kept_unknowns(patches[p], rows, diagonal);
     Threads::ThreadLocalStorage<std::vector<int>> column_positions(
       std::vector<int>(rows.ColMap().NumMyElements(), -1));
-    std::vector<std::vector<std::size_t>> kept(patches.size());
-    parallel::apply_to_subranges(
-      std::size_t(0),
-      patches.size(),
-      [&](const std::size_t begin, const std::size_t end) {
-        for (std::size_t p = begin; p < end; ++p)
-          kept[p] =
-            kept_unknowns(dense_block(rows, patches[p], column_positions.get()),
-                          patches[p].size());
-      },
-      patches_per_task);
     std::vector<std::size_t> kept_patches;
     starts.push_back(0);
     inverse_starts.push_back(0);

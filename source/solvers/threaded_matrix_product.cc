@@ -49,7 +49,11 @@ namespace coulomb_adapt
         return;
       }
     const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
-    const double           *x      = src.trilinos_vector()[0];
+    Assert(src.trilinos_vector().Map().SameAs(matrix.DomainMap()),
+           ExcMessage("x is not on the matrix's domain"));
+    Assert(dst.trilinos_vector().Map().SameAs(matrix.RangeMap()),
+           ExcMessage("y is not on the matrix's range"));
+    const double *x = src.trilinos_vector()[0];
     if (x_columns)
       {
         AssertThrow(x_columns->Import(src.trilinos_vector(),
