@@ -83,6 +83,8 @@ namespace coulomb_adapt
     : Epetra_BasicRowMatrix(Epetra_MpiComm(communicator))
     , K1(K1.trilinos_matrix())
     , K2(K2.trilinos_matrix())
+    , K1_product(this->K1)
+    , K2_product(this->K2)
     , n_local_1(this->K1.RowMap().NumMyElements())
   {
     const Epetra_Map rows  = owned.make_trilinos_map(communicator, false);
@@ -243,10 +245,8 @@ namespace coulomb_adapt
         Epetra_Vector x2(View, K2.DomainMap(), x_k + n_local_1);
         Epetra_Vector y1(View, K1.RangeMap(), y_k);
         Epetra_Vector y2(View, K2.RangeMap(), y_k + n_local_1);
-        const int     error_1 = K1.Multiply(false, x1, y1);
-        const int     error_2 = K2.Multiply(false, x2, y2);
-        if (error_1 != 0 || error_2 != 0)
-          return -2;
+        K1_product.vmult(y1, x1);
+        K2_product.vmult(y2, x2);
 
         const double *x_columns = X_columns ? (*X_columns)[k] : x_k;
         for (std::size_t e = 0; e < explicit_local_rows.size(); ++e)

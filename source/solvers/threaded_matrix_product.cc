@@ -18,12 +18,17 @@ namespace coulomb_adapt
 
   ThreadedMatrixProduct::ThreadedMatrixProduct(
     const TrilinosWrappers::SparseMatrix &A)
+    : ThreadedMatrixProduct(A.trilinos_matrix())
+  {}
+
+
+
+  ThreadedMatrixProduct::ThreadedMatrixProduct(const Epetra_CrsMatrix &A)
     : A(A)
   {
     // Epetra hands out the pointers to its compressed rows only through a
     // non-const member; nothing is written through them.
-    Epetra_CrsMatrix &matrix =
-      const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
+    Epetra_CrsMatrix &matrix = const_cast<Epetra_CrsMatrix &>(A);
     // The kernel writes y on the row map and reads x on the column map:
     // without an exporter the range is the row map.
     if (!matrix.StorageOptimized() || matrix.Exporter() != nullptr ||
@@ -43,26 +48,35 @@ namespace coulomb_adapt
   ThreadedMatrixProduct::vmult(TrilinosWrappers::MPI::Vector       &dst,
                                const TrilinosWrappers::MPI::Vector &src) const
   {
+    vmult(dst.trilinos_vector(), src.trilinos_vector());
+  }
+
+
+
+  void
+  ThreadedMatrixProduct::vmult(Epetra_MultiVector       &y_vector,
+                               const Epetra_MultiVector &x_vector) const
+  {
+    AssertThrow(x_vector.NumVectors() == 1 && y_vector.NumVectors() == 1,
+                ExcMessage("matrix product: one vector at a time"));
     if (row_starts == nullptr)
       {
-        A.vmult(dst, src);
+        const int error = A.Multiply(false, x_vector, y_vector);
+        AssertThrow(error == 0, ExcMessage("Epetra's matrix product failed"));
         return;
       }
-    const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
-    Assert(src.trilinos_vector().Map().SameAs(matrix.DomainMap()),
+    Assert(x_vector.Map().SameAs(A.DomainMap()),
            ExcMessage("x is not on the matrix's domain"));
-    Assert(dst.trilinos_vector().Map().SameAs(matrix.RangeMap()),
+    Assert(y_vector.Map().SameAs(A.RangeMap()),
            ExcMessage("y is not on the matrix's range"));
-    const double *x = src.trilinos_vector()[0];
+    const double *x = x_vector[0];
     if (x_columns)
       {
-        AssertThrow(x_columns->Import(src.trilinos_vector(),
-                                      *matrix.Importer(),
-                                      Insert) == 0,
+        AssertThrow(x_columns->Import(x_vector, *A.Importer(), Insert) == 0,
                     ExcMessage("matrix product: importing x failed"));
         x = x_columns->Values();
       }
-    double *const y = dst.trilinos_vector()[0];
+    double *const y = y_vector[0];
     parallel::apply_to_subranges(
       0,
       n_rows,

@@ -6,6 +6,8 @@
 
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
+#include <coulomb_adapt/solvers/threaded_matrix_product.h>
+
 #include <Epetra_BasicRowMatrix.h>
 
 #include <map>
@@ -90,6 +92,10 @@ namespace coulomb_adapt
 
     const Epetra_CrsMatrix &K1;
     const Epetra_CrsMatrix &K2;
+    /** Their products on deal.II's threads, bit for bit Epetra's: the
+     * fine level's products are most of an AMG-preconditioned step. */
+    ThreadedMatrixProduct K1_product;
+    ThreadedMatrixProduct K2_product;
     /** Rows of body 1 on this rank (its rows come first locally). */
     int n_local_1;
     /** Local column of K^1 (K^2) -> local column of A. */

@@ -4,6 +4,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <Epetra_CrsMatrix.h>
 #include <Epetra_Vector.h>
 
 #include <memory>
@@ -18,6 +19,10 @@ namespace coulomb_adapt
    * the estimator's truncated CG, whose matrix has ~30 entries per row, is
    * otherwise serial (benchmarks/effectivity).
    *
+   * The contact solve's Krylov + AMG iterations multiply by the bodies'
+   * stiffness matrices (ReducedMatrix) in GMRES and in the fine level's
+   * smoother, the estimator's truncated CG by its parameters' matrix.
+   *
    * Each row is summed entry by entry in the order Epetra stores it,
    * as Epetra's kernel (epetra_dcrsmv) does, so the product is bit for
    * bit Epetra's on any number of threads. A matrix whose storage is not
@@ -30,16 +35,24 @@ namespace coulomb_adapt
     /** @p A must outlive this object and keep its pattern. */
     explicit ThreadedMatrixProduct(const TrilinosWrappers::SparseMatrix &A);
 
+    /** The same for an Epetra matrix. */
+    explicit ThreadedMatrixProduct(const Epetra_CrsMatrix &A);
+
     void
     vmult(TrilinosWrappers::MPI::Vector       &dst,
           const TrilinosWrappers::MPI::Vector &src) const;
+
+    /** y = A x for one vector each, x on A's domain map, y on its range
+     * map (views welcome). */
+    void
+    vmult(Epetra_MultiVector &y, const Epetra_MultiVector &x) const;
 
     /** Whether vmult() runs on the threads (false: Epetra multiplies). */
     bool
     threaded() const;
 
   private:
-    const TrilinosWrappers::SparseMatrix &A;
+    const Epetra_CrsMatrix &A;
     // The rows in compressed form (null: Epetra multiplies).
     int    *row_starts = nullptr;
     int    *columns    = nullptr;
