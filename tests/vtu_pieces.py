@@ -11,7 +11,8 @@ ceil(cells / 50) of them and at most one more per further rank, and that
 the pieces' points with all their field values, decoded (zlib), are the
 same multiset as in the single-piece run, bit for bit. No temporary file
 may be left behind, and a later run into the same directory with one
-piece per rank removes the extra pieces. A piece that cannot be written
+piece per rank removes the extra pieces and writes the first run's .vtu
+files byte for byte (bodies and contact). A piece that cannot be written
 stops the run with a message naming it; the other pieces' temporary
 files are removed and the earlier cycle stays intact.
 
@@ -178,6 +179,24 @@ def main():
     else:
         print("rerun with one piece per rank: %d pieces, all listed" %
               len(written))
+
+    # That rerun has the first run's settings: every .vtu it wrote (the
+    # bodies' pieces and the contact polylines) must be the first run's,
+    # byte for byte (no date in the headers; the .pvtu and .pvd records
+    # carry deal.II's date).
+    vtu_files = sorted(name for name in os.listdir(whole)
+                       if name.endswith(".vtu"))
+    differing = [name for name in vtu_files
+                 if not os.path.exists(os.path.join(split, name)) or
+                 open(os.path.join(whole, name), "rb").read() !=
+                 open(os.path.join(split, name), "rb").read()]
+    if differing or not any(n.startswith("contact") for n in vtu_files):
+        failures.append("two runs with the same settings wrote different "
+                        ".vtu files: %s (of %s)" % (differing, vtu_files))
+    else:
+        print("rerun with the first run's settings: its %d .vtu files "
+              "(bodies and contact) are the first run's, byte for byte" %
+              len(vtu_files))
 
     # One piece that cannot be written (a directory where its temporary
     # file goes) among the concurrent ones: the run stops with a message

@@ -92,6 +92,7 @@ namespace coulomb_adapt
   {
     dofs.distribute_dofs(*fe);
     locally_owned_dofs = dofs.locally_owned_dofs();
+    rigid_modes.clear();
     DoFTools::extract_locally_relevant_dofs(dofs, locally_relevant_dofs);
 
     make_constraints();
@@ -396,9 +397,11 @@ namespace coulomb_adapt
 
 
 
-  std::vector<std::vector<double>>
+  const std::vector<std::vector<double>> &
   ElasticBody::rigid_body_modes() const
   {
+    if (!rigid_modes.empty())
+      return rigid_modes;
     const unsigned int               n_local = locally_owned_dofs.n_elements();
     std::vector<std::vector<double>> modes(3, std::vector<double>(n_local));
 
@@ -426,7 +429,8 @@ namespace coulomb_adapt
                 modes[2][k]          = (c == 0) ? -x[1] : x[0];
               }
         }
-    return modes;
+    rigid_modes = std::move(modes);
+    return rigid_modes;
   }
 
 

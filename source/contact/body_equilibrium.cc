@@ -147,7 +147,7 @@ namespace coulomb_adapt
       const auto &f     = body.system_rhs();
       const auto &u     = body.solution();
       const auto &owned = body.locally_owned_dof_set();
-      const auto  modes = body.rigid_body_modes();
+      const auto &modes = body.rigid_body_modes();
       // [load_m (3), magnitude_m (3), max |z_m| (3), |f|_1, rows]
       std::vector<double> sums(11, 0.);
       unsigned int        max_row_length = 0;

@@ -557,8 +557,8 @@ namespace coulomb_adapt
   std::vector<std::vector<double>>
   ContactSolver::rigid_body_modes() const
   {
-    const auto                       modes_1 = slave.rigid_body_modes();
-    const auto                       modes_2 = master.rigid_body_modes();
+    const auto                      &modes_1 = slave.rigid_body_modes();
+    const auto                      &modes_2 = master.rigid_body_modes();
     std::vector<std::vector<double>> modes;
     for (unsigned int m = 0; m < 3; ++m)
       {

@@ -201,6 +201,8 @@ namespace coulomb_adapt
 
 
   // The polyline's VTU file (rank 0), then the .pvd index of all cycles.
+  // No date in the header, as for the bodies' pieces: two identical runs
+  // write identical files.
   void
   ContactOutput::write_vtu_polyline(
     const std::vector<DataOutBase::Patch<1, 2>> &patches,
@@ -214,6 +216,7 @@ namespace coulomb_adapt
                  DataOutBase::VtkFlags vtk_flags;
                  vtk_flags.compression_level =
                    DataOutBase::VtkFlags::best_speed;
+                 vtk_flags.print_date_and_time = false;
                  DataOutBase::write_vtu(
                    patches, names, NoVectorFields(), vtk_flags, vtu);
                });
