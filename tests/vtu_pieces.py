@@ -166,7 +166,7 @@ def main():
 
     # A run with one piece per rank into the directory of the split run
     # removes the split run's pieces: only the listed ones remain.
-    run(args, split, 0)
+    run(args, split, 0, clean=False)
     listed = set()
     for record in os.listdir(split):
         if record.endswith(".pvtu"):

@@ -450,7 +450,7 @@ namespace coulomb_adapt
   {
     // The rows are the rigid modes (rotation about the origin) at the
     // supported DoFs.
-    const auto         modes = rigid_body_modes();
+    const auto        &modes = rigid_body_modes();
     FullMatrix<double> gram(3, 3);
     for (const auto dof : supported_dofs)
       if (locally_owned_dofs.is_element(dof))

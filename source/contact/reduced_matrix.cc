@@ -245,8 +245,17 @@ namespace coulomb_adapt
         Epetra_Vector x2(View, K2.DomainMap(), x_k + n_local_1);
         Epetra_Vector y1(View, K1.RangeMap(), y_k);
         Epetra_Vector y2(View, K2.RangeMap(), y_k + n_local_1);
-        K1_product.vmult(y1, x1);
-        K2_product.vmult(y2, x2);
+        // ML calls this from its C code: errors as a return code, not as
+        // an exception through its frames.
+        try
+          {
+            K1_product.vmult(y1, x1);
+            K2_product.vmult(y2, x2);
+          }
+        catch (...)
+          {
+            return -2;
+          }
 
         const double *x_columns = X_columns ? (*X_columns)[k] : x_k;
         for (std::size_t e = 0; e < explicit_local_rows.size(); ++e)

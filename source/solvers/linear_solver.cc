@@ -1,3 +1,5 @@
+#include <deal.II/base/partitioner.h>
+
 #include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
@@ -15,6 +17,7 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
+#include <memory>
 #include <string>
 
 #ifdef __GLIBC__
@@ -204,7 +207,8 @@ namespace coulomb_adapt
     // over the vectors instead of Epetra's Update and Dot). Their owned
     // entries are stored in the order of the Epetra maps' local indices
     // (both ascending in the global index), so the matrix and the
-    // preconditioner act on them through Epetra views, without copies.
+    // preconditioner act on them through Epetra views, without copies;
+    // their own global numbering is a contiguous stand-in (krylov()).
     // Measured (benchmarks/adaptive_run, 29th session): the
     // orthogonalisation of a 50-step GMRES solve at 1.7e5 DoFs takes
     // 0.26 s with Epetra's vectors and 0.11 s with these on two threads.
@@ -253,10 +257,12 @@ namespace coulomb_adapt
 
 
 
+    // The owned entries of @p v in a GMRES vector on @p layout.
     GMRESVector
-    gmres_copy(const TrilinosWrappers::MPI::Vector &v)
+    gmres_copy(const TrilinosWrappers::MPI::Vector                      &v,
+               const std::shared_ptr<const Utilities::MPI::Partitioner> &layout)
     {
-      GMRESVector copy(v.locally_owned_elements(), v.get_mpi_communicator());
+      GMRESVector copy(layout);
       std::copy(v.begin(), v.end(), copy.begin());
       return copy;
     }
@@ -302,8 +308,15 @@ namespace coulomb_adapt
       // left preconditioning it stopped on the preconditioned one, and on
       // the contact system the true residual stayed large enough to leave
       // the complementarity residual at 3e-4 (hertz, 3.6e4 DoFs).
-      GMRESVector       gmres_x = gmres_copy(x);
-      const GMRESVector gmres_b = gmres_copy(b);
+      // A contiguous stand-in numbering of the owned entries, in their
+      // order: the contact system's owned set is not contiguous (each rank
+      // owns a range of each body's DoFs), which deal.II's partitioner
+      // does not take, and GMRES needs only the local entries and global
+      // sums.
+      const auto layout = std::make_shared<const Utilities::MPI::Partitioner>(
+        x.locally_owned_size(), 0, x.get_mpi_communicator());
+      GMRESVector       gmres_x = gmres_copy(x, layout);
+      const GMRESVector gmres_b = gmres_copy(b, layout);
       const auto        finish  = [&] {
         // The last iterate, also when the solve failed (as deal.II's
         // solvers leave it in x).

@@ -182,7 +182,9 @@ namespace coulomb_adapt
      * Computed at the first call after setup_system() and kept: an
      * adaptive run asks for them at every load step, equilibrium check
      * and nested level (43 times in the example at 0.25 %), and each
-     * computation maps every cell's support points. */
+     * computation maps every cell's support points. Not for concurrent
+     * calls (the first one fills the cache): the callers are the
+     * solvers, on the thread that makes the MPI calls. */
     const std::vector<std::vector<double>> &
     rigid_body_modes() const;
 
