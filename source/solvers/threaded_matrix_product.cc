@@ -65,6 +65,9 @@ namespace coulomb_adapt
         AssertThrow(error == 0, ExcMessage("Epetra's matrix product failed"));
         return;
       }
+    // Rows are written while other rows still read x: y must not be x.
+    AssertThrow(x_vector[0] != y_vector[0],
+                ExcMessage("matrix product: y must not be x"));
     Assert(x_vector.Map().SameAs(A.DomainMap()),
            ExcMessage("x is not on the matrix's domain"));
     Assert(y_vector.Map().SameAs(A.RangeMap()),

@@ -93,7 +93,8 @@ namespace coulomb_adapt
     const Epetra_CrsMatrix &K1;
     const Epetra_CrsMatrix &K2;
     /** Their products on deal.II's threads, bit for bit Epetra's: the
-     * fine level's products are most of an AMG-preconditioned step. */
+     * largest single part of an AMG-preconditioned step (15.7 % of the
+     * CPU time of the example at 0.25 %, benchmarks/adaptive_run). */
     ThreadedMatrixProduct K1_product;
     ThreadedMatrixProduct K2_product;
     /** Rows of body 1 on this rank (its rows come first locally). */

@@ -43,7 +43,7 @@ namespace coulomb_adapt
           const TrilinosWrappers::MPI::Vector &src) const;
 
     /** y = A x for one vector each, x on A's domain map, y on its range
-     * map (views welcome). */
+     * map (views welcome; y must not be x, unlike for Epetra). */
     void
     vmult(Epetra_MultiVector &y, const Epetra_MultiVector &x) const;
 
