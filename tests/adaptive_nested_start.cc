@@ -32,7 +32,7 @@
 //    been checked (0.1 -> 0.1^{3/2});
 //  - blocks on the seed's mesh, remesh (P1), epsilon_0 = 0.5 %: 488 ->
 //    ~48,000 DoFs, at most 4 Newton steps per solve (the warm start took
-//    5);
+//    5 on gmsh's unsplit mesh, which this case keeps);
 //  - a cycle with a smaller jump keeps the warm start (the log and
 //    summary.json say which start each cycle took);
 //  - the 2-rank run prints what the 1-rank run prints.
@@ -305,6 +305,11 @@ main(int argc, char **argv)
     Settings settings = blocks("triangle", "remesh", "output-remesh");
     settings.push_back({"Scene/Blocks/Upper body subdivisions", "3, 3"});
     settings.push_back({"Scene/Blocks/Lower body subdivisions", "6, 7"});
+    // gmsh's own mesh of the first step, not split: this is the mesh on
+    // which the warm start takes 5 Newton steps. The default (split above
+    // 5,000 cells) meshes that step coarser and splits it, and there the
+    // warm start happens to take 4; the nested start is checked either way.
+    settings.push_back({"Adaptation/Remeshing split above cells", "20000"});
     compare("blocks (the seed's mesh), remesh (P1), epsilon_0 = 0.5 %",
             settings,
             true,

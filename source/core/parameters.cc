@@ -484,7 +484,7 @@ namespace coulomb_adapt
                           "time, slightly more cells for the same size "
                           "field).");
         prm.declare_entry("Remeshing split above cells",
-                          "20000",
+                          "5000",
                           Patterns::Integer(0),
                           "For 'Strategy = remesh': a body whose size field "
                           "asks for more cells than this is meshed by gmsh "
