@@ -14,12 +14,13 @@
 //    cycle, the file's mesh as it is (not adapted; the two sides' vertices
 //    at the same angles, so the gap was right before: P1's discretisation
 //    error at element size 0.5 mm, 1.03 %, 1.00 % with the chords' gap),
-//    and within the 1 % on the remeshed one (measured 0.36 %).
-//    Before the remesher capped a curved master surface's size at the
-//    slave's facing it (contact_size_cap.h), the estimator coarsened the
-//    shaft (uniformly stressed, no error) to chords of 0.45-0.92 mm
-//    against the bore's 0.11 mm, and the fine slave nodes saw the coarse
-//    master polygon's kinks: 1.85 % (doc/adaptation.md section 3).
+//    and within the 1 % on the remeshed one (measured 0.27 %; 0.36 %
+//    before the 30th session split gmsh's mesh). Before the remesher capped a
+//    curved master surface's size at the slave's facing it
+//    (contact_size_cap.h), the estimator coarsened the shaft (uniformly
+//    stressed, no error) to chords of 0.45-0.92 mm against the bore's 0.11 mm,
+//    and the fine slave nodes saw the coarse master polygon's kinks: 1.85 %
+//    (doc/adaptation.md section 3).
 
 #include "lame_press_fit.h"
 #include "program_run.h"
