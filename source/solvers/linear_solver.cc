@@ -295,12 +295,21 @@ namespace coulomb_adapt
       SolverControl       control(settings.max_iterations,
                             settings.relative_tolerance * b.l2_norm());
       const EpetraProduct product{A};
+      // The pool is emptied however the solve ends: a caller that catches
+      // the non-convergence (a tighter repeat, a fresh AMG hierarchy)
+      // solves again right away.
       if (symmetric)
         {
-          {
-            SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-            cg.solve(product, x, b, preconditioner);
-          }
+          try
+            {
+              SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+              cg.solve(product, x, b, preconditioner);
+            }
+          catch (...)
+            {
+              release_solver_vectors<TrilinosWrappers::MPI::Vector>();
+              throw;
+            }
           release_solver_vectors<TrilinosWrappers::MPI::Vector>();
           return {"cg+amg", control.last_step()};
         }
@@ -331,7 +340,7 @@ namespace coulomb_adapt
               100, /*right_preconditioning=*/true));
           gmres.solve(product, gmres_x, gmres_b, preconditioner);
         }
-      catch (const SolverControl::NoConvergence &)
+      catch (...)
         {
           finish();
           throw;
