@@ -104,8 +104,11 @@ namespace coulomb_adapt
     solve_separately();
     void
     estimate_error();
+    /** Each body's strain energy (summary.json), once per cycle. */
+    std::array<double, 2>
+    record_strain_energies();
     void
-    compare_with_exact_error();
+    compare_with_exact_error(const std::array<double, 2> &strain_energies);
     void
     compare_with_exact_displacements();
     void
