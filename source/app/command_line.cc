@@ -1,4 +1,5 @@
 #include <coulomb_adapt/app/command_line.h>
+#include <coulomb_adapt/app/input_file_paths.h>
 #include <coulomb_adapt/core/parameter_error.h>
 
 #include <cerrno>
@@ -255,7 +256,10 @@ namespace coulomb_adapt
   read_parameters(const CommandLine &command_line, ParameterHandler &prm)
   {
     if (!command_line.parameter_file.empty())
-      read_parameter_file(command_line.parameter_file, prm);
+      {
+        read_parameter_file(command_line.parameter_file, prm);
+        resolve_input_files_beside(command_line.parameter_file, prm);
+      }
     for (const auto &[path, value] : command_line.overrides)
       apply_override(path, value, prm);
   }

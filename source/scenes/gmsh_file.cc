@@ -252,7 +252,10 @@ namespace coulomb_adapt
                           "A .geo or .msh file with the physical groups "
                           "named below (by default surfaces 'body 1' "
                           "(upper, slave), 'body 2' and curves 'dirichlet', "
-                          "'traction', 'contact').");
+                          "'traction', 'contact'). A relative path in a "
+                          "parameter file is looked for beside that file, "
+                          "then in the directory the program runs in; with "
+                          "-s, in the directory the program runs in.");
         prm.declare_entry("Mesh size factor",
                           "1",
                           Patterns::Double(0),

@@ -44,9 +44,11 @@ namespace coulomb_adapt
     if (!std::filesystem::is_regular_file(file_name))
       throw ParameterError("Scene/Gmsh/Mesh file",
                            file_name,
-                           "no such file (give a .geo or .msh file; "
-                           "relative paths are taken from the directory "
-                           "the program runs in)");
+                           "no such file (give a .geo or .msh file; a "
+                           "relative path in a parameter file is looked for "
+                           "beside that file, then in the directory the "
+                           "program runs in; one given with -s in the "
+                           "directory the program runs in)");
 
     // One rank reads (gmsh is serial, and meshing a .geo on every rank
     // would only repeat the work); every rank then either gets the meshes

@@ -37,8 +37,9 @@ namespace coulomb_adapt
   usage();
 
   /**
-   * Read the parameter file (if any) into @p prm, then apply the `-s`
-   * overrides. Errors name the file or the override, the entry and what is
+   * Read the parameter file (if any) into @p prm, look for the input
+   * files it names beside it (resolve_input_files_beside()), then apply
+   * the `-s` overrides. Errors name the file or the override, the entry and what is
    * allowed.
    */
   void
