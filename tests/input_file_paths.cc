@@ -13,6 +13,9 @@
 //     runs in (typed in the shell);
 //  5. an absolute path and a path to no file: unchanged (the scene then
 //     reports the missing file).
+// Every file found is named by its absolute path afterwards, so that the
+// run's parameters.prm runs again from any directory (before, a -s path
+// stayed relative to the directory of the first run).
 // Only paths relative to the repository or to the test's own directories
 // are printed, so the output is the same in every clone.
 
@@ -112,10 +115,10 @@ main(int argc, char *argv[])
       fs::relative(root / "prm/blocks_gmsh.prm", runs_in).string();
     const std::string relative = mesh_file(relative_prm, {});
     out << "   relative prm/blocks_gmsh.prm: "
-        << fs::relative(relative, fs::relative(root, runs_in)).string()
-        << " from the repository, a relative path: "
-        << (fs::path(relative).is_relative() ? "yes" : "no") << std::endl;
-    check(fs::path(relative).is_relative() &&
+        << fs::relative(relative, root).string()
+        << " in the repository, an absolute path: "
+        << (fs::path(relative).is_absolute() ? "yes" : "no") << std::endl;
+    check(fs::path(relative).is_absolute() &&
             fs::equivalent(relative, root / "prm/meshes/blocks_structured.geo"),
           "relative parameter file");
   }
@@ -126,9 +129,12 @@ main(int argc, char *argv[])
     write_text(beside / "root_relative.prm",
                gmsh_scene_with_mesh("prm/meshes/blocks.geo"));
     const std::string file = mesh_file(beside / "root_relative.prm", {});
-    out << "2. 'prm/meshes/blocks.geo', run in the repository's root: " << file
+    out << "2. 'prm/meshes/blocks.geo', run in the repository's root: "
+        << fs::relative(file, root).string()
+        << ", absolute: " << (fs::path(file).is_absolute() ? "yes" : "no")
         << std::endl;
-    check(file == "prm/meshes/blocks.geo" && fs::is_regular_file(file),
+    check(fs::path(file).is_absolute() &&
+            fs::equivalent(file, root / "prm/meshes/blocks.geo"),
           "a path from the directory the program runs in");
   }
 
@@ -147,12 +153,14 @@ main(int argc, char *argv[])
     const std::string from_option =
       mesh_file(beside / "same_name.prm",
                 {{"Scene/Gmsh/Mesh file", "same_name.geo"}});
-    out << "4. the same name with -s: " << from_option
-        << ", the one where the program runs: "
+    out << "4. the same name with -s: the one where the program runs: "
         << (fs::equivalent(from_option, runs_in / "same_name.geo") ? "yes" :
                                                                      "no")
-        << std::endl;
-    check(from_option == "same_name.geo", "-s stays as typed");
+        << ", absolute: "
+        << (fs::path(from_option).is_absolute() ? "yes" : "no") << std::endl;
+    check(fs::path(from_option).is_absolute() &&
+            fs::equivalent(from_option, runs_in / "same_name.geo"),
+          "-s from where the program runs");
   }
 
   // 5. Absolute paths and missing files stay as written.

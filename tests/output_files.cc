@@ -11,7 +11,14 @@
 //  - Write cycles = last: the fields of the last cycle only (one record in
 //    each .pvd), the contact CSV and summary.json of every cycle;
 //  - Write cycles = none: no field file at all, CSV and summary.json still;
-//  - no temporary file (NAME.tmp) is left behind.
+//  - no temporary file (NAME.tmp) is left behind;
+//  - hdf5 with P2 triangles (before: SIGSEGV in deal.II's HDF5 writer, no
+//    message): the triangles at their vertices, three nodes each, and the
+//    largest displacement written is within that of the solution's nodes;
+//  - hdf5 of a scaled problem (pressure 1e300, load scale 2^997): the
+//    fields of the scaled problem, as in VTU (before: the physical values,
+//    which 32-bit floats turned into inf), summary.json listing
+//    'HDF5 fields' in reported_scaled.
 // MPI-IO is chosen as main() chooses it (app/parallel_file_io.h): with
 // OMPIO, a locked semaphore of another run's body-1_000.h5.tmp
 // (bad_input.stale_io_semaphore plants one) would stop this test.
@@ -27,6 +34,7 @@
 #include <hdf5.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -229,6 +237,103 @@ namespace
     check_no_temporary_files(directory, out);
   }
 
+  // The largest |displacement| of body @p b's last .h5 (rank 0; 0
+  // elsewhere).
+  double
+  written_displacement(const std::string &directory,
+                       const unsigned int b,
+                       const unsigned int cycle)
+  {
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+      return 0;
+    const std::string h5 = directory + "/body-" + std::to_string(b + 1) + "_" +
+                           Utilities::int_to_string(cycle, 3) + ".h5";
+    const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    AssertThrow(file >= 0, ExcMessage("cannot open " + h5));
+    const double written = max_abs(file, "/displacement");
+    H5Fclose(file);
+    return written;
+  }
+
+  // One cycle of blocks in HDF5 into @p directory, with @p setting.
+  Settings
+  one_hdf5_cycle(const std::string                         &directory,
+                 const std::pair<std::string, std::string> &setting)
+  {
+    Settings settings = blocks("hdf5", "all", directory);
+    settings.push_back(setting);
+    settings.push_back({"Adaptation/Number of cycles", "1"});
+    return settings;
+  }
+
+  void
+  check_hdf5_quadratic_triangles(ConditionalOStream &out)
+  {
+    out << "Format = hdf5, P2 triangles" << std::endl;
+    const ProgramRun run(
+      one_hdf5_cycle("output-hdf5-p2",
+                     {"Finite elements/Polynomial degree", "2"}));
+    const std::string directory = run.parameters.output.directory;
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const double nodes_max = run.problem->body(b).solution().linfty_norm();
+        const double written   = written_displacement(directory, b, 0);
+        if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+          continue;
+        const std::string h5 =
+          directory + "/body-" + std::to_string(b + 1) + "_000.h5";
+        const hid_t file  = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+        const auto  cells = dimensions(file, "/cells");
+        const auto  nodes = dimensions(file, "/nodes");
+        H5Fclose(file);
+        const std::size_t n_cells =
+          run.summary["cycles"][0]["bodies"][b]["n_cells"].get<std::size_t>();
+        out << "  body " << b + 1 << ": cells " << cells[0] << " x " << cells[1]
+            << ", nodes " << nodes[0] << " (" << n_cells
+            << " triangles); max |u| written " << written
+            << " mm, of the solution's nodes " << nodes_max << " mm"
+            << std::endl;
+        AssertThrow(cells[0] == n_cells && cells[1] == 3 &&
+                      nodes[0] == 3 * n_cells,
+                    ExcMessage("not the triangles at their vertices"));
+        AssertThrow(written > 0 && written <= nodes_max * (1 + 1.2e-7),
+                    ExcMessage("displacement not that of the solution"));
+      }
+    check_no_temporary_files(directory, out);
+  }
+
+  void
+  check_hdf5_scaled_problem(ConditionalOStream &out)
+  {
+    out << "Format = hdf5, pressure 1e300" << std::endl;
+    const ProgramRun run(
+      one_hdf5_cycle("output-hdf5-scaled", {"Scene/Blocks/Pressure", "1e300"}));
+    const double load_scale = run.summary.value("load_scale", 0.);
+    bool         listed     = false;
+    for (const auto &entry :
+         run.summary.value("reported_scaled", nlohmann::json::array()))
+      listed = listed || entry.dump().find("HDF5 fields") != std::string::npos;
+    out << "  load scale 2^" << std::log2(load_scale)
+        << ", reported_scaled lists 'HDF5 fields': " << (listed ? "yes" : "no")
+        << std::endl;
+    AssertThrow(load_scale > 1e299 && listed,
+                ExcMessage("not scaled, or the HDF5 fields not listed"));
+    for (unsigned int b = 0; b < 2; ++b)
+      {
+        const double scaled = run.problem->body(b).solution().linfty_norm();
+        const double written =
+          written_displacement(run.parameters.output.directory, b, 0);
+        if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+          continue;
+        out << "  body " << b + 1 << ": max |u| written " << written
+            << " mm, of the scaled problem's solution " << scaled << " mm"
+            << std::endl;
+        AssertThrow(std::isfinite(written) &&
+                      std::abs(written - scaled) <= 1.2e-7 * scaled,
+                    ExcMessage("not the scaled problem's displacement"));
+      }
+  }
+
   void
   check_write_cycles(const std::string  &format,
                      const std::string  &write_cycles,
@@ -304,4 +409,6 @@ main(int argc, char **argv)
   check_write_cycles("vtu", "last", out);
   check_write_cycles("hdf5", "last", out);
   check_write_cycles("vtu", "none", out);
+  check_hdf5_quadratic_triangles(out);
+  check_hdf5_scaled_problem(out);
 }

@@ -262,6 +262,7 @@ namespace coulomb_adapt
       }
     for (const auto &[path, value] : command_line.overrides)
       apply_override(path, value, prm);
+    make_input_files_absolute(prm);
   }
 
 

@@ -16,6 +16,42 @@ namespace coulomb_adapt
 
     const std::vector<InputFileEntry> input_file_entries = {
       {{"Scene", "Gmsh"}, "Mesh file"}};
+
+
+
+    /** Set each input file entry of @p prm to @p resolve(its value) where
+     * that gives a path. */
+    template <typename Resolve>
+    void
+    for_each_input_file(ParameterHandler &prm, const Resolve &resolve)
+    {
+      for (const InputFileEntry &entry : input_file_entries)
+        {
+          for (const std::string &section : entry.sections)
+            prm.enter_subsection(section);
+          const std::filesystem::path value = prm.get(entry.name);
+          if (!value.empty() && value.is_relative())
+            {
+              const std::filesystem::path resolved = resolve(value);
+              if (!resolved.empty())
+                prm.set(entry.name, resolved.string());
+            }
+          for (unsigned int s = 0; s < entry.sections.size(); ++s)
+            prm.leave_subsection();
+        }
+    }
+
+
+
+    /** @p path if a regular file is there, else an empty path. */
+    std::filesystem::path
+    if_file(const std::filesystem::path &path)
+    {
+      std::error_code error;
+      return std::filesystem::is_regular_file(path, error) ?
+               path :
+               std::filesystem::path();
+    }
   } // namespace
 
 
@@ -28,21 +64,20 @@ namespace coulomb_adapt
       std::filesystem::path(parameter_file).parent_path();
     if (directory.empty())
       return; // beside the file is where the program runs
-    for (const InputFileEntry &entry : input_file_entries)
-      {
-        for (const std::string &section : entry.sections)
-          prm.enter_subsection(section);
-        const std::filesystem::path value = prm.get(entry.name);
-        if (!value.empty() && value.is_relative())
-          {
-            const std::filesystem::path beside =
-              (directory / value).lexically_normal();
-            std::error_code error;
-            if (std::filesystem::is_regular_file(beside, error))
-              prm.set(entry.name, beside.string());
-          }
-        for (unsigned int s = 0; s < entry.sections.size(); ++s)
-          prm.leave_subsection();
-      }
+    for_each_input_file(prm, [&](const std::filesystem::path &value) {
+      return if_file((directory / value).lexically_normal());
+    });
+  }
+
+
+
+  void
+  make_input_files_absolute(ParameterHandler &prm)
+  {
+    for_each_input_file(prm, [](const std::filesystem::path &value) {
+      return if_file(value).empty() ?
+               std::filesystem::path() :
+               std::filesystem::absolute(value).lexically_normal();
+    });
   }
 } // namespace coulomb_adapt

@@ -150,6 +150,22 @@ namespace coulomb_adapt
                  "(displacements too small, stresses oscillating); use "
                  "'Finite elements/Polynomial degree' = 2"
               << std::endl;
+    if (estimate > parameters.adaptation.max_dofs &&
+        parameters.mesh.global_refinements == 0)
+      {
+        // Nothing to lower: the scene's own meshes are above the limit.
+        std::ostringstream s;
+        s << "the scene's first meshes (no global refinement) would have "
+             "about "
+          << std::setprecision(3) << estimate
+          << " DoFs, above this limit: raise it if the machine has the "
+             "memory (about 1 kB per DoF), or give the scene coarser meshes";
+        std::ostringstream limit;
+        limit << parameters.adaptation.max_dofs;
+        throw ParameterError("Adaptation/Maximum number of DoFs",
+                             limit.str(),
+                             s.str());
+      }
     if (estimate > parameters.adaptation.max_dofs)
       {
         std::ostringstream s;

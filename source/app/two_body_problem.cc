@@ -41,7 +41,10 @@ namespace coulomb_adapt
   {
     scene =
       std::make_unique<ScaledScene>(scenes::create_scene(parameters, prm));
-    mesh_source  = scene->mesh_source();
+    mesh_source = scene->mesh_source();
+    // Before summary.json is begun: a run refused here, like any other
+    // error in the parameters, leaves no summary without a status.
+    check_before_meshing(*scene, parameters, mesh_source, pcout);
     cycle_report = std::make_unique<CycleReport>(mpi_communicator,
                                                  pcout,
                                                  computing_timer,
@@ -53,7 +56,6 @@ namespace coulomb_adapt
       cycle_report->set_run_entry("reference", scene->reference_values());
     cycle_report->set_run_entry("friction_coefficient",
                                 parameters.contact.friction_coefficient);
-    check_before_meshing(*scene, parameters, mesh_source, pcout);
   }
 
 
@@ -307,16 +309,17 @@ namespace coulomb_adapt
                               (write_cycles == WriteCycles::last && last_cycle);
     // The physical values of a scaled problem: stresses and lengths of the
     // deformation times P, the contact term's density (MPa mm) times P^2,
-    // where doubles hold them (CSV, HDF5). VTU's 32-bit floats (1e-38 ...
-    // 3e38) cannot hold stresses beyond 1e+-100 MPa: VTU files get the
-    // fields of the scaled problem.
+    // where doubles hold them (the CSV). The fields (VTU and HDF5) go
+    // through deal.II's patches, whose 32-bit floats (1e-38 ... 3e38)
+    // cannot hold stresses beyond 1e+-100 MPa: they get the fields of the
+    // scaled problem (HDF5 got the physical ones, which came out inf).
     const units::Scales scales = scene->scales();
     const bool          scaled = scales.stress != 1 || scales.displacement != 1;
-    const bool          scaled_fields =
-      scaled && write_fields && parameters.output.format != OutputFormat::hdf5;
+    const bool          scaled_fields = scaled && write_fields;
     if (scaled_fields)
       cycle_report->report_scaled(
-        "VTU fields",
+        parameters.output.format == OutputFormat::hdf5 ? "HDF5 fields" :
+                                                         "VTU fields",
         scales.stress == scales.displacement ?
           "32-bit floats cannot hold them; multiply displacement, stresses, "
           "smoothed stresses, contact_pressure, tangential_traction, gap and "
@@ -368,7 +371,7 @@ namespace coulomb_adapt
           fields = {&error_estimate->indicator[b],
                     &error_estimate->density[b],
                     error_estimate->recovered[b].get()};
-        body_outputs[b]->write(*bodies[b], cycle, fields, scales);
+        body_outputs[b]->write(*bodies[b], cycle, fields);
       }
   }
 
@@ -552,6 +555,17 @@ namespace coulomb_adapt
                                  parameters.output.directory,
                                  pcout);
     make_bodies();
+    if (parameters.output.format == OutputFormat::hdf5 &&
+        parameters.output.write_cycles != WriteCycles::none &&
+        patch_subdivisions(bodies[0]->triangulation(),
+                           parameters.finite_elements.degree,
+                           OutputFormat::hdf5) <
+          parameters.finite_elements.degree)
+      pcout << "  output: HDF5 holds the P" << parameters.finite_elements.degree
+            << " triangles' fields at their vertices only (deal.II 9.4's "
+               "HDF5 writer has no curved or quadratic triangles); "
+               "'Output/Format = vtu' writes the quadratic cells"
+            << std::endl;
     const LoadStressScale loads = load_stress_scale(*scene, bodies);
     AssertThrow(!parameters.error_indicator.compute_exact_error ||
                   (bodies[0]->description().exact_displacement &&

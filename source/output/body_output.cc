@@ -25,23 +25,6 @@ namespace coulomb_adapt
 
   namespace
   {
-    // The smoothed stresses of a scaled problem, for HDF5's doubles: times
-    // P (the owned entries scaled, then the ghosts imported).
-    std::array<RecoveredStress::VectorType, 3>
-    scaled_recovered_stress(const RecoveredStress &recovered,
-                            const double           stress_scale)
-    {
-      std::array<RecoveredStress::VectorType, 3> scaled;
-      for (unsigned int c = 0; c < 3; ++c)
-        {
-          scaled[c] = recovered.component(c);
-          scaled[c] *= stress_scale;
-        }
-      return scaled;
-    }
-
-
-
     // Per-cell fields that show the mesh: material id and subdomain (the
     // partition), on the owned cells.
     std::array<Vector<float>, 2>
@@ -61,13 +44,9 @@ namespace coulomb_adapt
 
 
 
-    // The indicator's fields, where computed; the smoothed stresses from
-    // @p scaled_recovered where given (a scaled problem in HDF5).
+    // The indicator's fields, where computed.
     void
-    add_error_fields(
-      DataOut<2>                                       &data_out,
-      const BodyErrorFields                            &error_fields,
-      const std::array<RecoveredStress::VectorType, 3> *scaled_recovered)
+    add_error_fields(DataOut<2> &data_out, const BodyErrorFields &error_fields)
     {
       if (error_fields.indicator)
         data_out.add_data_vector(*error_fields.indicator, "error_indicator");
@@ -79,9 +58,7 @@ namespace coulomb_adapt
             {"smoothed_stress_xx", "smoothed_stress_yy", "smoothed_stress_xy"}};
           for (unsigned int c = 0; c < 3; ++c)
             data_out.add_data_vector(error_fields.recovered->dof_handler(),
-                                     scaled_recovered ?
-                                       (*scaled_recovered)[c] :
-                                       error_fields.recovered->component(c),
+                                     error_fields.recovered->component(c),
                                      names[c]);
         }
     }
@@ -89,38 +66,42 @@ namespace coulomb_adapt
 
 
 
+  unsigned int
+  patch_subdivisions(const Triangulation<2> &tria,
+                     const unsigned int      degree,
+                     const OutputFormat      format)
+  {
+    // deal.II 9.4 writes P_p triangles as cells of degree p, which its
+    // HDF5 writer (DataOutFilter) does not know: with P2 it overran a
+    // buffer and the run died (SIGSEGV, no message). HDF5 gets the
+    // triangles with their vertices' values instead. Quadrilaterals of
+    // degree p are written as p x p linear cells by both writers.
+    if (format == OutputFormat::hdf5 && tria.all_reference_cells_are_simplex())
+      return 1;
+    return degree;
+  }
+
+
+
   void
   BodyOutput::write(const ElasticBody     &body,
                     const unsigned int     cycle,
-                    const BodyErrorFields &error_fields,
-                    const units::Scales   &scales)
+                    const BodyErrorFields &error_fields)
   {
     const Triangulation<2> &tria = body.triangulation();
-    const bool scale = (scales.stress != 1 || scales.displacement != 1) &&
-                       format == OutputFormat::hdf5;
-    const std::array<RecoveredStress::VectorType, 3> scaled_recovered =
-      scale && error_fields.recovered ?
-        scaled_recovered_stress(*error_fields.recovered, scales.stress) :
-        std::array<RecoveredStress::VectorType, 3>();
-
-    DataOutInPieces data_out;
+    DataOutInPieces         data_out;
     data_out.attach_dof_handler(body.dof_handler());
-    const DisplacementStressPostprocessor fields(body.material(),
-                                                 scale ? scales.displacement :
-                                                         1.,
-                                                 scale ? scales.stress : 1.);
+    const DisplacementStressPostprocessor fields(body.material());
     data_out.add_data_vector(body.solution(), fields);
     const auto cell_fields = material_and_subdomain(tria);
-    add_error_fields(data_out,
-                     error_fields,
-                     scale && error_fields.recovered ? &scaled_recovered :
-                                                       nullptr);
+    add_error_fields(data_out, error_fields);
     data_out.add_data_vector(cell_fields[0], "material_id");
     data_out.add_data_vector(cell_fields[1], "subdomain");
 
-    data_out.build_patches(body.mapping(),
-                           body.dof_handler().get_fe().degree,
-                           DataOut<2>::curved_inner_cells);
+    data_out.build_patches(
+      body.mapping(),
+      patch_subdivisions(tria, body.dof_handler().get_fe().degree, format),
+      DataOut<2>::curved_inner_cells);
     if (format == OutputFormat::hdf5)
       write_hdf5_cycle(data_out, tria, cycle);
     else

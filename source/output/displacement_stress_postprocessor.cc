@@ -3,12 +3,8 @@
 namespace coulomb_adapt
 {
   DisplacementStressPostprocessor::DisplacementStressPostprocessor(
-    const ElasticMaterial &material,
-    const double           displacement_scale,
-    const double           stress_scale)
+    const ElasticMaterial &material)
     : material(material)
-    , displacement_scale(displacement_scale)
-    , stress_scale(stress_scale)
   {}
 
 
@@ -23,20 +19,16 @@ namespace coulomb_adapt
         Tensor<2, 2> grad;
         for (unsigned int c = 0; c < 2; ++c)
           {
-            computed_quantities[p][c] =
-              displacement_scale * inputs.solution_values[p][c];
-            grad[c] = inputs.solution_gradients[p][c];
+            computed_quantities[p][c] = inputs.solution_values[p][c];
+            grad[c]                   = inputs.solution_gradients[p][c];
           }
-        // The stresses are linear in the gradient: those of the scaled
-        // solution, times the factor.
         const SymmetricTensor<2, 2> strain = symmetrize(grad);
-        const SymmetricTensor<2, 2> stress =
-          stress_scale * material.stress(strain);
-        const double szz = stress_scale * material.out_of_plane_stress(strain);
-        computed_quantities[p][2] = stress[0][0];
-        computed_quantities[p][3] = stress[1][1];
-        computed_quantities[p][4] = stress[0][1];
-        computed_quantities[p][5] = szz;
+        const SymmetricTensor<2, 2> stress = material.stress(strain);
+        const double                szz = material.out_of_plane_stress(strain);
+        computed_quantities[p][2]       = stress[0][0];
+        computed_quantities[p][3]       = stress[1][1];
+        computed_quantities[p][4]       = stress[0][1];
+        computed_quantities[p][5]       = szz;
         computed_quantities[p][6] =
           ElasticMaterial::von_mises_stress(stress, szz);
       }

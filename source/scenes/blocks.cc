@@ -27,7 +27,8 @@ namespace coulomb_adapt
                           "10",
                           Patterns::Double(0),
                           "Uniform pressure on the top of the upper body "
-                          "(MPa).");
+                          "(MPa), > 0: the only load, which holds it on the "
+                          "lower body.");
         prm.declare_entry("Hold centre line",
                           "false",
                           Patterns::Bool(),
@@ -50,7 +51,15 @@ namespace coulomb_adapt
           get_subdivisions(prm, "Upper body subdivisions", path);
         lower_subdivisions =
           get_subdivisions(prm, "Lower body subdivisions", path);
-        pressure         = prm.get_double("Pressure");
+        pressure = prm.get_double("Pressure");
+        // Without it the upper body floats: the solve would end in a
+        // singular system, diagnosed as a body that turns off an edge.
+        require_parameter(pressure > 0,
+                          path + "/Pressure",
+                          pressure,
+                          "> 0: the pressure is the only load, and what "
+                          "holds the upper body on the lower one (with "
+                          "none it floats, held by nothing)");
         hold_centre_line = prm.get_bool("Hold centre line");
         if (hold_centre_line && upper_subdivisions[0] % 2 != 0)
           throw ParameterError(path + "/Upper body subdivisions",

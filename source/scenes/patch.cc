@@ -1,3 +1,4 @@
+#include <coulomb_adapt/core/parameter_error.h>
 #include <coulomb_adapt/scenes/patch.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
@@ -36,7 +37,7 @@ namespace coulomb_adapt
                           "1",
                           Patterns::Double(0),
                           "Uniform pressure on top of the upper block "
-                          "(MPa).");
+                          "(MPa), > 0: what holds it on the lower block.");
         prm.declare_entry("Shear traction",
                           "0",
                           Patterns::Double(),
@@ -73,8 +74,16 @@ namespace coulomb_adapt
           get_subdivisions(prm, "Lower body subdivisions", path);
         pressure        = prm.get_double("Pressure");
         hold_upper_body = prm.get_bool("Hold upper body");
-        shear_traction  = prm.get_double("Shear traction");
-        materials       = parse_body_materials(prm, path);
+        // 'Hold upper body' fixes x only: the upper body rests on the
+        // lower one under the pressure alone, and floats without it.
+        require_parameter(pressure > 0,
+                          path + "/Pressure",
+                          pressure,
+                          "> 0: the pressure is what holds the upper body on "
+                          "the lower one ('Hold upper body' fixes x only; "
+                          "with no pressure it floats, held by nothing)");
+        shear_traction = prm.get_double("Shear traction");
+        materials      = parse_body_materials(prm, path);
       }
       prm.leave_subsection();
     }

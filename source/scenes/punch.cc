@@ -38,7 +38,8 @@ namespace coulomb_adapt
         prm.declare_entry("Pressure",
                           "100",
                           Patterns::Double(0),
-                          "Uniform pressure on top of the punch (MPa).");
+                          "Uniform pressure on top of the punch (MPa), > 0: "
+                          "the only load, which holds it on the block.");
         prm.declare_entry("Hold centre line",
                           "true",
                           Patterns::Bool(),
@@ -61,9 +62,17 @@ namespace coulomb_adapt
         punch_height           = prm.get_double("Punch height");
         block_width            = prm.get_double("Block width");
         block_height           = prm.get_double("Block height");
-        subdivisions[0]  = get_subdivisions(prm, "Punch subdivisions", path);
-        subdivisions[1]  = get_subdivisions(prm, "Block subdivisions", path);
-        pressure         = prm.get_double("Pressure");
+        subdivisions[0] = get_subdivisions(prm, "Punch subdivisions", path);
+        subdivisions[1] = get_subdivisions(prm, "Block subdivisions", path);
+        pressure        = prm.get_double("Pressure");
+        // Without it the punch floats: the solve would end in a singular
+        // system, diagnosed as a body that turns off an edge.
+        require_parameter(pressure > 0,
+                          path + "/Pressure",
+                          pressure,
+                          "> 0: the pressure is the only load, and what "
+                          "holds the punch on the block (with none it "
+                          "floats, held by nothing)");
         hold_centre_line = prm.get_bool("Hold centre line");
         if (hold_centre_line && subdivisions[0][0] % 2 != 0)
           throw ParameterError(path + "/Punch subdivisions",

@@ -26,6 +26,17 @@ namespace coulomb_adapt
   void
   resolve_input_files_beside(const std::string &parameter_file,
                              ParameterHandler  &prm);
+
+  /**
+   * Every input file entry of @p prm that names an existing file by a
+   * relative path (from the directory the program runs in, after
+   * resolve_input_files_beside() and the -s overrides) is set to its
+   * absolute path: the run's `parameters.prm` then names the file that
+   * was read, and runs again from any directory. A path to no file stays
+   * as given, for the scene's message.
+   */
+  void
+  make_input_files_absolute(ParameterHandler &prm);
 } // namespace coulomb_adapt
 
 #endif

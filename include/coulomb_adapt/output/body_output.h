@@ -28,6 +28,20 @@ namespace coulomb_adapt
   };
 
   /**
+   * The subdivisions of each cell of @p tria in the output of @p format
+   * for elements of degree @p degree: p, but 1 for triangles in HDF5
+   * (deal.II 9.4's HDF5 writer cannot write the cells of degree p that
+   * P_p triangles give; the fields are written at the triangles'
+   * vertices).
+   */
+  unsigned int
+  patch_subdivisions(const Triangulation<2> &tria,
+                     const unsigned int      degree,
+                     const OutputFormat      format);
+
+
+
+  /**
    * Writes one body's fields per cycle, and an index of all cycles written
    * so far, so that ParaView shows the cycles as a time series (the cycle
    * number is the time). @p format "vtu": `<base>_<cycle>.pvtu` (+ the
@@ -44,17 +58,15 @@ namespace coulomb_adapt
                const OutputFormat format,
                const unsigned int cells_per_vtu_piece);
 
-    /** With @p scales other than 1 (core/units.h), the body's solution
-     * is that of the scaled problem: with format "hdf5" (doubles) the
-     * displacement is written multiplied by D, the stresses and the
-     * smoothed stresses by P. VTU files hold 32-bit floats (1e-38 ...
-     * 3e38), which cannot hold the stresses of a scaled problem (beyond
-     * 1e+-100 MPa): they get the scaled fields. */
+    /** The fields of the body's solution as solved: for a scaled
+     * problem (core/units.h) those of the scaled problem, in both formats,
+     * since deal.II's patches hold 32-bit floats (1e-38 ... 3e38), which
+     * cannot hold stresses beyond 1e+-100 MPa (the log and summary.json
+     * give the factors). */
     void
     write(const ElasticBody     &body,
           const unsigned int     cycle,
-          const BodyErrorFields &error_fields = BodyErrorFields(),
-          const units::Scales   &scales       = units::Scales());
+          const BodyErrorFields &error_fields = BodyErrorFields());
 
   private:
     /** The cycle's `<base>_<cycle>.h5` and the index `<base>.xdmf`. */

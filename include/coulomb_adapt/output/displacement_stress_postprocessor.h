@@ -11,16 +11,12 @@ namespace coulomb_adapt
    * The fields ParaView shows from a body's solution, computed at the
    * output points from one evaluation of it: the displacement (a vector)
    * and, from its gradient, sigma_xx, sigma_yy, sigma_xy, sigma_zz and the
-   * von Mises stress (MPa), one data set for both. A scaled problem's
-   * physical fields (core/units.h) are the displacement
-   * times @p displacement_scale and the stresses times @p stress_scale.
+   * von Mises stress (MPa), one data set for both.
    */
   class DisplacementStressPostprocessor : public DataPostprocessor<2>
   {
   public:
-    DisplacementStressPostprocessor(const ElasticMaterial &material,
-                                    const double displacement_scale = 1,
-                                    const double stress_scale       = 1);
+    explicit DisplacementStressPostprocessor(const ElasticMaterial &material);
 
     void
     evaluate_vector_field(
@@ -38,8 +34,6 @@ namespace coulomb_adapt
 
   private:
     const ElasticMaterial material;
-    const double          displacement_scale;
-    const double          stress_scale;
   };
 } // namespace coulomb_adapt
 
