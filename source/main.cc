@@ -6,6 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <coulomb_adapt/app/command_line.h>
+#include <coulomb_adapt/app/input_file_paths.h>
 #include <coulomb_adapt/app/one_node_messaging.h>
 #include <coulomb_adapt/app/parallel_file_io.h>
 #include <coulomb_adapt/app/small_block_allocation.h>
@@ -89,6 +90,7 @@ main(int argc, char *argv[])
                      "default parameters (the seed's example is "
                      "prm/blocks.prm; 'coulomb-adapt --help' for usage)"
                   << std::endl;
+      make_input_files_absolute(prm);
       write_file(comm,
                  parameters.output.directory + "/parameters.prm",
                  [&](std::ostream &resolved) {

@@ -13,15 +13,18 @@
 //     runs in (typed in the shell);
 //  5. an absolute path and a path to no file: unchanged (the scene then
 //     reports the missing file).
-// Every file found is named by its absolute path afterwards, so that the
-// run's parameters.prm runs again from any directory (before, a -s path
-// stayed relative to the directory of the first run).
+// The run's parameters.prm (make_input_files_absolute, as main() calls it
+// before writing it) names every file found by its absolute path, so that
+// it runs again from any directory (before, a -s path stayed relative to
+// the directory of the first run); the values read, which the messages
+// show, stay as above.
 // Only paths relative to the repository or to the test's own directories
 // are printed, so the output is the same in every clone.
 
 #include <deal.II/base/parameter_handler.h>
 
 #include <coulomb_adapt/app/command_line.h>
+#include <coulomb_adapt/app/input_file_paths.h>
 #include <coulomb_adapt/app/two_body_problem.h>
 
 #include "test_utilities.h"
@@ -35,8 +38,27 @@ namespace fs = std::filesystem;
 
 namespace
 {
-  // The mesh file that @p parameter_file and @p settings give.
+  struct MeshFile
+  {
+    // As read (the program reads this file, its messages name it so).
+    std::string read;
+    // As parameters.prm records it.
+    std::string recorded;
+  };
+
   std::string
+  get_mesh_file(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Scene");
+    prm.enter_subsection("Gmsh");
+    const std::string file = prm.get("Mesh file");
+    prm.leave_subsection();
+    prm.leave_subsection();
+    return file;
+  }
+
+  // The mesh file that @p parameter_file and @p settings give.
+  MeshFile
   mesh_file(const std::string       &parameter_file,
             const testing::Settings &settings)
   {
@@ -46,11 +68,10 @@ namespace
     command_line.parameter_file = parameter_file;
     command_line.overrides      = settings;
     read_parameters(command_line, prm);
-    prm.enter_subsection("Scene");
-    prm.enter_subsection("Gmsh");
-    const std::string file = prm.get("Mesh file");
-    prm.leave_subsection();
-    prm.leave_subsection();
+    MeshFile file;
+    file.read = get_mesh_file(prm);
+    make_input_files_absolute(prm);
+    file.recorded = get_mesh_file(prm);
     return file;
   }
 
@@ -80,6 +101,19 @@ namespace
   {
     AssertThrow(condition, ExcMessage(what));
   }
+
+
+
+  // "absolute, the file FILE" for a recorded path @p recorded of
+  // @p expected.
+  std::string
+  recorded(const std::string &recorded, const fs::path &expected)
+  {
+    const bool right =
+      fs::path(recorded).is_absolute() && fs::equivalent(recorded, expected);
+    check(right, "parameters.prm would not name " + expected.string());
+    return right ? "absolute, the same file" : "wrong";
+  }
 } // namespace
 
 
@@ -97,29 +131,30 @@ main(int argc, char *argv[])
   const fs::path beside  = work / "beside";
   fs::create_directories(runs_in);
   fs::create_directories(beside);
+  const fs::path structured = root / "prm/meshes/blocks_structured.geo";
 
   // 1. The example, named from the test's directory.
   fs::current_path(runs_in);
   {
-    const std::string absolute = mesh_file(root / "prm/blocks_gmsh.prm", {});
+    const MeshFile absolute = mesh_file(root / "prm/blocks_gmsh.prm", {});
+    const bool     found    = fs::equivalent(absolute.read, structured);
     out << "1. absolute prm/blocks_gmsh.prm: the file in prm/meshes: "
-        << (fs::equivalent(absolute,
-                           root / "prm/meshes/blocks_structured.geo") ?
-              "yes" :
-              "no")
+        << (found ? "yes" : "no")
+        << "; recorded: " << recorded(absolute.recorded, structured)
         << std::endl;
-    check(fs::equivalent(absolute, root / "prm/meshes/blocks_structured.geo"),
-          "absolute parameter file");
+    check(found, "absolute parameter file");
 
     const std::string relative_prm =
       fs::relative(root / "prm/blocks_gmsh.prm", runs_in).string();
-    const std::string relative = mesh_file(relative_prm, {});
-    out << "   relative prm/blocks_gmsh.prm: "
-        << fs::relative(relative, root).string()
-        << " in the repository, an absolute path: "
-        << (fs::path(relative).is_absolute() ? "yes" : "no") << std::endl;
-    check(fs::path(relative).is_absolute() &&
-            fs::equivalent(relative, root / "prm/meshes/blocks_structured.geo"),
+    const MeshFile relative = mesh_file(relative_prm, {});
+    out << "   relative prm/blocks_gmsh.prm: read as "
+        << fs::relative(relative.read, fs::relative(root, runs_in)).string()
+        << " through the repository, a relative path: "
+        << (fs::path(relative.read).is_relative() ? "yes" : "no")
+        << "; recorded: " << recorded(relative.recorded, structured)
+        << std::endl;
+    check(fs::path(relative.read).is_relative() &&
+            fs::equivalent(relative.read, structured),
           "relative parameter file");
   }
 
@@ -128,13 +163,11 @@ main(int argc, char *argv[])
   {
     write_text(beside / "root_relative.prm",
                gmsh_scene_with_mesh("prm/meshes/blocks.geo"));
-    const std::string file = mesh_file(beside / "root_relative.prm", {});
-    out << "2. 'prm/meshes/blocks.geo', run in the repository's root: "
-        << fs::relative(file, root).string()
-        << ", absolute: " << (fs::path(file).is_absolute() ? "yes" : "no")
-        << std::endl;
-    check(fs::path(file).is_absolute() &&
-            fs::equivalent(file, root / "prm/meshes/blocks.geo"),
+    const MeshFile file = mesh_file(beside / "root_relative.prm", {});
+    out << "2. 'prm/meshes/blocks.geo', run in the repository's root: read as "
+        << file.read << "; recorded: "
+        << recorded(file.recorded, root / "prm/meshes/blocks.geo") << std::endl;
+    check(file.read == "prm/meshes/blocks.geo",
           "a path from the directory the program runs in");
   }
 
@@ -144,37 +177,39 @@ main(int argc, char *argv[])
     write_text(beside / "same_name.geo", "// beside\n");
     write_text(runs_in / "same_name.geo", "// runs in\n");
     write_text(beside / "same_name.prm", gmsh_scene_with_mesh("same_name.geo"));
-    const std::string from_file = mesh_file(beside / "same_name.prm", {});
+    const MeshFile from_file = mesh_file(beside / "same_name.prm", {});
+    const bool     beside_first =
+      fs::equivalent(from_file.read, beside / "same_name.geo");
     out << "3. in both places, from the file: the one beside it: "
-        << (fs::equivalent(from_file, beside / "same_name.geo") ? "yes" : "no")
-        << std::endl;
-    check(fs::equivalent(from_file, beside / "same_name.geo"), "beside first");
+        << (beside_first ? "yes" : "no") << "; recorded: "
+        << recorded(from_file.recorded, beside / "same_name.geo") << std::endl;
+    check(beside_first, "beside first");
 
-    const std::string from_option =
+    const MeshFile from_option =
       mesh_file(beside / "same_name.prm",
                 {{"Scene/Gmsh/Mesh file", "same_name.geo"}});
-    out << "4. the same name with -s: the one where the program runs: "
-        << (fs::equivalent(from_option, runs_in / "same_name.geo") ? "yes" :
-                                                                     "no")
-        << ", absolute: "
-        << (fs::path(from_option).is_absolute() ? "yes" : "no") << std::endl;
-    check(fs::path(from_option).is_absolute() &&
-            fs::equivalent(from_option, runs_in / "same_name.geo"),
-          "-s from where the program runs");
+    out << "4. the same name with -s: read as " << from_option.read
+        << "; recorded: "
+        << recorded(from_option.recorded, runs_in / "same_name.geo")
+        << " (the one where the program runs)" << std::endl;
+    check(from_option.read == "same_name.geo", "-s stays as typed");
   }
 
   // 5. Absolute paths and missing files stay as written.
   {
     const std::string absolute = (root / "prm/meshes/blocks.geo").string();
     write_text(beside / "absolute.prm", gmsh_scene_with_mesh(absolute));
-    const bool absolute_kept =
-      mesh_file(beside / "absolute.prm", {}) == absolute;
+    const MeshFile kept = mesh_file(beside / "absolute.prm", {});
+    const bool     absolute_kept =
+      kept.read == absolute && kept.recorded == absolute;
     write_text(beside / "missing.prm", gmsh_scene_with_mesh("missing.geo"));
-    const std::string missing = mesh_file(beside / "missing.prm", {});
+    const MeshFile missing = mesh_file(beside / "missing.prm", {});
     out << "5. an absolute path unchanged: " << (absolute_kept ? "yes" : "no")
-        << "; a missing file: " << missing << std::endl;
+        << "; a missing file: " << missing.read << ", recorded "
+        << missing.recorded << std::endl;
     check(absolute_kept, "absolute path");
-    check(missing == "missing.geo", "missing file");
+    check(missing.read == "missing.geo" && missing.recorded == "missing.geo",
+          "missing file");
   }
 
   fs::current_path(work.parent_path());

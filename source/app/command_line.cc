@@ -262,7 +262,6 @@ namespace coulomb_adapt
       }
     for (const auto &[path, value] : command_line.overrides)
       apply_override(path, value, prm);
-    make_input_files_absolute(prm);
   }
 
 

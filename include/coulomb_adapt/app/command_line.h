@@ -39,8 +39,7 @@ namespace coulomb_adapt
   /**
    * Read the parameter file (if any) into @p prm, look for the input
    * files it names beside it (resolve_input_files_beside()), then apply
-   * the `-s` overrides, and make the paths of the input files found
-   * absolute (make_input_files_absolute()). Errors name the file or the
+   * the `-s` overrides. Errors name the file or the
    * override, the entry and what is allowed.
    */
   void

@@ -31,9 +31,10 @@ namespace coulomb_adapt
    * Every input file entry of @p prm that names an existing file by a
    * relative path (from the directory the program runs in, after
    * resolve_input_files_beside() and the -s overrides) is set to its
-   * absolute path: the run's `parameters.prm` then names the file that
-   * was read, and runs again from any directory. A path to no file stays
-   * as given, for the scene's message.
+   * absolute path. For the run's `parameters.prm`, written after the
+   * files were read (their messages name them as the user did): it then
+   * names the files that were read, and runs again from any directory.
+   * A path to no file stays as given.
    */
   void
   make_input_files_absolute(ParameterHandler &prm);
