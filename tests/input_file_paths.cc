@@ -23,9 +23,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <coulomb_adapt/app/command_line.h>
 #include <coulomb_adapt/app/input_file_paths.h>
-#include <coulomb_adapt/app/two_body_problem.h>
 
 #include "test_utilities.h"
 
@@ -63,11 +61,7 @@ namespace
             const testing::Settings &settings)
   {
     ParameterHandler prm;
-    TwoBodyProblem::declare_parameters(prm);
-    CommandLine command_line;
-    command_line.parameter_file = parameter_file;
-    command_line.overrides      = settings;
-    read_parameters(command_line, prm);
+    testing::make_parameters(prm, settings, parameter_file);
     MeshFile file;
     file.read = get_mesh_file(prm);
     make_input_files_absolute(prm);

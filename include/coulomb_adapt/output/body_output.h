@@ -9,7 +9,6 @@
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/core/options.h>
-#include <coulomb_adapt/core/units.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 #include <coulomb_adapt/output/vtu_pieces.h>
 

@@ -32,8 +32,8 @@ namespace coulomb_adapt
      * @p contact_error_density (one value per slave node, may be empty) is
      * the density of the indicator's contact term. The polyline gets
      * @p field_states and @p field_density where given (a scaled
-     * problem's VTU: the CSV's doubles hold the physical values, VTU's
-     * 32-bit floats only the scaled ones). */
+     * problem, VTU or HDF5: the CSV's doubles hold the physical values,
+     * the 32-bit floats of deal.II's patches only the scaled ones). */
     void
     write(const std::vector<ContactNodeState> &states,
           const std::vector<double>           &contact_error_density,
