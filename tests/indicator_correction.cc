@@ -9,11 +9,15 @@
 //    under the corrected traction (residual 1e-10), the floating upper
 //    body is in equilibrium up to a rigid-body resultant (the part of the
 //    load it cannot balance, removed by the projection onto the range of
-//    K), and U_c - U_h has no rigid-body component.
+//    K), and U_c - U_h has no rigid-body component;
+//  - U_c carries the ghost entries that the cells read: its strain energy
+//    summed over the cells is that of a ghosted copy of its owned entries
+//    (and the same on 1 and 2 ranks).
 
 #include <deal.II/lac/full_matrix.h>
 
 #include <coulomb_adapt/indicator/contact_correction.h>
+#include <coulomb_adapt/indicator/exact_error.h>
 
 #include "contact_test_utilities.h"
 
@@ -221,5 +225,32 @@ main(int argc, char **argv)
           << (rigid_part < 1e-10 ? "yes" : "no") << std::endl;
       AssertThrow(off_span < 1e-8 && rigid_part < 1e-10,
                   ExcMessage("floating body not handled"));
+
+      // The cells read U_c at DoFs other ranks own: the stored vector
+      // must carry those ghost entries. Its strain energy, summed over
+      // the cells, against that of a ghosted copy made here from the
+      // owned entries (before: on 2 ranks the ghost entries read as 0,
+      // and hertz Q2 got epsilon = 34 % instead of 1.09 %).
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          const ElasticBody            &body = *p->bodies[b];
+          TrilinosWrappers::MPI::Vector owned_entries(
+            body.locally_owned_dof_set(), MPI_COMM_WORLD);
+          owned_entries = corrected.displacement(b);
+          TrilinosWrappers::MPI::Vector ghosted(body.locally_owned_dof_set(),
+                                                body.locally_relevant_dof_set(),
+                                                MPI_COMM_WORLD);
+          ghosted             = owned_entries;
+          const double stored = strain_energy(body, corrected.displacement(b));
+          const double copied = strain_energy(body, ghosted);
+          out << "  body " << b + 1 << ": strain energy of U_c "
+              << std::setprecision(6) << stored << " N mm/mm"
+              << std::setprecision(3)
+              << ", as from a ghosted copy of its owned entries: "
+              << (stored == copied ? "yes" : "no") << std::endl;
+          AssertThrow(stored == copied,
+                      ExcMessage("U_c lacks the ghost entries the cells "
+                                 "read"));
+        }
     }
 }

@@ -501,7 +501,17 @@ namespace coulomb_adapt
                                              load,
                                              body.solution(),
                                              solver_parameters);
-          corrected.corrected_displacement[b] = solution;
+          // With the ghost entries: the estimators read each owned cell's
+          // DoFs, some of which other ranks own. Without them (a copy of
+          // the owned entries, as before) a Trilinos vector read there
+          // gave whatever lay in memory: on 2 ranks, hertz Q2 had
+          // epsilon = 34 % instead of 1.09 %.
+          TrilinosWrappers::MPI::Vector &stored =
+            corrected.corrected_displacement[b];
+          stored.reinit(body.locally_owned_dof_set(),
+                        body.locally_relevant_dof_set(),
+                        body.triangulation().get_communicator());
+          stored = solution;
         }
 
       const auto gaps =

@@ -40,10 +40,9 @@ namespace coulomb_adapt
      * 0 if none. */
     double max_penetration = 0;
     /** U_c of body b (0: body 1, 1: body 2): the corrected displacement
-     * if a corrected solve was done (locally owned entries only: whoever
-     * reads ghost cells must make a ghosted copy, as the cre estimator
-     * does), else the body's FE solution (with ghost entries, not
-     * copied). */
+     * if a corrected solve was done, else the body's FE solution (not
+     * copied). Both with the ghost entries of the body's locally relevant
+     * DoFs, which the cells' stresses read. */
     const TrilinosWrappers::MPI::Vector &
     displacement(const unsigned int b) const
     {
@@ -51,8 +50,8 @@ namespace coulomb_adapt
     }
     /** The bodies' FE solutions U_h (owned by the bodies). */
     std::array<const TrilinosWrappers::MPI::Vector *, 2> fe_displacement{};
-    /** U_c of both bodies when the corrected problem was solved; empty
-     * otherwise. */
+    /** U_c of both bodies when the corrected problem was solved, with
+     * ghost entries; empty otherwise. */
     std::array<TrilinosWrappers::MPI::Vector, 2> corrected_displacement;
     /** R_c (as lambda_c = -R_c) and W_c at the slave nodes. */
     std::vector<ContactNodeFields> fields;
