@@ -2,8 +2,9 @@
 //  - blocks with pressures 1e-110 and 1e110 give the epsilon of pressure
 //    1 to 1e-12 (the first cases of the test, kept; before the accepted
 //    range 1e152 gave 100 % with exit 0);
-//  - within stresses of 1e-100 ... 1e100 MPa the problem is solved as
-//    given (summary.json has no load_scale for pressure 1); beyond, the
+//  - where stresses, moduli, strains and energy densities are within
+//    1e-30 ... 1e30 (core/units.h) the problem is solved as given
+//    (summary.json has no load_scale for pressure 1); beyond, the
 //    static problem with zero initial gap is positively
 //    homogeneous (theory.md section 6), so it is solved with the loads
 //    divided by a power of 2 (core/units.h): pressures 1e-300 ... 1e300
@@ -13,13 +14,16 @@
 //    and "target reached", both with exit 0; then a NonFiniteResult after
 //    the solve); energies that are no doubles (1e600) are reported scaled
 //    and listed in summary.json, which holds no null;
-//  - moduli times 1e100 and 1e-100 with the loads alike give the same;
+//  - moduli times 1e100 and 1e-100 with the loads alike give the same
+//    (divided together by a power of 2);
 //    so do moduli times 1e+-200 and 1e+-300 with the loads alike (moduli
 //    and loads divided together), and moduli alone times 1e+-150 and
 //    1e+-250 (strains of 1e-253 ... 1e148: displacements scaled too);
 //    strains beyond 1e+-300 stop before the solve;
 //  - manufactured (no contact) with amplitudes 1e-300 and 1e200: the
 //    epsilon, epsilon_E, DoFs and relative exact error of amplitude 1;
+//  - hertz (an initial gap) with line load and moduli times 1.1e40: both
+//    divided by a power of 2, displacements as given, the same solution;
 //  - with an initial gap (hertz) the problem is not homogeneous: line
 //    load 1e-200 stops before the solve, on every rank, with a message
 //    naming the scene's load entry and the gap; 1e200 stops earlier, when
@@ -79,7 +83,8 @@ namespace
       const std::string                                      &directory)
   {
     ParameterHandler prm;
-    auto             all = settings;
+    // The settings below first: @p settings may override them.
+    testing::Settings all;
     // The direct solver: the solutions of scaled problems agree to
     // round-off (1e-12 below). A Krylov solve (Type = auto takes it above
     // 5,000 DoFs, the second cycle here) stops at a relative residual of
@@ -92,6 +97,7 @@ namespace
                 {"Adaptation/Number of cycles", "2"},
                 {"Output/Write VTU", "false"},
                 {"Output/Output directory", directory}});
+    all.insert(all.end(), settings.begin(), settings.end());
     const Parameters parameters = testing::make_parameters(prm, all);
     prepare_output_directory(parameters.output.directory, MPI_COMM_WORLD);
     std::ostringstream log;
@@ -204,7 +210,8 @@ main(int argc, char **argv)
       AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
     }
 
-  // Beyond the comfortable range: scaled by a power of 2.
+  // Beyond the comfortable range (as are 1e-110 and 1e110 above): scaled
+  // by a power of 2.
   for (const std::string pressure :
        {"1e-300", "1e-200", "1e-130", "1e130", "1e200", "1e300"})
     {
@@ -401,7 +408,50 @@ main(int argc, char **argv)
       AssertThrow(!r.summary_has_null, ExcMessage("null in summary"));
     }
 
-  // Not homogeneous: Hertz's curved surfaces have an initial gap.
+  // Hertz's curved surfaces have an initial gap, which does not scale
+  // with the loads alone; with the moduli divided alike the strains, and
+  // so the gap, stay: line load and moduli times 2^133 = 1.1e40 (stresses
+  // beyond the 32-bit floats of the field files) are solved with both divided
+  // by a power of 2, displacements as given, and give the epsilon, every
+  // epsilon_E, the DoFs and the contact sets of factor 1 to 1e-12 (before:
+  // solved as given, inf in the field files).
+  {
+    // A power of 2, so that the loads and moduli given are exactly those
+    // of factor 1 times it (a decimal factor rounds them differently,
+    // which moved epsilon by 3e-12).
+    const auto run_hertz = [&](const int exponent) {
+      std::ostringstream load, E;
+      load << std::setprecision(17) << std::ldexp(1000., exponent);
+      E << std::setprecision(17) << std::ldexp(130000., exponent);
+      return run({{"Scene/Name", "hertz"},
+                  {"Scene/Hertz/Line load", load.str()},
+                  {"Scene/Hertz/Body 1/Young's modulus", E.str()},
+                  {"Scene/Hertz/Body 2/Young's modulus", E.str()},
+                  {"Scene/Hertz/Contact mesh size", "1"},
+                  {"Adaptation/Number of cycles", "1"},
+                  {"Adaptation/Minimum number of cycles", "1"}},
+                 "output-hertz-moduli-" + std::to_string(exponent));
+    };
+    const Result hertz = run_hertz(0);
+    const Result r     = run_hertz(133);
+    const bool   same  = same_solution(r, hertz, 1e-12);
+    out << "hertz, line load and moduli times 2^133 = 1.1e40: load scale 2^"
+        << scale_exponent(r, "load_scale") << ", displacement scale 2^"
+        << scale_exponent(r, "displacement_scale")
+        << ", epsilon = " << std::fixed << std::setprecision(6)
+        << 100 * r.epsilon << " %" << std::defaultfloat
+        << ", epsilon, epsilon_E, DoFs and contact sets of each cycle as "
+           "factor 1 to 1e-12: "
+        << (same ? "yes" : "no") << std::endl;
+    AssertThrow(hertz.error.empty() && r.error.empty(),
+                ExcMessage(hertz.error + r.error));
+    AssertThrow(same && scale_exponent(r, "load_scale") != 0 &&
+                  scale_exponent(r, "displacement_scale") == 0,
+                ExcMessage("hertz: not scaled, or not the same solution"));
+  }
+
+  // Not homogeneous in the loads alone, and strains beyond any scaling
+  // that keeps the gap.
   for (const std::string load : {"1e-200", "1e200"})
     {
       const Result       r = run({{"Scene/Name", "hertz"},

@@ -18,7 +18,12 @@
 //  - hdf5 of a scaled problem (pressure 1e300, load scale 2^997): the
 //    fields of the scaled problem, as in VTU (before: the physical values,
 //    which 32-bit floats turned into inf), summary.json listing
-//    'HDF5 fields' in reported_scaled.
+//    'HDF5 fields' in reported_scaled;
+//  - pressures 1e40 and 1e-40, whose stresses or displacements 32-bit
+//    floats cannot hold as they are: solved and written scaled, the
+//    written von Mises stress and displacement those of pressure 1 times
+//    pressure / scale to the floats' rounding (before: inf and subnormal
+//    values, the problem solved as given).
 // MPI-IO is chosen as main() chooses it (app/parallel_file_io.h): with
 // OMPIO, a locked semaphore of another run's body-1_000.h5.tmp
 // (bad_input.stale_io_semaphore plants one) would stop this test.
@@ -34,6 +39,7 @@
 #include <hdf5.h>
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -237,12 +243,13 @@ namespace
     check_no_temporary_files(directory, out);
   }
 
-  // The largest |displacement| of body @p b's last .h5 (rank 0; 0
-  // elsewhere).
+  // The largest |value| of @p field in body @p b's .h5 of @p cycle (rank
+  // 0; 0 elsewhere).
   double
-  written_displacement(const std::string &directory,
-                       const unsigned int b,
-                       const unsigned int cycle)
+  written_maximum(const std::string &directory,
+                  const unsigned int b,
+                  const unsigned int cycle,
+                  const std::string &field = "displacement")
   {
     if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
       return 0;
@@ -250,7 +257,7 @@ namespace
                            Utilities::int_to_string(cycle, 3) + ".h5";
     const hid_t file = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     AssertThrow(file >= 0, ExcMessage("cannot open " + h5));
-    const double written = max_abs(file, "/displacement");
+    const double written = max_abs(file, "/" + field);
     H5Fclose(file);
     return written;
   }
@@ -277,7 +284,7 @@ namespace
     for (unsigned int b = 0; b < 2; ++b)
       {
         const double nodes_max = run.problem->body(b).solution().linfty_norm();
-        const double written   = written_displacement(directory, b, 0);
+        const double written   = written_maximum(directory, b, 0);
         if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
           continue;
         const std::string h5 =
@@ -322,7 +329,7 @@ namespace
       {
         const double scaled = run.problem->body(b).solution().linfty_norm();
         const double written =
-          written_displacement(run.parameters.output.directory, b, 0);
+          written_maximum(run.parameters.output.directory, b, 0);
         if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
           continue;
         out << "  body " << b + 1 << ": max |u| written " << written
@@ -331,6 +338,61 @@ namespace
         AssertThrow(std::isfinite(written) &&
                       std::abs(written - scaled) <= 1.2e-7 * scaled,
                     ExcMessage("not the scaled problem's displacement"));
+      }
+  }
+
+  // Pressures whose fields 32-bit floats cannot hold as they are (1e40:
+  // stresses beyond 3.4e38; 1e-40: displacements and stresses below
+  // 1.2e-38, subnormal or 0), solved and written scaled: by homogeneity
+  // (theory.md section 6) the written von Mises stress and displacement,
+  // times their scales over the pressure, are those of pressure 1 to the
+  // floats' rounding (before: solved as given, inf and subnormal fields).
+  void
+  check_fields_beyond_float_range(ConditionalOStream &out)
+  {
+    std::array<double, 2> reference_stress, reference_displacement;
+    for (const std::string pressure : {"1", "1e40", "1e-40"})
+      {
+        const ProgramRun run(
+          one_hdf5_cycle("output-hdf5-pressure-" + pressure,
+                         {"Scene/Blocks/Pressure", pressure}));
+        const double P = run.summary.value("load_scale", 1.);
+        const double D = run.summary.value("displacement_scale", P);
+        const double p = std::stod(pressure);
+        out << "Format = hdf5, pressure " << pressure << ": load scale 2^"
+            << std::log2(P) << ", displacement scale 2^" << std::log2(D)
+            << std::endl;
+        for (unsigned int b = 0; b < 2; ++b)
+          {
+            const std::string directory = run.parameters.output.directory;
+            const double      stress =
+              written_maximum(directory, b, 0, "von_mises") * P / p;
+            const double displacement =
+              written_maximum(directory, b, 0) * D / p;
+            if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+              continue;
+            if (pressure == "1")
+              {
+                reference_stress[b]       = stress;
+                reference_displacement[b] = displacement;
+                continue;
+              }
+            const double stress_difference =
+              std::abs(stress / reference_stress[b] - 1);
+            const double displacement_difference =
+              std::abs(displacement / reference_displacement[b] - 1);
+            out << "  body " << b + 1
+                << ": written max von Mises and |u| times scale / pressure "
+                   "as pressure 1 to 2.4e-7: "
+                << (stress_difference <= 2.4e-7 &&
+                        displacement_difference <= 2.4e-7 ?
+                      "yes" :
+                      "no")
+                << std::endl;
+            AssertThrow(std::isfinite(stress) && stress_difference <= 2.4e-7 &&
+                          displacement_difference <= 2.4e-7,
+                        ExcMessage("fields not written within the floats"));
+          }
       }
   }
 
@@ -411,4 +473,5 @@ main(int argc, char **argv)
   check_write_cycles("vtu", "none", out);
   check_hdf5_quadratic_triangles(out);
   check_hdf5_scaled_problem(out);
+  check_fields_beyond_float_range(out);
 }

@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <coulomb_adapt/app/finiteness.h>
+#include <coulomb_adapt/core/units.h>
 
 #include <cmath>
 #include <limits>
@@ -17,9 +18,11 @@ namespace coulomb_adapt
     const std::string units_hint =
       "Give loads and moduli in units that keep stresses well inside "
       "1e-120 ... 1e120 (e.g. N, mm, MPa) relative to the moduli: loads "
-      "beyond 1e-100 ... 1e100 MPa are scaled automatically when the "
-      "initial gap is zero (theory.md section 6, Homogeneity), and moduli "
-      "beyond 1e-100 ... 1e100 MPa with them.";
+      "and moduli beyond " +
+      units::comfortable_range() +
+      " MPa are scaled automatically, and with zero initial gap so are "
+      "strains beyond " +
+      units::comfortable_range() + " (theory.md section 6, Homogeneity).";
 
     std::string
     to_string(const double x)
@@ -82,7 +85,7 @@ namespace coulomb_adapt
         const double       size    = body.size();
         const double       stress_scale =
           size > 0 ? 2 * body.material().mu() * max_abs / size : 0;
-        const double limit = 1e120;
+        const double limit = units::accepted_stress;
         if (stress_scale > limit ||
             (stress_scale > 0 && stress_scale < 1 / limit))
           throw NonFiniteResult(

@@ -311,8 +311,9 @@ namespace coulomb_adapt
     // deformation times P, the contact term's density (MPa mm) times P^2,
     // where doubles hold them (the CSV). The fields (VTU and HDF5) go
     // through deal.II's patches, whose 32-bit floats (1e-38 ... 3e38)
-    // cannot hold stresses beyond 1e+-100 MPa: they get the fields of the
-    // scaled problem (HDF5 got the physical ones, which came out inf).
+    // would not hold the physical fields of a scaled problem: they get the
+    // fields of the scaled problem (HDF5 got the physical ones, which
+    // came out inf).
     const units::Scales scales = scene->scales();
     const bool          scaled = scales.stress != 1 || scales.displacement != 1;
     const bool          scaled_fields = scaled && write_fields;

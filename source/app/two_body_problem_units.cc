@@ -18,9 +18,11 @@ namespace coulomb_adapt
   // of 2 give the same contact sets, epsilon, epsilon_E and meshes, and
   // the displacements, stresses and forces divided by it. A gap (Hertz's
   // curved surfaces, a clearance, an interference) does not scale with
-  // the loads: such a problem is solved as given while its stresses keep
-  // the indicator's squares in the range of doubles, and refused before
-  // the solve beyond.
+  // the loads alone, but with the loads and moduli divided together the
+  // strains, and so the gaps, stay exactly as they are. Problems whose
+  // scales are comfortable (units.h: stresses, displacements and energy
+  // densities that 32-bit floats hold in the field files) are solved as
+  // given.
   void
   TwoBodyProblem::choose_load_scale(const LoadStressScale &loads)
   {
@@ -40,41 +42,23 @@ namespace coulomb_adapt
         source + s.str().substr(9) +
         ": not a finite number. Give loads and moduli in units that keep "
         "stresses finite (e.g. N, mm, MPa)");
-    for (const auto &body : bodies)
-      {
-        const double E = body->description().material.youngs_modulus;
-        if (E > units::comfortable_modulus ||
-            E < 1 / units::comfortable_modulus)
-          return choose_scales_for_moduli(loads, s, source);
-      }
-    const double load_scale = units::load_scale_for(loads.stress);
-    if (load_scale == 1)
+    const double E1 = bodies[0]->description().material.youngs_modulus;
+    const double E2 = bodies[1]->description().material.youngs_modulus;
+    if (units::solvable_as_given(loads.stress, E1, E2))
       {
         pcout << s.str() << ": solved as given (load scale 1)" << std::endl;
         return;
       }
-    const double gap = has_contact() ? largest_initial_gap(bodies) : 0.;
-    if (gap > 1e-12 * loads.size)
-      {
-        s << ", and the contact curves have an initial gap or overlap of up "
-             "to "
-          << gap
-          << " mm: the problem is not linear in the loads (theory.md "
-             "section 6, Homogeneity), so they cannot be scaled";
-        if (loads.stress <= units::accepted_stress &&
-            loads.stress >= 1 / units::accepted_stress)
-          {
-            pcout << s.str() << "; solved as given (load scale 1)" << std::endl;
-            return;
-          }
-        throw ParameterError(
-          source + s.str().substr(9) +
-          ". With an initial gap the loads must keep stresses within "
-          "1e-120 ... 1e120 MPa in the units of the moduli (e.g. N, mm, "
-          "MPa): beyond, the error indicator's squares of stresses leave "
-          "the range of doubles. Without a gap (touching contact curves) "
-          "any load in the range of doubles is solved");
-      }
+    // Loads alone divided by P (and so displacements, D = P) leave a
+    // problem of moderate stresses, strains and energies if the moduli
+    // are comfortable; but gaps do not scale with the loads. Else the
+    // moduli are divided with the loads (displacements stay, so gaps too)
+    // and, if the strains are extreme, the displacements.
+    const bool gap =
+      has_contact() && largest_initial_gap(bodies) > 1e-12 * loads.size;
+    if (gap || !units::is_comfortable(E1) || !units::is_comfortable(E2))
+      return choose_scales_for_moduli(loads, s, source);
+    const double load_scale = units::power_of_two_near(loads.stress);
     scene->set_load_scale(load_scale);
     cycle_report->set_load_scale(load_scale);
     pcout << s.str() << ": solved with the loads divided by the load scale "
@@ -89,12 +73,12 @@ namespace coulomb_adapt
 
 
 
-  // Moduli beyond 1e+-100 MPa: stresses and moduli are divided by P
-  // alike, so that the strains stay those of the problem (D = 1: exact
-  // also with an initial gap); strains beyond 1e+-100 are brought to
-  // moderate ones by a displacement scale D (then the problem must be
-  // homogeneous: no initial gap). Strains beyond 1e+-300 are no
-  // displacements a double holds once multiplied by the bodies' size.
+  // Stresses and moduli are divided by P alike, so that the strains stay
+  // those of the problem (D = 1: exact also with an initial gap); strains
+  // beyond the comfortable range are brought to moderate ones by a
+  // displacement scale D (then the problem must be homogeneous: no initial
+  // gap). Strains beyond 1e+-300 are no displacements a double holds once
+  // multiplied by the bodies' size.
   void
   TwoBodyProblem::choose_scales_for_moduli(const LoadStressScale &loads,
                                            std::ostringstream    &s,
@@ -104,8 +88,12 @@ namespace coulomb_adapt
     const double E2 = bodies[1]->description().material.youngs_modulus;
     // The geometric mean, without overflow.
     const double modulus = std::sqrt(E1) * std::sqrt(E2);
-    s << ", Young's moduli " << E1 << " and " << E2
-      << " MPa (outside 1e-100 ... 1e100 MPa)";
+    const double gap     = has_contact() ? largest_initial_gap(bodies) : 0.;
+    const long   strain_exponent = std::lround(
+      std::log10(std::max(loads.stress, 1e-300)) - std::log10(modulus));
+    s << ", Young's moduli " << E1 << " and " << E2 << " MPa";
+    if (!units::is_comfortable(E1) || !units::is_comfortable(E2))
+      s << " (outside " << units::comfortable_range() << " MPa)";
     // The messages name the moduli's entries beside the loads'.
     const std::string scene_path =
       scene->load_entries().empty() ?
@@ -121,24 +109,26 @@ namespace coulomb_adapt
       throw ParameterError(
         source.substr(0, source.size() - 2) + ", " + moduli_entries + ": " +
         s.str().substr(9) + ": strains of the order of 10^" +
-        std::to_string(static_cast<long>(std::lround(
-          std::log10(std::max(loads.stress, 1e-300)) - std::log10(modulus)))) +
+        std::to_string(strain_exponent) +
         " (stress scale over modulus), outside 1e-300 ... 1e300: the "
         "displacements would be no doubles, and no scaling of loads and "
         "moduli changes the strains. Give loads and moduli whose ratio is "
         "a strain within 1e-300 ... 1e300 (e.g. N, mm, MPa)");
-    const double gap = has_contact() ? largest_initial_gap(bodies) : 0.;
     if (scales.displacement != 1 && gap > 1e-12 * loads.size)
       throw ParameterError(
         source.substr(0, source.size() - 2) + ", " + moduli_entries + ": " +
-        s.str().substr(9) +
-        ": strains beyond 1e-100 ... 1e100 need the "
-        "displacements scaled, but the contact curves have an initial gap "
-        "or overlap of up to " +
+        s.str().substr(9) + ": strains of the order of 10^" +
+        std::to_string(strain_exponent) +
+        " (stress scale over modulus), beyond " + units::comfortable_range() +
+        ", need the displacements scaled, but the contact curves have an "
+        "initial gap or overlap of up to " +
         std::to_string(gap) +
         " mm: the problem is not linear in the loads (theory.md section 6, "
         "Homogeneity). Give loads and moduli whose ratio is a strain "
-        "within 1e-100 ... 1e100");
+        "within " +
+        units::comfortable_range() +
+        " (e.g. N, mm, MPa). Without a gap (touching contact curves) any "
+        "load in the range of doubles is solved");
     scene->set_scales(scales);
     cycle_report->set_scales(scales);
     s << ": solved with the loads divided by the load scale 2^"
@@ -149,6 +139,9 @@ namespace coulomb_adapt
       << " (theory.md section 6, Homogeneity); stresses and forces are "
          "reported multiplied by the load scale, displacements by the "
          "displacement scale, energies by both";
+    if (gap > 1e-12 * loads.size)
+      s << "; with the initial gap or overlap of up to " << gap
+        << " mm, which does not scale with the loads alone";
     pcout << s.str() << std::endl;
     // The bodies hold their moduli: made again from the scaled scene.
     make_bodies();

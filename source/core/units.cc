@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace coulomb_adapt
 {
@@ -16,14 +17,61 @@ namespace coulomb_adapt
 
 
 
-    double
-    load_scale_for(const double stress_scale)
+    bool
+    is_comfortable(const double magnitude)
     {
-      if (!(stress_scale > 0) || !std::isfinite(stress_scale) ||
-          (stress_scale <= comfortable_stress &&
-           stress_scale >= 1 / comfortable_stress))
-        return 1;
-      return power_of_two_near(stress_scale);
+      return magnitude == 0 || (magnitude <= comfortable_scale &&
+                                magnitude >= 1 / comfortable_scale);
+    }
+
+
+
+    std::string
+    comfortable_range()
+    {
+      const std::string exponent =
+        std::to_string(std::lround(std::log10(comfortable_scale)));
+      return "1e-" + exponent + " ... 1e" + exponent;
+    }
+
+
+
+    namespace
+    {
+      // Base-2 logarithms: the strain and the energy density of extreme
+      // loads and moduli may be no doubles at all.
+      double
+      log2_strain(const double stress_scale, const double E1, const double E2)
+      {
+        return std::log2(stress_scale) - 0.5 * (std::log2(E1) + std::log2(E2));
+      }
+    } // namespace
+
+
+
+    bool
+    strain_is_comfortable(const double stress_scale,
+                          const double E1,
+                          const double E2)
+    {
+      return stress_scale == 0 || std::abs(log2_strain(stress_scale, E1, E2)) <=
+                                    std::log2(comfortable_scale);
+    }
+
+
+
+    bool
+    solvable_as_given(const double stress_scale,
+                      const double E1,
+                      const double E2)
+    {
+      if (!is_comfortable(E1) || !is_comfortable(E2) ||
+          !is_comfortable(stress_scale) ||
+          !strain_is_comfortable(stress_scale, E1, E2))
+        return false;
+      return stress_scale == 0 || std::abs(std::log2(stress_scale) +
+                                           log2_strain(stress_scale, E1, E2)) <=
+                                    std::log2(comfortable_scale);
     }
 
 
@@ -70,7 +118,7 @@ namespace coulomb_adapt
       scales.stress =
         std::ldexp(1., static_cast<int>(std::lround(log2_stress)));
       scales.displacement =
-        std::abs(log2_strain) <= std::log2(comfortable_stress) ?
+        std::abs(log2_strain) <= std::log2(comfortable_scale) ?
           1. :
           std::ldexp(1., static_cast<int>(std::lround(log2_strain)));
       return true;

@@ -73,15 +73,15 @@ namespace coulomb_adapt
      * driver. */
     void
     make_bodies();
-    /** The load scale of the run (core/units.h), on the first meshes
-     * (set up): P = 1 for ordinary loads; beyond, the loads divided by P
-     * if the problem is homogeneous in them (no initial gap), else a
-     * ParameterError before anything is solved. Logs its choice. */
+    /** The scales of the run (core/units.h), on the first meshes (set
+     * up): none where every scale is comfortable; the loads divided by P
+     * where only they are extreme and there is no initial gap; else
+     * choose_scales_for_moduli. Logs its choice. */
     void
     choose_load_scale(const LoadStressScale &loads);
-    /** The same for moduli beyond 1e+-100 MPa (choose_load_scale calls
-     * it): moduli and loads divided together (units::scales_for_moduli),
-     * the bodies made again with the scaled moduli; a ParameterError
+    /** Moduli and loads divided together (units::scales_for_moduli), for
+     * extreme moduli or strains or an initial gap (choose_load_scale calls
+     * it), the bodies made again with the scaled moduli; a ParameterError
      * before anything is solved where the strains are beyond 1e+-300, or
      * where displacements must be scaled but the contact curves have an
      * initial gap. @p message is the log line begun, @p source the

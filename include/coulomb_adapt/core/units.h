@@ -1,6 +1,8 @@
 #ifndef coulomb_adapt_core_units_h
 #define coulomb_adapt_core_units_h
 
+#include <string>
+
 namespace coulomb_adapt
 {
   /**
@@ -16,18 +18,29 @@ namespace coulomb_adapt
    */
   namespace units
   {
-    /** Stresses of the loads within [1 / comfortable_stress,
-     * comfortable_stress] (MPa) are solved as given (P = 1). Beyond, the
-     * error indicator's squares of stresses and the energies come near the
-     * ends of the range of doubles (1e-308 ... 1e308): above 1e154 the
-     * squares overflow, below 1e-154 they lose their digits, and stress
-     * concentrations (Hertz's peak, corners) lie some orders above the
-     * loads' scale. */
-    constexpr double comfortable_stress = 1e100;
+    /** Problems whose stress scale, moduli, strain scale (stress over
+     * modulus) and energy density scale (stress times strain) all lie
+     * within [1 / comfortable_scale, comfortable_scale] (MPa, or no unit)
+     * are solved as given (P = D = 1). Beyond, they are solved scaled. The
+     * bound is set by the field files, not by the doubles: deal.II's
+     * output patches round every field to 32-bit floats (1.2e-38 ...
+     * 3.4e38), and stress concentrations (Hertz's peak, corners) lie some
+     * orders above the loads' scale. The doubles alone would allow far
+     * more (the indicator squares stresses: 1e154). */
+    constexpr double comfortable_scale = 1e30;
 
-    /** Without scaling, stresses within [1 / accepted_stress,
-     * accepted_stress] still keep the indicator's squares finite and
-     * normal (the check after the solve uses this range). */
+    /** Whether @p magnitude (>= 0) is 0 or within [1 / comfortable_scale,
+     * comfortable_scale]. */
+    bool
+    is_comfortable(const double magnitude);
+
+    /** "1e-30 ... 1e30" for comfortable_scale, for messages. */
+    std::string
+    comfortable_range();
+
+    /** Stresses within [1 / accepted_stress, accepted_stress] keep the
+     * indicator's squares finite and normal: the check after the solve
+     * (app/finiteness.h) stops a run whose stresses leave it. */
     constexpr double accepted_stress = 1e120;
 
     /** The power of 2 nearest to @p magnitude (> 0, finite) in the sense
@@ -35,16 +48,21 @@ namespace coulomb_adapt
     double
     power_of_two_near(const double magnitude);
 
-    /** The load scale P for loads whose stress scale is @p stress_scale
-     * (MPa, >= 0): 1 within the comfortable range (and for no load at
-     * all), else power_of_two_near(stress_scale). */
-    double
-    load_scale_for(const double stress_scale);
+    /** Whether the strain scale of loads of stress scale @p stress_scale
+     * (MPa, >= 0) on moduli @p E1, @p E2 (MPa, > 0), the stress over the
+     * moduli's geometric mean, is 0 or comfortable. */
+    bool
+    strain_is_comfortable(const double stress_scale,
+                          const double E1,
+                          const double E2);
 
-    /** Moduli within [1 / comfortable_modulus, comfortable_modulus] (MPa)
-     * are used as given (the modulus scale is 1). Beyond, they are divided
-     * by a power of 2 with the loads (scales_for_moduli). */
-    constexpr double comfortable_modulus = 1e100;
+    /** Whether a problem with stress scale @p stress_scale (MPa, >= 0)
+     * and moduli @p E1, @p E2 (MPa) can be solved as given: all its
+     * scales are comfortable (is_comfortable). */
+    bool
+    solvable_as_given(const double stress_scale,
+                      const double E1,
+                      const double E2);
 
     /** Strains (stress scale over modulus scale) within [1 /
      * largest_strain, largest_strain] can be solved: displacements are
@@ -86,9 +104,9 @@ namespace coulomb_adapt
      * scale @p stress_scale (MPa, >= 0) and the reference modulus
      * @p modulus (MPa, the geometric mean of the bodies' moduli). P is the
      * power of 2 near the stress scale (near the modulus if there is no
-     * load); D = 1 while the strain scale P / modulus is within 1e-100 ...
-     * 1e100 (stresses and moduli are divided alike, displacements stay:
-     * exact also with an initial gap), else the power of 2 near the
+     * load); D = 1 while the strain scale P / modulus is comfortable
+     * (is_comfortable; stresses and moduli are divided alike, displacements
+     * stay: exact also with an initial gap), else the power of 2 near the
      * strain. Returns false if the strain is beyond [1 / largest_strain,
      * largest_strain]. */
     bool

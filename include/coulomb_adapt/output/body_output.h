@@ -60,8 +60,8 @@ namespace coulomb_adapt
     /** The fields of the body's solution as solved: for a scaled
      * problem (core/units.h) those of the scaled problem, in both formats,
      * since deal.II's patches hold 32-bit floats (1e-38 ... 3e38), which
-     * cannot hold stresses beyond 1e+-100 MPa (the log and summary.json
-     * give the factors). */
+     * would not hold the physical ones (the log and summary.json give
+     * the factors). */
     void
     write(const ElasticBody     &body,
           const unsigned int     cycle,

@@ -62,8 +62,8 @@ namespace coulomb_adapt
     void
     set_load_scale(const double load_scale);
 
-    /** The same with a displacement scale D other than P (moduli beyond
-     * 1e+-100 MPa, core/units.h): "load_scale" P and "displacement_scale"
+    /** The same with a displacement scale D other than P (extreme moduli
+     * or an initial gap, core/units.h): "load_scale" P and "displacement_scale"
      * D in summary.json; displacements, gaps and slips are reported
      * multiplied by D, stresses and forces by P, energies by P D. */
     void

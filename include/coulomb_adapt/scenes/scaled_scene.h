@@ -13,7 +13,7 @@ namespace coulomb_adapt
    * tractions, body forces, prescribed displacements and the exact
    * displacement, on every load step and on the coarser graded meshes of
    * nested iteration. Geometry is the scene's own. With a displacement
-   * scale D other than P (set_scales: moduli beyond 1e+-100 MPa),
+   * scale D other than P (set_scales: extreme moduli, or a gap),
    * tractions and body forces are divided by P, prescribed and exact
    * displacements by D, Young's moduli by P / D.
    *
