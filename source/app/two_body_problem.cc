@@ -451,7 +451,8 @@ namespace coulomb_adapt
           make_target_claim(error_estimate->estimator,
                             parameters.contact.friction_coefficient,
                             cycle_report->exact_error(),
-                            error_estimate->misses_held_reaction());
+                            error_estimate->misses_held_reaction(),
+                            parameters.finite_elements.degree);
         s << "target reached: epsilon = " << std::setprecision(4)
           << 100 * error_estimate->epsilon
           << " % <= epsilon_0 = " << 100 * a.target_error << " %"
@@ -566,6 +567,11 @@ namespace coulomb_adapt
             << " triangles' fields at their vertices only (deal.II 9.4's "
                "HDF5 writer has no curved or quadratic triangles); "
                "'Output/Format = vtu' writes the quadratic cells"
+            << std::endl;
+    if (parameters.error_indicator.estimator == ErrorEstimator::zz &&
+        parameters.finite_elements.degree >= 2)
+      pcout << "  warning: "
+            << zz_degree_warning(parameters.finite_elements.degree)
             << std::endl;
     const LoadStressScale loads = load_stress_scale(*scene, bodies);
     AssertThrow(!parameters.error_indicator.compute_exact_error ||

@@ -263,7 +263,13 @@ namespace coulomb_adapt
                           "exact error for frictionless contact; conforming "
                           "meshes only (not with Adaptation/Strategy = "
                           "refine). All three add the same contact term and "
-                          "use the seed's normalisation.");
+                          "use the seed's normalisation. With polynomial "
+                          "degree 2, zz underestimates, more so on finer "
+                          "meshes (manufactured, 4 uniform refinements: "
+                          "effectivity 0.45 to 0.09 with Q2, 0.69 to 0.54 "
+                          "with P2; spr 2.3 to 1.0 and 1.09 to 0.99, cre "
+                          "1.03 to 1.05 and 1.66 to 1.97): use spr or cre "
+                          "there.");
         prm.declare_entry("Recovery",
                           "",
                           Patterns::Anything(),

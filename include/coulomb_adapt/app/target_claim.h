@@ -42,12 +42,19 @@ namespace coulomb_adapt
   /** @p reaction_not_carried: cre's sigma^ misses the reaction of nodes
    * held by the scene's point constraints off any held line (point
    * supports; ErrorEstimate::misses_held_reaction()), so it is not a
-   * proven bound even for mu = 0. */
+   * proven bound even for mu = 0. @p degree: the elements' polynomial
+   * degree (zz underestimates with degree 2). */
   TargetClaim
   make_target_claim(const ErrorEstimator         estimator,
                     const double                 friction_coefficient,
                     const std::optional<double> &epsilon_exact,
-                    const bool                   reaction_not_carried);
+                    const bool                   reaction_not_carried,
+                    const unsigned int           degree);
+
+  /** Why zz does not estimate the error of elements of degree @p degree
+   * (>= 2), with the measured effectivities; empty for degree 1. */
+  std::string
+  zz_degree_warning(const unsigned int degree);
 } // namespace coulomb_adapt
 
 #endif
