@@ -528,7 +528,7 @@ namespace coulomb_adapt
           "refinement the previous cycle's few contact nodes place the "
           "stick/slip front only roughly, and the Newton iteration moves it "
           "about one node per step and side (blocks, refine, "
-          "epsilon_0 = 0.5 %: 22 steps from 144 to 23,600 DoFs). Static "
+          "epsilon_0 = 0.5 %: 18 steps from 144 to 27,470 DoFs). Static "
           "scenes only (a load path keeps its warm start), and only above "
           "'Contact/Nested iteration minimum DoFs'; 0: always the warm "
           "start.");
