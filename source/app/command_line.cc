@@ -1,5 +1,6 @@
 #include <coulomb_adapt/app/command_line.h>
 #include <coulomb_adapt/app/input_file_paths.h>
+#include <coulomb_adapt/app/parameter_suggestions.h>
 #include <coulomb_adapt/core/parameter_error.h>
 
 #include <cerrno>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <regex>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -81,6 +83,35 @@ namespace coulomb_adapt
 
   namespace
   {
+    // The declared name a misspelled one in deal.II's message about line
+    // N of the file @p text probably meant: " Did you mean 'NAME'?".
+    std::string
+    suggestion_for_file(const std::string      &message,
+                        const std::string      &text,
+                        const ParameterHandler &prm)
+    {
+      static const std::regex entry(
+        "Line <([0-9]+)>[^:]*: No entry with name <([^>]*)>");
+      static const std::regex subsection(
+        "Line <([0-9]+)>[^:]*: There is no such subsection to be entered: "
+        "(.*)");
+      std::smatch match;
+      const bool  is_entry = std::regex_search(message, match, entry);
+      if (!is_entry && !std::regex_search(message, match, subsection))
+        return "";
+      const std::string path =
+        subsection_path_at_line(text, std::stoul(match[1].str()));
+      const std::string            name = match[2].str();
+      const DeclaredParameterNames names(prm);
+      if (is_entry)
+        return names.suggest_entry(path, name);
+      // deal.II's sentence ends with the name, without a full stop.
+      const std::string suggestion = names.suggest_subsection(path, name);
+      return suggestion.empty() ? "" : "." + suggestion;
+    }
+
+
+
     // deal.II names a misspelled entry but not the entries there are.
     std::string
     unknown_entry_hint(const std::string &message)
@@ -188,9 +219,10 @@ namespace coulomb_adapt
         }
       catch (const std::exception &e)
         {
-          throw ParameterError("in parameter file '" + file +
-                               "': " + user_message(e) +
-                               unknown_entry_hint(user_message(e)));
+          const std::string message = user_message(e);
+          throw ParameterError("in parameter file '" + file + "': " + message +
+                               suggestion_for_file(message, text, prm) +
+                               unknown_entry_hint(message));
         }
     }
 
@@ -219,14 +251,17 @@ namespace coulomb_adapt
               std::string parent;
               for (const auto &e : existing)
                 parent += (parent.empty() ? "" : "/") + e;
-              throw ParameterError("in option -s \"" + path + "=" + value +
-                                   "\": there is "
-                                   "no subsection '" +
-                                   section + "' " +
-                                   (parent.empty() ?
-                                      std::string("at the top level") :
-                                      "in '" + parent + "'") +
-                                   " (--print-parameters lists them)");
+              throw ParameterError(
+                "in option -s \"" + path + "=" + value +
+                "\": there is "
+                "no subsection '" +
+                section + "' " +
+                (parent.empty() ? std::string("at the top level") :
+                                  "in '" + parent + "'") +
+                "." +
+                DeclaredParameterNames(prm).suggest_subsection(parent,
+                                                               section) +
+                " (--print-parameters lists them)");
             }
           existing = next;
         }
@@ -241,9 +276,20 @@ namespace coulomb_adapt
         }
       catch (const std::exception &e)
         {
-          throw ParameterError("in option -s \"" + path + "=" + value +
-                               "\": " + user_message(e) +
-                               unknown_entry_hint(user_message(e)));
+          for (; depth > 0; --depth)
+            prm.leave_subsection();
+          std::string section_path;
+          for (const auto &s : sections)
+            section_path += (section_path.empty() ? "" : "/") + s;
+          const std::string message = user_message(e);
+          const bool        undeclared =
+            message.find("not yet declared") != std::string::npos;
+          throw ParameterError(
+            "in option -s \"" + path + "=" + value + "\": " + message +
+            (undeclared ?
+               DeclaredParameterNames(prm).suggest_entry(section_path, entry) :
+               std::string()) +
+            unknown_entry_hint(message));
         }
       for (; depth > 0; --depth)
         prm.leave_subsection();

@@ -1,0 +1,48 @@
+#ifndef coulomb_adapt_app_parameter_suggestions_h
+#define coulomb_adapt_app_parameter_suggestions_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <map>
+#include <set>
+#include <string>
+
+namespace coulomb_adapt
+{
+  /**
+   * The entry and subsection names a ParameterHandler declares, by
+   * subsection path ("" for the top level, "Scene/Blocks"), so that a
+   * message about a misspelled name can say which declared name was
+   * probably meant. deal.II's own messages name the unknown name only.
+   */
+  class DeclaredParameterNames
+  {
+  public:
+    explicit DeclaredParameterNames(const dealii::ParameterHandler &prm);
+
+    /** " Did you mean 'NAME'?" for the entry of subsection @p path
+     * nearest to @p name, or "" if none is near. */
+    std::string
+    suggest_entry(const std::string &path, const std::string &name) const;
+
+    /** The same for the subsections of @p path. */
+    std::string
+    suggest_subsection(const std::string &path, const std::string &name) const;
+
+  private:
+    struct Level
+    {
+      std::set<std::string> entries;
+      std::set<std::string> subsections;
+    };
+    std::map<std::string, Level> levels;
+  };
+
+  /** The subsection path ("A/B", "" at the top) open at line @p line
+   * (1-based) of the parameter file text @p text: where deal.II's parser
+   * stood when it reported that line. */
+  std::string
+  subsection_path_at_line(const std::string &text, const unsigned int line);
+} // namespace coulomb_adapt
+
+#endif
