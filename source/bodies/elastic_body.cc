@@ -18,6 +18,7 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparsity_tools.h>
 
 #include <deal.II/numerics/vector_tools.h>
@@ -362,8 +363,27 @@ namespace coulomb_adapt
   ElasticBody::solve(const parameters::LinearSolver &solver_parameters)
   {
     TrilinosWrappers::MPI::Vector owned(locally_owned_dofs, mpi_communicator);
-    const LinearSolverReport      report = solve_linear_system(
-      matrix, owned, rhs, rigid_body_modes(), solver_parameters);
+    LinearSolverReport            report;
+    try
+      {
+        report = solve_linear_system(
+          matrix, owned, rhs, rigid_body_modes(), solver_parameters);
+      }
+    catch (const SolverControl::NoConvergence &e)
+      {
+        // deal.II's text names neither the body nor the parameter.
+        AssertThrow(false,
+                    ExcMessage(
+                      "body '" + name() +
+                      "': the iterative linear solver (CG + AMG) did not "
+                      "converge in " +
+                      std::to_string(e.last_step) +
+                      " iterations (the limit 'Linear solver/Maximum "
+                      "iterations'; residual " +
+                      Utilities::to_string(e.last_residual) +
+                      "). Raise 'Linear solver/Maximum iterations', or use "
+                      "'Linear solver/Type = direct'."));
+      }
     constraints_.distribute(owned);
     displacement = owned;
     return report;

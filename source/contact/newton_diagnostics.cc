@@ -196,9 +196,12 @@ namespace coulomb_adapt
     {
       return ContactDiagnosis(
         newton_step(step) + ": the iterative linear solver did not converge (" +
-          std::to_string(e.last_step) + " iterations, residual " +
+          std::to_string(e.last_step) +
+          " iterations, the limit 'Linear solver/Maximum iterations'; "
+          "residual " +
           Utilities::to_string(e.last_residual) +
-          "). Use 'Linear solver/Type = direct' for the contact system.",
+          "). Use 'Linear solver/Type = direct' for the contact system, or "
+          "raise 'Linear solver/Maximum iterations'.",
         step);
     }
 
