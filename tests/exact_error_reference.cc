@@ -10,8 +10,10 @@
 //    patch test (both solutions exact), and on blocks with frictionless
 //    contact (`Hold centre line`) on adapted meshes to the contact work
 //    the identity leaves out.
-// Extrapolated over the three levels (judged, R - 1, R; a geometric decay
-// per level), the exact error is recovered to 1e-3 there.
+// The identity e^2 = d^2 + e_R^2 of nested spaces holds to 1e-4 on the
+// triangles (to 1e-3 with hanging nodes). Extrapolated over the three
+// levels (judged, R - 1, R; a geometric decay per level), the exact error
+// is recovered to 2e-3 there.
 // 1 and 2 ranks: the same numbers.
 
 #include <coulomb_adapt/adaptation/mesh_adaptation.h>
@@ -204,7 +206,12 @@ main(int argc, char **argv)
                  e_reference.difference_squared) /
         e.difference_squared;
       out << "    |e^2 - d^2 - e_R^2| / e^2 = " << pythagoras << std::endl;
-      AssertThrow(pythagoras < 1e-2, ExcMessage("Pythagoras fails"));
+      // Triangles: 8.4e-6 since the reference stress is read in the cell
+      // that holds each point (before, deal.II's RemotePointEvaluation
+      // took a neighbour for 1 in 16 points: 5.8e-4); quadrilaterals with
+      // hanging nodes 2.9e-4.
+      AssertThrow(pythagoras < (cell_type == "triangle" ? 1e-4 : 1e-3),
+                  ExcMessage("Pythagoras fails"));
       AssertThrow(epsilon_reference <= epsilon_true &&
                     epsilon_reference >=
                       std::sqrt(std::pow(epsilon_true, 2) -

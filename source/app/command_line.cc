@@ -84,7 +84,9 @@ namespace coulomb_adapt
   namespace
   {
     // The declared name a misspelled one in deal.II's message about line
-    // N of the file @p text probably meant: " Did you mean 'NAME'?".
+    // N of the file @p text probably meant: " Did you mean 'NAME'?"; or,
+    // for a value that does not match its pattern, what the entry takes
+    // (its documentation: deal.II names the pattern only).
     std::string
     suggestion_for_file(const std::string      &message,
                         const std::string      &text,
@@ -95,14 +97,25 @@ namespace coulomb_adapt
       static const std::regex subsection(
         "Line <([0-9]+)>[^:]*: There is no such subsection to be entered: "
         "(.*)");
+      static const std::regex value(
+        "Line <([0-9]+)>[^:]*:[\\s\\S]*for the entry named\\s+(.*\\S)\\s+"
+        "does not match");
       std::smatch match;
-      const bool  is_entry = std::regex_search(message, match, entry);
+      if (std::regex_search(message, match, value))
+        {
+          const std::string path =
+            subsection_path_at_line(text, std::stoul(match[1].str()));
+          const std::string description =
+            DeclaredParameters(prm).describe_entry(path, match[2].str());
+          return description.empty() ? "" : "\n   " + description;
+        }
+      const bool is_entry = std::regex_search(message, match, entry);
       if (!is_entry && !std::regex_search(message, match, subsection))
         return "";
       const std::string path =
         subsection_path_at_line(text, std::stoul(match[1].str()));
-      const std::string            name = match[2].str();
-      const DeclaredParameterNames names(prm);
+      const std::string        name = match[2].str();
+      const DeclaredParameters names(prm);
       if (is_entry)
         return names.suggest_entry(path, name);
       // deal.II's sentence ends with the name, without a full stop.
@@ -259,8 +272,7 @@ namespace coulomb_adapt
                 (parent.empty() ? std::string("at the top level") :
                                   "in '" + parent + "'") +
                 "." +
-                DeclaredParameterNames(prm).suggest_subsection(parent,
-                                                               section) +
+                DeclaredParameters(prm).suggest_subsection(parent, section) +
                 " (--print-parameters lists them)");
             }
           existing = next;
@@ -284,10 +296,15 @@ namespace coulomb_adapt
           const std::string message = user_message(e);
           const bool        undeclared =
             message.find("not yet declared") != std::string::npos;
+          const bool mismatch =
+            message.find("does not match the given pattern") !=
+            std::string::npos;
           throw ParameterError(
             "in option -s \"" + path + "=" + value + "\": " + message +
             (undeclared ?
-               DeclaredParameterNames(prm).suggest_entry(section_path, entry) :
+               DeclaredParameters(prm).suggest_entry(section_path, entry) :
+             mismatch ?
+               DeclaredParameters(prm).describe_entry(section_path, entry) :
                std::string()) +
             unknown_entry_hint(message));
         }

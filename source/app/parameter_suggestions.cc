@@ -91,37 +91,52 @@ namespace coulomb_adapt
 
 
 
-  // From deal.II's short PRM output: "subsection NAME", "set NAME = ..."
-  // and "end" lines.
-  DeclaredParameterNames::DeclaredParameterNames(
-    const dealii::ParameterHandler &prm)
+  // From deal.II's PRM output: "subsection NAME", "set NAME = ..." and
+  // "end" lines, each entry after the comment lines of its documentation.
+  DeclaredParameters::DeclaredParameters(const dealii::ParameterHandler &prm)
   {
     std::ostringstream out;
-    prm.print_parameters(out, dealii::ParameterHandler::ShortPRM);
+    prm.print_parameters(out, dealii::ParameterHandler::PRM);
     std::vector<std::string> path;
+    std::string              comment;
     levels[""];
-    visit_lines(out.str(), [&](const unsigned int, const std::string &content) {
-      if (content.rfind("subsection ", 0) == 0)
-        {
-          const std::string name = trimmed(content.substr(11));
-          levels[joined(path)].subsections.insert(name);
-          path.push_back(name);
-          levels[joined(path)];
-        }
-      else if (content == "end" && !path.empty())
-        path.pop_back();
-      else if (content.rfind("set ", 0) == 0)
-        levels[joined(path)].entries.insert(
-          trimmed(content.substr(4, content.find('=') - 4)));
-      return true;
-    });
+    std::istringstream input(out.str());
+    for (std::string line; std::getline(input, line);)
+      {
+        const std::string text = trimmed(line);
+        if (text.rfind("#", 0) == 0)
+          {
+            // Documentation; the listing's underline is none.
+            const std::string words = trimmed(text.substr(1));
+            if (words.find_first_not_of('-') != std::string::npos)
+              comment += (comment.empty() ? "" : " ") + words;
+            continue;
+          }
+        if (text.rfind("subsection ", 0) == 0)
+          {
+            const std::string name = trimmed(text.substr(11));
+            levels[joined(path)].subsections.insert(name);
+            path.push_back(name);
+            levels[joined(path)];
+          }
+        else if (text == "end" && !path.empty())
+          path.pop_back();
+        else if (text.rfind("set ", 0) == 0)
+          {
+            const std::string name =
+              trimmed(text.substr(4, text.find('=') - 4));
+            levels[joined(path)].entries.insert(name);
+            levels[joined(path)].documentation[name] = comment;
+          }
+        comment.clear();
+      }
   }
 
 
 
   std::string
-  DeclaredParameterNames::suggest_entry(const std::string &path,
-                                        const std::string &name) const
+  DeclaredParameters::suggest_entry(const std::string &path,
+                                    const std::string &name) const
   {
     const auto level = levels.find(path);
     return level == levels.end() ? "" : nearest(level->second.entries, name);
@@ -130,12 +145,28 @@ namespace coulomb_adapt
 
 
   std::string
-  DeclaredParameterNames::suggest_subsection(const std::string &path,
-                                             const std::string &name) const
+  DeclaredParameters::suggest_subsection(const std::string &path,
+                                         const std::string &name) const
   {
     const auto level = levels.find(path);
     return level == levels.end() ? "" :
                                    nearest(level->second.subsections, name);
+  }
+
+
+
+  std::string
+  DeclaredParameters::describe_entry(const std::string &path,
+                                     const std::string &entry) const
+  {
+    const auto level = levels.find(path);
+    if (level == levels.end())
+      return "";
+    const auto doc = level->second.documentation.find(entry);
+    if (doc == level->second.documentation.end() || doc->second.empty())
+      return "";
+    return " '" + (path.empty() ? "" : path + "/") + entry +
+           "': " + doc->second;
   }
 
 

@@ -11,14 +11,16 @@ namespace coulomb_adapt
 {
   /**
    * The entry and subsection names a ParameterHandler declares, by
-   * subsection path ("" for the top level, "Scene/Blocks"), so that a
-   * message about a misspelled name can say which declared name was
-   * probably meant. deal.II's own messages name the unknown name only.
+   * subsection path ("" for the top level, "Scene/Blocks"), with the
+   * entries' documentation, so that a message about a misspelled name can
+   * say which declared name was probably meant, and one about a value
+   * that does not match its pattern what the entry takes. deal.II's own
+   * messages name the unknown name, or the pattern, only.
    */
-  class DeclaredParameterNames
+  class DeclaredParameters
   {
   public:
-    explicit DeclaredParameterNames(const dealii::ParameterHandler &prm);
+    explicit DeclaredParameters(const dealii::ParameterHandler &prm);
 
     /** " Did you mean 'NAME'?" for the entry of subsection @p path
      * nearest to @p name, or "" if none is near. */
@@ -29,11 +31,16 @@ namespace coulomb_adapt
     std::string
     suggest_subsection(const std::string &path, const std::string &name) const;
 
+    /** " 'PATH/ENTRY': its documentation", or "" for no such entry. */
+    std::string
+    describe_entry(const std::string &path, const std::string &entry) const;
+
   private:
     struct Level
     {
-      std::set<std::string> entries;
-      std::set<std::string> subsections;
+      std::set<std::string>              entries;
+      std::set<std::string>              subsections;
+      std::map<std::string, std::string> documentation;
     };
     std::map<std::string, Level> levels;
   };

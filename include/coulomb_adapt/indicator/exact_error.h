@@ -101,8 +101,10 @@ namespace coulomb_adapt
    * (both bodies, as they are in this cycle) refined @p refinements times
    * uniformly and solved with contact (quietly), so that the reference is
    * finer than the judged meshes everywhere (theory.md section 8). Its
-   * stress is evaluated at arbitrary points across ranks
-   * (Utilities::MPI::RemotePointEvaluation).
+   * stress is evaluated at arbitrary points across ranks, each in the
+   * owned cell that holds it (a bounding-box tree and the reference
+   * cell's own test; deal.II 9.4's RemotePointEvaluation took neighbours
+   * on triangles).
    *
    * Its own error is estimated from the solution one refinement coarser
    * (refinements - 1; the judged FE solution itself when refinements = 1):
