@@ -229,9 +229,9 @@ namespace coulomb_adapt
     // check), and missed a few points on several ranks.
     std::vector<std::optional<Gradient>>
     owned_cell_gradients(const ElasticBody           &body,
+                         const GridTools::Cache<2>   &cache,
                          const std::vector<Point<2>> &points)
     {
-      const GridTools::Cache<2> cache(body.triangulation(), body.mapping());
       const auto &tree = cache.get_locally_owned_cell_bounding_boxes_rtree();
       // The points of each cell, with their unit points, so that each
       // cell is evaluated once for all of its points.
@@ -307,8 +307,10 @@ namespace coulomb_adapt
     std::vector<Gradient>
     gradients_at(const ElasticBody &body, const std::vector<Point<2>> &points)
     {
-      const MPI_Comm            comm = body.triangulation().get_communicator();
-      const auto                result = owned_cell_gradients(body, points);
+      const MPI_Comm comm = body.triangulation().get_communicator();
+      // One tree of the owned cells for this rank's points and the others'.
+      const GridTools::Cache<2> cache(body.triangulation(), body.mapping());
+      const auto result = owned_cell_gradients(body, cache, points);
       std::vector<unsigned int> missing;
       std::vector<Point<2>>     wanted;
       for (unsigned int i = 0; i < points.size(); ++i)
@@ -321,7 +323,8 @@ namespace coulomb_adapt
       const auto all_wanted = Utilities::MPI::all_gather(comm, wanted);
       std::vector<std::vector<double>> answers(all_wanted.size());
       for (unsigned int rank = 0; rank < all_wanted.size(); ++rank)
-        for (const auto &g : owned_cell_gradients(body, all_wanted[rank]))
+        for (const auto &g :
+             owned_cell_gradients(body, cache, all_wanted[rank]))
           answers[rank].insert(answers[rank].end(),
                                {g ? 1. : 0.,
                                 g ? (*g)[0][0] : 0.,
