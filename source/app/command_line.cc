@@ -147,46 +147,24 @@ namespace coulomb_adapt
     void
     reject_repeated_entries(const std::string &text, const std::string &file)
     {
-      std::istringstream                  input(text);
-      std::vector<std::string>            path;
       std::map<std::string, unsigned int> first_line;
-      std::string                         line, joined;
-      unsigned int                        line_number = 0, start = 0;
-      while (std::getline(input, line))
-        {
-          ++line_number;
-          line = line.substr(0, line.find('#'));
-          if (joined.empty())
-            start = line_number;
-          if (!line.empty() && line.back() == '\\')
-            {
-              joined += line.substr(0, line.size() - 1);
-              continue;
-            }
-          joined += line;
-          const std::string statement = Utilities::trim(joined);
-          joined.clear();
-          if (statement.rfind("subsection ", 0) == 0)
-            path.push_back(Utilities::trim(statement.substr(11)));
-          else if (statement == "end" && !path.empty())
-            path.pop_back();
-          else if (statement.rfind("set ", 0) == 0 &&
-                   statement.find('=') != std::string::npos)
-            {
-              std::string key;
-              for (const auto &p : path)
-                key += p + "/";
-              key +=
-                Utilities::trim(statement.substr(4, statement.find('=') - 4));
-              const auto [where, inserted] = first_line.emplace(key, start);
-              if (!inserted)
-                throw ParameterError("in parameter file '" + file + "': line " +
-                                     std::to_string(start) + " sets '" + key +
-                                     "' again (first on line " +
-                                     std::to_string(where->second) +
-                                     "); each entry may be set once");
-            }
-        }
+      for (const ParameterStatement &statement : parameter_statements(text))
+        if (statement.text.rfind("set ", 0) == 0 &&
+            statement.text.find('=') != std::string::npos)
+          {
+            const std::string key =
+              (statement.path.empty() ? "" : statement.path + "/") +
+              Utilities::trim(
+                statement.text.substr(4, statement.text.find('=') - 4));
+            const auto [where, inserted] =
+              first_line.emplace(key, statement.line);
+            if (!inserted)
+              throw ParameterError("in parameter file '" + file + "': line " +
+                                   std::to_string(statement.line) + " sets '" +
+                                   key + "' again (first on line " +
+                                   std::to_string(where->second) +
+                                   "); each entry may be set once");
+          }
     }
 
 

@@ -1,3 +1,5 @@
+#include <deal.II/base/utilities.h>
+
 #include <coulomb_adapt/app/parameter_suggestions.h>
 
 #include <algorithm>
@@ -10,40 +12,12 @@ namespace coulomb_adapt
   namespace
   {
     std::string
-    trimmed(const std::string &s)
-    {
-      const auto begin = s.find_first_not_of(" \t\r");
-      if (begin == std::string::npos)
-        return "";
-      const auto end = s.find_last_not_of(" \t\r");
-      return s.substr(begin, end - begin + 1);
-    }
-
-    std::string
     joined(const std::vector<std::string> &path)
     {
       std::string s;
       for (const auto &p : path)
         s += (s.empty() ? "" : "/") + p;
       return s;
-    }
-
-    // The subsection and end lines of parameter file text, with the line
-    // numbers they stand on; blanks and comments removed.
-    template <typename Visitor>
-    void
-    visit_lines(const std::string &text, Visitor &&visit)
-    {
-      std::istringstream input(text);
-      std::string        line;
-      unsigned int       number = 0;
-      while (std::getline(input, line))
-        {
-          ++number;
-          const std::string content = trimmed(line.substr(0, line.find('#')));
-          if (!visit(number, content))
-            return;
-        }
     }
 
     // Edit distance between the lower-case forms of @p a and @p b.
@@ -103,18 +77,18 @@ namespace coulomb_adapt
     std::istringstream input(out.str());
     for (std::string line; std::getline(input, line);)
       {
-        const std::string text = trimmed(line);
+        const std::string text = dealii::Utilities::trim(line);
         if (text.rfind("#", 0) == 0)
           {
             // Documentation; the listing's underline is none.
-            const std::string words = trimmed(text.substr(1));
+            const std::string words = dealii::Utilities::trim(text.substr(1));
             if (words.find_first_not_of('-') != std::string::npos)
               comment += (comment.empty() ? "" : " ") + words;
             continue;
           }
         if (text.rfind("subsection ", 0) == 0)
           {
-            const std::string name = trimmed(text.substr(11));
+            const std::string name = dealii::Utilities::trim(text.substr(11));
             levels[joined(path)].subsections.insert(name);
             path.push_back(name);
             levels[joined(path)];
@@ -124,7 +98,7 @@ namespace coulomb_adapt
         else if (text.rfind("set ", 0) == 0)
           {
             const std::string name =
-              trimmed(text.substr(4, text.find('=') - 4));
+              dealii::Utilities::trim(text.substr(4, text.find('=') - 4));
             levels[joined(path)].entries.insert(name);
             levels[joined(path)].documentation[name] = comment;
           }
@@ -171,20 +145,48 @@ namespace coulomb_adapt
 
 
 
+  std::vector<ParameterStatement>
+  parameter_statements(const std::string &text)
+  {
+    std::vector<ParameterStatement> statements;
+    std::vector<std::string>        path;
+    std::istringstream              input(text);
+    std::string                     line, joined_lines;
+    unsigned int                    line_number = 0, start = 0;
+    while (std::getline(input, line))
+      {
+        ++line_number;
+        line = line.substr(0, line.find('#'));
+        if (joined_lines.empty())
+          start = line_number;
+        if (!line.empty() && line.back() == '\\')
+          {
+            joined_lines += line.substr(0, line.size() - 1);
+            continue;
+          }
+        joined_lines += line;
+        const std::string statement = dealii::Utilities::trim(joined_lines);
+        joined_lines.clear();
+        if (statement.empty())
+          continue;
+        statements.push_back({start, joined(path), statement});
+        if (statement.rfind("subsection ", 0) == 0)
+          path.push_back(dealii::Utilities::trim(statement.substr(11)));
+        else if (statement == "end" && !path.empty())
+          path.pop_back();
+      }
+    return statements;
+  }
+
+
+
   std::string
   subsection_path_at_line(const std::string &text, const unsigned int line)
   {
-    std::vector<std::string> path;
-    visit_lines(text,
-                [&](const unsigned int number, const std::string &content) {
-                  if (number >= line)
-                    return false;
-                  if (content.rfind("subsection ", 0) == 0)
-                    path.push_back(trimmed(content.substr(11)));
-                  else if (content == "end" && !path.empty())
-                    path.pop_back();
-                  return true;
-                });
-    return joined(path);
+    std::string path;
+    for (const ParameterStatement &statement : parameter_statements(text))
+      if (statement.line <= line)
+        path = statement.path;
+    return path;
   }
 } // namespace coulomb_adapt

@@ -45,18 +45,21 @@ namespace coulomb_adapt
       {
         return std::log2(stress_scale) - 0.5 * (std::log2(E1) + std::log2(E2));
       }
+
+
+
+      // The strain scale, the stress over the moduli's geometric mean, is 0
+      // or comfortable.
+      bool
+      strain_is_comfortable(const double stress_scale,
+                            const double E1,
+                            const double E2)
+      {
+        return stress_scale == 0 ||
+               std::abs(log2_strain(stress_scale, E1, E2)) <=
+                 std::log2(comfortable_scale);
+      }
     } // namespace
-
-
-
-    bool
-    strain_is_comfortable(const double stress_scale,
-                          const double E1,
-                          const double E2)
-    {
-      return stress_scale == 0 || std::abs(log2_strain(stress_scale, E1, E2)) <=
-                                    std::log2(comfortable_scale);
-    }
 
 
 

@@ -476,8 +476,10 @@ namespace coulomb_adapt
     const CreMinimisation               &minimisation,
     TimerOutput                         *timer)
   {
-    // Ghosted copies: the node systems read the ghost cells too (the
-    // corrected solutions come without ghost entries).
+    // Ghosted copies: the node systems read the ghost cells too, and a
+    // caller's vector may hold the owned entries only (the corrected
+    // solutions did until 2026-11-30; CorrectedContactSolution's now
+    // carry them, so for the program this copy is a plain copy).
     const MPI_Comm comm = body.triangulation().get_communicator();
     const TrilinosWrappers::MPI::Vector u = ghosted_copy(body, u_equilibrium);
     const TrilinosWrappers::MPI::Vector u_kinematic =

@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace coulomb_adapt
 {
@@ -45,9 +46,25 @@ namespace coulomb_adapt
     std::map<std::string, Level> levels;
   };
 
-  /** The subsection path ("A/B", "" at the top) open at line @p line
-   * (1-based) of the parameter file text @p text: where deal.II's parser
-   * stood when it reported that line. */
+  /** One statement of parameter file text, as deal.II's parser reads it:
+   * comments removed, lines ending in a backslash joined, blanks around
+   * it trimmed. */
+  struct ParameterStatement
+  {
+    /** Its first line (1-based). */
+    unsigned int line;
+    /** The subsection path it stands in ("A/B", "" at the top). */
+    std::string path;
+    std::string text;
+  };
+
+  /** The non-empty statements of @p text, in order. */
+  std::vector<ParameterStatement>
+  parameter_statements(const std::string &text);
+
+  /** The subsection path ("A/B", "" at the top) of the statement at line
+   * @p line (1-based) of the parameter file text @p text: where deal.II's
+   * parser stood when it reported that line. */
   std::string
   subsection_path_at_line(const std::string &text, const unsigned int line);
 } // namespace coulomb_adapt

@@ -48,14 +48,6 @@ namespace coulomb_adapt
     double
     power_of_two_near(const double magnitude);
 
-    /** Whether the strain scale of loads of stress scale @p stress_scale
-     * (MPa, >= 0) on moduli @p E1, @p E2 (MPa, > 0), the stress over the
-     * moduli's geometric mean, is 0 or comfortable. */
-    bool
-    strain_is_comfortable(const double stress_scale,
-                          const double E1,
-                          const double E2);
-
     /** Whether a problem with stress scale @p stress_scale (MPa, >= 0)
      * and moduli @p E1, @p E2 (MPa) can be solved as given: all its
      * scales are comfortable (is_comfortable). */
