@@ -150,6 +150,49 @@ main(int argc, char **argv)
       AssertThrow(unchanged.skipped && difference.linfty_norm() == 0,
                   ExcMessage("admissible reactions were corrected"));
 
+      // One active node pushed out of the cone by 1e-9 of the largest
+      // pressure: beyond round-off (1e-10), so projected, but within a
+      // contact solve that accepted a residual of 1e-8, whose corrected
+      // problem is skipped; with nothing accepted it is solved.
+      {
+        auto   nudged  = p->solver->node_states();
+        double largest = 0;
+        for (const auto &s : nudged)
+          largest = std::max(largest, s.pressure);
+        for (auto &s : nudged)
+          if (s.status != ContactStatus::open)
+            {
+              s.tangential_traction =
+                std::copysign(mu * s.pressure + 1e-9 * largest,
+                              s.tangential_traction);
+              break;
+            }
+        const auto within =
+          correct_contact_solution(slave,
+                                   master,
+                                   mortar,
+                                   nudged,
+                                   mu,
+                                   p->parameters.linear_solver,
+                                   ContactLoadForm::mortar,
+                                   /*negligible_change=*/1e-8);
+        const auto solved = correct_contact_solution(
+          slave, master, mortar, nudged, mu, p->parameters.linear_solver);
+        out << "  one reaction 1e-9 outside the cone: "
+            << within.n_projected_nodes
+            << " projected; accepted residual 1e-8: corrected problem "
+            << (within.skipped && within.within_solve_accuracy ? "skipped" :
+                                                                 "solved")
+            << "; accepted residual 0: "
+            << (solved.skipped ? "skipped" : "solved") << std::endl;
+        AssertThrow(within.n_projected_nodes == 1 && within.skipped &&
+                      within.within_solve_accuracy &&
+                      within.relative_change <= 1e-8 &&
+                      solved.n_projected_nodes == 1 && !solved.skipped &&
+                      !solved.within_solve_accuracy,
+                    ExcMessage("the accepted residual is not honoured"));
+      }
+
       // Push the stick nodes' tangential tractions out of the cone.
       auto         states    = p->solver->node_states();
       unsigned int n_outside = 0;

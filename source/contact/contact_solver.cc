@@ -251,6 +251,8 @@ namespace coulomb_adapt
         residual <= std::max(contact_parameters.tolerance, floor))
       {
         check_equilibrium(k);
+        accepted_residual_of_solve =
+          std::max(contact_parameters.tolerance, floor);
         report.converged           = true;
         report.slave_rotation_free = turning;
         newton_diagnostics::log_convergence(
@@ -609,5 +611,13 @@ namespace coulomb_adapt
   ContactSolver::mortar_interface() const
   {
     return mortar;
+  }
+
+
+
+  double
+  ContactSolver::accepted_residual() const
+  {
+    return accepted_residual_of_solve;
   }
 } // namespace coulomb_adapt

@@ -192,7 +192,9 @@ namespace coulomb_adapt
                           "the complementarity conditions, relative to the "
                           "largest contact pressure, is below this "
                           "(0 ... 1e-6; 0 accepts the round-off floor "
-                          "only).");
+                          "only). The error indicator's correction treats "
+                          "contact reactions that moved by less as "
+                          "unchanged (doc/indicator.md section 1).");
         declare_start_entries(prm);
       }
       prm.leave_subsection();

@@ -335,7 +335,8 @@ namespace coulomb_adapt
                                     contact.node_states(),
                                     mu,
                                     solver_parameters,
-                                    load_form);
+                                    load_form,
+                                    contact.accepted_residual());
   }
 
 
@@ -373,6 +374,9 @@ namespace coulomb_adapt
             {
               ++corrected.n_projected_nodes;
               change[j] = dn * nodes[j].normal + dt * nodes[j].tangent;
+              corrected.largest_nodal_change =
+                std::max(corrected.largest_nodal_change,
+                         change[j].norm() / largest);
             }
           corrected.fields[j].pressure            = projected[0];
           corrected.fields[j].tangential_traction = projected[1];
@@ -551,18 +555,26 @@ namespace coulomb_adapt
                            const std::vector<ContactNodeState> &states,
                            const double                         mu,
                            const parameters::LinearSolver &solver_parameters,
-                           const ContactLoadForm           load_form)
+                           const ContactLoadForm           load_form,
+                           const double                    negligible_change)
   {
     CorrectedContactSolution corrected;
     corrected.fields.resize(states.size());
     corrected.fe_displacement = {{&slave.solution(), &master.solution()}};
 
     const double largest = project_reactions(mortar, states, mu, corrected);
-    corrected.skipped    = (corrected.n_projected_nodes == 0);
+    corrected.within_solve_accuracy =
+      corrected.n_projected_nodes > 0 &&
+      corrected.relative_change <= negligible_change;
+    corrected.skipped =
+      (corrected.n_projected_nodes == 0) || corrected.within_solve_accuracy;
     // The consistent load differs from the mortar load the FE solution
     // balances whenever there is any contact traction at all.
     if (load_form == ContactLoadForm::consistent)
-      corrected.skipped = (largest == 0);
+      {
+        corrected.skipped               = (largest == 0);
+        corrected.within_solve_accuracy = false;
+      }
 
     if (!corrected.skipped)
       solve_corrected_problem(

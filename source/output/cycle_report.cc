@@ -257,7 +257,16 @@ namespace coulomb_adapt
   void
   CycleReport::record_correction(const CorrectedContactSolution &c)
   {
-    if (c.skipped)
+    if (c.within_solve_accuracy)
+      pcout << "  correction: " << c.n_projected_nodes
+            << " nodal reactions projected onto the Coulomb cone, "
+               "relative change "
+            << std::scientific << std::setprecision(3) << c.relative_change
+            << ", largest nodal change " << std::setprecision(2)
+            << c.largest_nodal_change << std::defaultfloat
+            << ": within the contact solve's accepted residual, the "
+               "corrected problem is skipped (U_c = U_h)";
+    else if (c.skipped)
       pcout << "  correction: skipped, the FE reactions are in the "
                "Coulomb cone (corrected fields = FE fields)";
     else
@@ -265,7 +274,9 @@ namespace coulomb_adapt
             << " nodal reactions projected onto the Coulomb cone, "
                "relative change "
             << std::scientific << std::setprecision(3) << c.relative_change
-            << std::defaultfloat << "; corrected problem solved";
+            << ", largest nodal change " << std::setprecision(2)
+            << c.largest_nodal_change << std::defaultfloat
+            << "; corrected problem solved";
     const double max_penetration = physical(c.max_penetration,
                                             units::Kind::displacement,
                                             "max_penetration_clipped");
@@ -274,6 +285,8 @@ namespace coulomb_adapt
             << " mm clipped";
     pcout << std::endl;
     record["correction"] = {{"skipped", c.skipped},
+                            {"within_solve_accuracy", c.within_solve_accuracy},
+                            {"largest_nodal_change", c.largest_nodal_change},
                             {"relative_change", c.relative_change},
                             {"projected_nodes", c.n_projected_nodes},
                             {"max_penetration_clipped", max_penetration}};

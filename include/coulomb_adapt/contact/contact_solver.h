@@ -150,6 +150,9 @@ namespace coulomb_adapt
     const MortarInterface &
     mortar_interface() const override;
 
+    double
+    accepted_residual() const override;
+
   private:
     /** The mortar integrals, the condensation, the Newton system for the
      * chosen solver, the constants of the active set rule and the states
@@ -263,6 +266,8 @@ namespace coulomb_adapt
     /** Bound on the round-off of the nodal multipliers at the last
      * evaluation (MPa). */
     double multiplier_round_off = 0;
+    /** max(Contact/Tolerance, round-off floor) of the converged step. */
+    double accepted_residual_of_solve = 0;
 
     /** Krylov + AMG: the Newton systems are solved with the contact
      * conditions eliminated; direct solves take the row-replacing

@@ -78,6 +78,13 @@ namespace coulomb_adapt
 
     virtual const std::vector<ContactNodeState> &
     node_states() const = 0;
+
+    /** The complementarity residual, relative to the largest contact
+     * pressure, that the solve accepted as converged: max(Contact/
+     * Tolerance, the multipliers' round-off floor). Contact fields that
+     * differ by less are the same solution to the solve's accuracy. */
+    virtual double
+    accepted_residual() const = 0;
   };
 } // namespace coulomb_adapt
 

@@ -36,6 +36,14 @@ namespace coulomb_adapt
     double relative_change = 0;
     /** Slave nodes whose reaction the projection moved. */
     unsigned int n_projected_nodes = 0;
+    /** The largest move of a nodal reaction, relative to the largest
+     * nodal reaction. */
+    double largest_nodal_change = 0;
+    /** True when the projection moved reactions, but relative_change is
+     * below the contact solve's accepted residual: the corrected problem
+     * would return U_h to the solve's accuracy, so it was not solved
+     * (skipped is true as well). */
+    bool within_solve_accuracy = false;
     /** Largest nodal penetration of W_c (mm), clipped by the contact term;
      * 0 if none. */
     double max_penetration = 0;
@@ -64,7 +72,13 @@ namespace coulomb_adapt
    * traction (R_c on body 1, -R_c on body 2), applied in the same mortar
    * form as in the contact solve (D R_c on the slave nodes, M^T lambda_c on
    * the master nodes). With R_c = R_h that problem returns U_h exactly,
-   * which is why the solve can be skipped when nothing moved.
+   * which is why the solve can be skipped when nothing moved, and also
+   * when the reactions moved, in the norm of relative_change, by less
+   * than the solve's accepted residual (ContactSolution::
+   * accepted_residual()): reactions outside the cone by that little are
+   * the Newton iteration's own inaccuracy (it accepted them), and the
+   * load of the corrected problem would differ from U_h's by as little.
+   * (The consistent load form always solves.)
    *
    * A body whose supports do not hold all its rigid motions (body 1 of
    * `blocks` is held by contact alone) is singular under prescribed
@@ -83,7 +97,8 @@ namespace coulomb_adapt
     const ContactLoadForm           load_form = ContactLoadForm::mortar);
 
   /** The same, for given nodal contact states on @p mortar (the
-   * solver's, or modified ones in tests). */
+   * solver's, or modified ones in tests), solved to the accepted residual
+   * @p negligible_change (0: any move beyond round-off is solved). */
   CorrectedContactSolution
   correct_contact_solution(
     const ElasticBody                   &slave,
@@ -92,7 +107,8 @@ namespace coulomb_adapt
     const std::vector<ContactNodeState> &states,
     const double                         friction_coefficient,
     const parameters::LinearSolver      &solver_parameters,
-    const ContactLoadForm                load_form = ContactLoadForm::mortar);
+    const ContactLoadForm                load_form = ContactLoadForm::mortar,
+    const double                         negligible_change = 0);
 
   /** The contact traction on body 1, R = -lambda, at the points of
    * MortarInterface::overlap_quadrature(): the nodal values of @p fields
