@@ -23,8 +23,11 @@
 //    strategy rounds r_E to whole levels, which gave 2.2 times here; gmsh
 //    1.06 times) and the log says the mesh was limited;
 //  - an epsilon_0 far above reach (100 %) with 'Over-refinement ratio'
-//    coarsens down to gmsh's coarsest mesh of the geometry and stops at
-//    its first repeat (it used to solve it on every cycle left);
+//    coarsens down to 'Minimum number of cells' (100) and stops there,
+//    with at least that many cells (it went on to 4 + 4 triangles, where
+//    zz is meaningless); with no minimum, down to gmsh's coarsest mesh of
+//    the geometry, and it stops at its first repeat (it used to solve it
+//    on every cycle left);
 //  - the 2-rank run prints what the 1-rank run prints (same meshes, DoFs,
 //    epsilon, Newton steps).
 
@@ -287,42 +290,66 @@ main(int argc, char **argv)
     AssertThrow(epsilon >= 0.04 && epsilon <= 0.05 && last_cells < most_cells,
                 ExcMessage("the over-refined mesh was not optimised again"));
   }
-  {
-    // epsilon_0 far above reach, with 'Over-refinement ratio' (as in
-    // prm/blocks.prm): every mesh is over-refined, and the remesh plans coarser
-    // meshes until gmsh's coarsest mesh of the geometry (4 + 4 triangles),
-    // which a further plan returns unchanged. The loop stops on the first
-    // repeat instead of solving that mesh again on every cycle left (it solved
-    // cycles 4 to 10 on it).
-    out << "remesh, P1, epsilon_0 = 100 %, 12 cycles allowed" << std::endl;
-    auto settings =
-      blocks("triangle", "remesh", "3, 3", "6, 7", "100", "output-r100");
-    settings.push_back({"Adaptation/Over-refinement ratio", "0.8"});
-    const ProgramRun run(settings);
-    const auto      &cycles  = run.summary["cycles"];
-    unsigned int     repeats = 0;
-    for (unsigned int c = 0; c < cycles.size(); ++c)
-      {
-        const auto n_cells = [&](const unsigned int b) {
-          return cycles[c]["bodies"][b]["n_cells"].get<unsigned int>();
-        };
-        if (c > 0 &&
-            n_cells(0) ==
-              cycles[c - 1]["bodies"][0]["n_cells"].get<unsigned int>() &&
-            n_cells(1) ==
-              cycles[c - 1]["bodies"][1]["n_cells"].get<unsigned int>())
-          ++repeats;
-        out << "    cycle " << c << ": cells " << n_cells(0) << " + "
-            << n_cells(1) << ", epsilon "
-            << 100 * cycles[c]["epsilon"].get<double>() << " %" << std::endl;
-      }
-    out << "    " << run.summary["stop_reason"].get<std::string>() << std::endl;
-    AssertThrow(repeats <= 1,
-                ExcMessage("the same mesh was solved again and again"));
-    AssertThrow(run.summary["stop_reason"].get<std::string>().rfind(
-                  "target reached", 0) == 0,
-                ExcMessage("the run did not stop on its target"));
-  }
+  for (const std::string min_cells : {"0", "100"})
+    {
+      // epsilon_0 far above reach, with 'Over-refinement ratio' (as in
+      // prm/blocks.prm): every mesh is over-refined. Without a minimum the
+      // remesh plans coarser meshes until gmsh's coarsest mesh of the
+      // geometry (4 + 4 triangles), which a further plan returns unchanged.
+      // The loop stops on the first repeat instead of solving that mesh
+      // again on every cycle left (it solved cycles 4 to 10 on it). With the
+      // default minimum of 100 cells it stops on the first mesh planned at
+      // that minimum.
+      out << "remesh, P1, epsilon_0 = 100 %, 12 cycles allowed, minimum "
+          << min_cells << " cells" << std::endl;
+      auto settings = blocks("triangle",
+                             "remesh",
+                             "3, 3",
+                             "6, 7",
+                             "100",
+                             "output-r100-" + min_cells);
+      settings.push_back({"Adaptation/Over-refinement ratio", "0.8"});
+      settings.push_back({"Adaptation/Minimum number of cells", min_cells});
+      const ProgramRun run(settings);
+      const auto      &cycles  = run.summary["cycles"];
+      unsigned int     repeats = 0;
+      for (unsigned int c = 0; c < cycles.size(); ++c)
+        {
+          const auto n_cells = [&](const unsigned int b) {
+            return cycles[c]["bodies"][b]["n_cells"].get<unsigned int>();
+          };
+          if (c > 0 &&
+              n_cells(0) ==
+                cycles[c - 1]["bodies"][0]["n_cells"].get<unsigned int>() &&
+              n_cells(1) ==
+                cycles[c - 1]["bodies"][1]["n_cells"].get<unsigned int>())
+            ++repeats;
+          out << "    cycle " << c << ": cells " << n_cells(0) << " + "
+              << n_cells(1) << ", epsilon "
+              << 100 * cycles[c]["epsilon"].get<double>() << " %" << std::endl;
+        }
+      out << "    " << run.summary["stop_reason"].get<std::string>()
+          << std::endl;
+      AssertThrow(repeats <= 1,
+                  ExcMessage("the same mesh was solved again and again"));
+      AssertThrow(run.summary["stop_reason"].get<std::string>().rfind(
+                    "target reached", 0) == 0,
+                  ExcMessage("the run did not stop on its target"));
+      if (min_cells != "0")
+        {
+          const auto  &last = cycles.back();
+          unsigned int n    = 0;
+          for (unsigned int b = 0; b < 2; ++b)
+            n += last["bodies"][b]["n_cells"].get<unsigned int>();
+          out << "    last mesh at least " << min_cells
+              << " cells: " << (n >= std::stoul(min_cells) ? "yes" : "no")
+              << ", one remesh: " << (cycles.size() == 2 ? "yes" : "no")
+              << std::endl;
+          AssertThrow(n >= std::stoul(min_cells) && cycles.size() == 2,
+                      ExcMessage(
+                        "coarsened below the minimum number of cells"));
+        }
+    }
   for (const std::string strategy : {"refine", "remesh"})
     {
       out << strategy << ", epsilon_0 = 0.01 %, at most 3000 DoFs" << std::endl;

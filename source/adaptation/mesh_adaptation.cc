@@ -40,7 +40,8 @@ namespace coulomb_adapt
         return planner.plan(aimed_error,
                             min_size_ratio,
                             parameters.max_size_ratio,
-                            max_n_cells);
+                            max_n_cells,
+                            parameters.min_cells);
       };
       OptimalSizeRatios ratios = plan(parameters.min_size_ratio);
       // A plan limited by the cell count is short of its aim anyway.
@@ -51,13 +52,14 @@ namespace coulomb_adapt
           report.unrelaxed_predicted_epsilon = ratios.predicted_epsilon;
           ratios = plan(std::pow(parameters.min_size_ratio, 1.5));
         }
-      report.aimed_epsilon       = aimed_error;
-      report.predicted_n_cells   = ratios.predicted_n_cells;
-      report.predicted_epsilon   = ratios.predicted_epsilon;
-      report.n_singular_cells    = ratios.n_singular_cells;
-      report.n_at_min_ratio      = ratios.n_at_min_ratio;
-      report.n_at_max_ratio      = ratios.n_at_max_ratio;
-      report.limited_by_max_dofs = ratios.limited_by_max_n_cells;
+      report.aimed_epsilon        = aimed_error;
+      report.predicted_n_cells    = ratios.predicted_n_cells;
+      report.predicted_epsilon    = ratios.predicted_epsilon;
+      report.n_singular_cells     = ratios.n_singular_cells;
+      report.n_at_min_ratio       = ratios.n_at_min_ratio;
+      report.n_at_max_ratio       = ratios.n_at_max_ratio;
+      report.limited_by_max_dofs  = ratios.limited_by_max_n_cells;
+      report.limited_by_min_cells = ratios.limited_by_min_n_cells;
       return ratios;
     }
   } // namespace

@@ -255,6 +255,27 @@ namespace coulomb_adapt
 
 
 
+    // The multiplier of the smallest mesh of at least @p min_n_cells cells,
+    // above @p L (bisection; the cell count grows with L).
+    double
+    multiplier_for_min_cell_count(const SizeRatioModel &model,
+                                  double                L,
+                                  const double          min_n_cells)
+    {
+      double L_more = 1400;
+      for (unsigned int k = 0; k < 200 && L_more - L > 1e-12; ++k)
+        {
+          const double L_middle = 0.5 * (L + L_more);
+          if (model.predicted_n_cells(L_middle) < min_n_cells)
+            L = L_middle;
+          else
+            L_more = L_middle;
+        }
+      return L_more;
+    }
+
+
+
     // The multiplier of the largest mesh of at most @p max_n_cells cells,
     // below @p L (bisection).
     double
@@ -353,7 +374,8 @@ namespace coulomb_adapt
   OptimalSizePlanner::plan(const double target_error,
                            const double min_ratio,
                            const double max_ratio,
-                           const double max_n_cells) const
+                           const double max_n_cells,
+                           const double min_n_cells) const
   {
     Assert(target_error > 0, ExcMessage("a target error is needed"));
     OptimalSizeRatios result;
@@ -368,6 +390,11 @@ namespace coulomb_adapt
       {
         result.limited_by_max_n_cells = true;
         L = multiplier_for_cell_count(model, L, max_n_cells);
+      }
+    else if (min_n_cells > 0 && model.predicted_n_cells(L) < min_n_cells)
+      {
+        result.limited_by_min_n_cells = true;
+        L = multiplier_for_min_cell_count(model, L, min_n_cells);
       }
 
     double n_cells = 0;

@@ -75,20 +75,27 @@ namespace coulomb_adapt
         // A node that still touches (its gap at round-off against the
         // others') while all have opened: the body turns about it, pressed
         // down elsewhere by a load that the contact cannot hold there.
-        double                  largest_gap = 0;
-        const ContactNodeState *pivot       = nullptr;
+        double                  largest_gap = 0, position_scale = 0;
+        const ContactNodeState *pivot = nullptr;
         for (const auto &s : states)
           if (s.facing_master)
             {
-              largest_gap = std::max(largest_gap, std::abs(s.gap));
+              largest_gap    = std::max(largest_gap, std::abs(s.gap));
+              position_scale = std::max(position_scale, s.position.norm());
               if (pivot == nullptr || s.gap < pivot->gap)
                 pivot = &s;
             }
+        // Every gap still closed (round-off against the coordinates): the
+        // nodes opened on their tension, not on a gap, and no node is a
+        // pivot among open ones. (A pure pull was diagnosed as a tipping
+        // load about a node with gap -2.8e-18 mm, "up to 2.8e-18 mm
+        // elsewhere".)
+        const bool gaps_at_round_off = largest_gap <= 1e-10 * position_scale;
         std::ostringstream m;
         m << std::setprecision(3) << "has no active contact node and no "
           << "Dirichlet support: nothing holds it. ";
         if (step > 1 && n_facing > 0 && pivot != nullptr &&
-            pivot->gap <= 1e-10 * largest_gap)
+            !gaps_at_round_off && pivot->gap <= 1e-10 * largest_gap)
           m << "Its contact nodes have all opened, but the one at ("
             << pivot->position[0] << ", " << pivot->position[1]
             << ") still touches body 2 (gap " << pivot->gap << " mm, up to "
@@ -104,6 +111,12 @@ namespace coulomb_adapt
             << "do not face each other and cannot touch. Check where the "
             << "contact curves lie and which curves the contact groups "
             << "name.";
+        else if (gaps_at_round_off)
+          m << "The " << n_facing << " of its contact nodes that face body "
+            << "2 all pull on it (their gaps are still closed, at most "
+            << largest_gap << " mm): its load pulls it away from body 2 "
+            << "(is it loaded towards body 2?), or body 2 gives way under "
+            << "it (are body 2's Dirichlet data enough to hold it?).";
         else
           m << "The " << n_facing << " of its contact nodes that face body "
             << "2 have all opened (smallest gap " << smallest_gap
@@ -336,7 +349,8 @@ namespace coulomb_adapt
     {
       std::ostringstream s;
       s << "The semismooth Newton iteration did not converge in " << max_steps
-        << " steps. Residual history:";
+        << " steps (the limit 'Contact/Maximum Newton iterations'). Residual "
+           "history:";
       for (const double r : residual_history)
         s << ' ' << r;
       s << ". Nodes that changed set in the last step:"
@@ -348,6 +362,9 @@ namespace coulomb_adapt
              "one point): a singular system, which the linear solver may "
              "answer with a wild iterate. Hold the body or refine the mesh "
              "where the bodies touch";
+      else
+        s << ". If the residual was still falling, raise 'Contact/Maximum "
+             "Newton iterations'";
       return ContactDiagnosis(s.str(), max_steps);
     }
 

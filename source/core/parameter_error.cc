@@ -28,11 +28,17 @@ namespace coulomb_adapt
                     const std::string &allowed)
   {
     if (!condition)
-      {
-        std::ostringstream s;
-        s << value;
-        throw ParameterError(entry_path, s.str(), allowed);
-      }
+      throw ParameterError(entry_path, format_value(value), allowed);
+  }
+
+
+
+  std::string
+  format_value(const double value)
+  {
+    std::ostringstream s;
+    s << value;
+    return s.str();
   }
 
 

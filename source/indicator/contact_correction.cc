@@ -1,5 +1,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 
+#include <deal.II/lac/solver_control.h>
+
 #include <coulomb_adapt/indicator/contact_correction.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
 
@@ -267,11 +269,35 @@ namespace coulomb_adapt
       remove_modes(residual);
 
       TrilinosWrappers::MPI::Vector increment(owned, comm);
-      if (modes.empty())
-        solve_linear_system(
-          K, increment, residual, body.rigid_body_modes(), solver_parameters);
-      else
-        solve_pinned(body, modes, residual, increment, solver_parameters);
+      try
+        {
+          if (modes.empty())
+            solve_linear_system(K,
+                                increment,
+                                residual,
+                                body.rigid_body_modes(),
+                                solver_parameters);
+          else
+            solve_pinned(body, modes, residual, increment, solver_parameters);
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          // deal.II's text names neither the body, nor the phase, nor the
+          // parameter.
+          AssertThrow(
+            false,
+            ExcMessage(
+              "body '" + body.name() +
+              "', the error indicator's corrected problem (the body under "
+              "the contact tractions projected onto the Coulomb cone): the "
+              "iterative linear solver did not converge in " +
+              std::to_string(e.last_step) +
+              " iterations (the limit 'Linear solver/Maximum iterations'; "
+              "residual " +
+              Utilities::to_string(e.last_residual) +
+              "). Raise 'Linear solver/Maximum iterations', or use "
+              "'Linear solver/Type = direct'."));
+        }
       // No free-mode component in u - u_reference. Removed before the
       // constraints are distributed: the free modes vanish at constrained
       // DoFs, so removed afterwards a mode's hanging-node entries would

@@ -329,8 +329,9 @@ namespace coulomb_adapt
                 e.relaxed_equilibration[0] || e.relaxed_equilibration[1] ?
                   "relaxed in one body" :
                   "kept: the relaxed modes need 'CRE relaxed "
-                  "equilibration' and displacement data that the FE space "
-                  "interpolates exactly")
+                  "equilibration', 'CRE degree increase' >= 3 and "
+                  "displacement data that the FE space interpolates "
+                  "exactly")
             << (e.optimisation_steps > 0 ?
                   "; " + std::to_string(e.optimisation_steps) +
                     " truncated CG steps" +
@@ -479,7 +480,12 @@ namespace coulomb_adapt
           << std::setprecision(3) << 100 * reference.own_error()
           << " % (from the energies " << 100 * reference.own_error_from_energy()
           << " %); energy check: epsilon_energy = " << 100 * epsilon_energy
-          << " % (strain energy " << std::scientific << strain_energy
+          << " % ("
+          << (reference_energy >= energy ?
+                "U_ref >= U_h, as for loads: e^2 = 2 (U_ref - U_h)" :
+                "U_h > U_ref, as for prescribed displacements or overlap: "
+                "e^2 = 2 (U_h - U_ref)")
+          << "; strain energy " << std::scientific << strain_energy
           << ", reference "
           << physical(reference_energy,
                       units::Kind::energy,
@@ -492,6 +498,8 @@ namespace coulomb_adapt
     record["reference_strain_energy"]    = {reference_strain_energy[0],
                                             reference_strain_energy[1]};
     record["epsilon_energy"]             = epsilon_energy;
+    record["energy_check_driven_by"] =
+      reference_energy >= energy ? "loads" : "displacements";
 
     // The computed exact error is low by the reference's own error
     // (theory.md section 8): extrapolated from the three levels (judged,
@@ -499,6 +507,20 @@ namespace coulomb_adapt
     // asymptotic) about sqrt(epsilon_exact^2 + e_ref^2). The effectivity
     // against it is the one to judge an estimator by where the reference
     // is not much finer than the judged mesh (singular corners).
+    // With R = 1 the level below the reference is the judged mesh itself:
+    // its "own error" is epsilon_exact again, and the fallback would add
+    // epsilon_exact to itself (sqrt(2) epsilon_exact, 40 % above the truth
+    // on the quarter press fit, P2). No extrapolation then.
+    if (reference.n_refinements() < 2)
+      {
+        pcout << "  exact error: not extrapolated: with 'Error indicator/"
+                 "Reference refinements' = 1 the reference's own error is "
+                 "measured against this cycle's solution, i.e. it is "
+                 "epsilon_exact itself (an upper bound of the reference's "
+                 "error, not an estimate); 2 or more extrapolate"
+              << std::endl;
+        return;
+      }
     const auto add_extrapolation = [&](nlohmann::json    &r,
                                        const std::string &name) {
       if (!r.contains("epsilon_exact") || !r.contains("epsilon"))

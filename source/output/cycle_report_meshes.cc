@@ -46,6 +46,10 @@ namespace coulomb_adapt
       pcout << "; more cells than 'Maximum number of DoFs' = " << a.max_dofs
             << " allows: the optimal mesh of that size instead (predicted "
                "epsilon above epsilon_0)";
+    if (r.limited_by_min_cells)
+      pcout << "; fewer cells than 'Minimum number of cells' = " << a.min_cells
+            << ": the optimal mesh of that many instead (predicted epsilon "
+               "below the aim)";
     if (r.strategy == AdaptationStrategy::refine)
       pcout << (r.predicted_n_cells >= 0 ? "; " : "") << r.n_refine_flags
             << " cells flagged for refinement, " << r.n_coarsen_flags
@@ -104,7 +108,9 @@ namespace coulomb_adapt
                                 {"singular_cells", a.n_singular_cells},
                                 {"min_size_ratio", a.min_size_ratio},
                                 {"cells_at_min_ratio", a.n_at_min_ratio},
-                                {"limited_by_max_dofs", a.limited_by_max_dofs}};
+                                {"limited_by_max_dofs", a.limited_by_max_dofs},
+                                {"limited_by_min_cells",
+                                 a.limited_by_min_cells}};
       }
     if (a.n_triangle_splits[0] + a.n_triangle_splits[1] > 0)
       record["adaptation"]["triangle_splits"] = a.n_triangle_splits;

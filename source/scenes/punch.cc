@@ -65,6 +65,29 @@ namespace coulomb_adapt
         subdivisions[0] = get_subdivisions(prm, "Punch subdivisions", path);
         subdivisions[1] = get_subdivisions(prm, "Block subdivisions", path);
         pressure        = prm.get_double("Pressure");
+        for (const auto &[entry, value] :
+             {std::pair<std::string, double>{"Punch width", punch_width},
+              {"Punch height", punch_height},
+              {"Block width", block_width},
+              {"Block height", block_height}})
+          require_parameter(value > 0,
+                            path + "/" + entry,
+                            value,
+                            "> 0 (mm): a body of zero extent has no cells");
+        // The punch is the slave body: mortar contact checks its nodes
+        // against the block's face, and a slave node beyond the block's
+        // edge faces nothing and stays open. Wider than the block, the
+        // punch would let the block's corners pass into it unseen (a
+        // walkthrough: 0.58 mm of overlap, exit 0, no warning).
+        require_parameter(punch_width <= block_width,
+                          path + "/Punch width",
+                          punch_width,
+                          "at most 'Block width' (" +
+                            format_value(block_width) +
+                            " mm): the punch's nodes are the contact's "
+                            "slave nodes, and where its face overhangs the "
+                            "block the block's corners would pass into it "
+                            "unseen");
         // Without it the punch floats: the solve would end in a singular
         // system, diagnosed as a body that turns off an edge.
         require_parameter(pressure > 0,

@@ -34,6 +34,10 @@ namespace coulomb_adapt
     /** Whether the optimal mesh for epsilon_0 exceeded 'Maximum number of
      * DoFs' and the optimal mesh of that size was taken instead. */
     bool limited_by_max_dofs = false;
+    /** Whether the optimal mesh for epsilon_0 had fewer cells than
+     * 'Minimum number of cells', and the optimal mesh of that many was
+     * taken instead. */
+    bool limited_by_min_cells = false;
     /** Cells flagged (refine strategy). */
     unsigned int n_refine_flags = 0, n_coarsen_flags = 0;
     /** remesh: how many times each body's gmsh mesh was split into 4

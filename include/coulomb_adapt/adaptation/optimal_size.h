@@ -38,6 +38,9 @@ namespace coulomb_adapt
     /** Whether the optimal mesh for epsilon_0 had more cells than allowed,
      * and the mesh is the optimal one with that many cells instead. */
     bool limited_by_max_n_cells = false;
+    /** Whether the optimal mesh for epsilon_0 had fewer cells than
+     * min_n_cells, and the optimal mesh of that many is taken instead. */
+    bool limited_by_min_n_cells = false;
   };
 
   /**
@@ -102,6 +105,10 @@ namespace coulomb_adapt
    * condition, so the mesh of the least predicted error for that cell
    * count. Without the limit, a small epsilon_0 asks for a mesh that
    * min_ratio lets grow up to 1/min_ratio^2 = 100-fold in one cycle.
+   * Likewise, with fewer than min_n_cells cells (0: no minimum) Lambda is
+   * raised until it has that many: a large epsilon_0 with the
+   * over-refinement rule coarsened blocks to 4 + 4 triangles, where the
+   * recovered stress is the FE stress and the contact zone one segment.
    *
    * The cells' epsilon_E^2 and q_E are gathered once, at construction:
    * the adaptation plans a second time with a relaxed lower bound when
@@ -122,7 +129,8 @@ namespace coulomb_adapt
     plan(const double target_error,
          const double min_ratio,
          const double max_ratio,
-         const double max_n_cells = 0) const;
+         const double max_n_cells = 0,
+         const double min_n_cells = 0) const;
 
     /** Per owned cell of both bodies: epsilon_E^2 / D^2 and q_E. */
     struct Cell

@@ -14,7 +14,9 @@ namespace coulomb_adapt
    * epsilon_0 depends on the estimator (theory.md sections 7 and 8):
    * the recovery estimates (zz, spr) are not bounds and underestimate at
    * singular points on coarse meshes (effectivity 0.6-0.8 on the seed's
-   * example), cre is an upper bound for frictionless contact, and for
+   * example), cre is an upper bound for frictionless contact up to its
+   * local problems' discretisation (not claimed with the relaxed
+   * equilibration, which was measured 5 % below the error), and for
    * mu > 0 its effectivity is measured near 1 but not proven >= 1. Where
    * the run also computed the exact error of the cycle, that decides.
    */
@@ -43,13 +45,17 @@ namespace coulomb_adapt
    * held by the scene's point constraints off any held line (point
    * supports; ErrorEstimate::misses_held_reaction()), so it is not a
    * proven bound even for mu = 0. @p degree: the elements' polynomial
-   * degree (zz underestimates with degree 2). */
+   * degree (zz underestimates with degree 2). @p relaxed_equilibration:
+   * cre's optimisation moved the relaxed modes, which can turn the local
+   * problems' discretisation error into an underestimate (frictionless
+   * Q1 blocks: effectivity 0.95), so no bound is claimed then. */
   TargetClaim
   make_target_claim(const ErrorEstimator         estimator,
                     const double                 friction_coefficient,
                     const std::optional<double> &epsilon_exact,
                     const bool                   reaction_not_carried,
-                    const unsigned int           degree);
+                    const unsigned int           degree,
+                    const bool                   relaxed_equilibration = false);
 
   /** Why zz does not estimate the error of elements of degree @p degree
    * (>= 2), with the measured effectivities; empty for degree 1. */

@@ -23,6 +23,13 @@ namespace coulomb_adapt
   };
 
   /**
+   * @p value as a message shows it (6 significant digits: 0.95, not
+   * 0.94999999999999996).
+   */
+  std::string
+  format_value(const double value);
+
+  /**
    * Throw a ParameterError for @p entry_path unless @p condition holds.
    */
   void

@@ -153,6 +153,8 @@ namespace coulomb_adapt
       double target_safety_factor;
       /** No further cycle once a cycle has at least this many DoFs. */
       double max_dofs;
+      /** The size-ratio plans build no mesh of fewer cells (both bodies). */
+      double min_cells;
       /** Which cells the strategy 'refine' flags. */
       RefinementCriterion refinement_criterion;
       double              refine_fraction;
