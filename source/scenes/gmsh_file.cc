@@ -4,6 +4,10 @@
 #include <coulomb_adapt/scenes/gmsh_file.h>
 #include <coulomb_adapt/scenes/scene_meshes.h>
 
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <optional>
 #include <sstream>
 
 namespace coulomb_adapt
@@ -289,7 +293,10 @@ namespace coulomb_adapt
 
     GmshFile::GmshFile(ParameterHandler &prm,
                        const PlaneModel,
-                       const CellType requested_cell_type)
+                       const CellType     requested_cell_type,
+                       const double       max_dofs,
+                       const unsigned int degree,
+                       const unsigned int global_refinements)
     {
       prm.enter_subsection("Gmsh");
       {
@@ -321,12 +328,83 @@ namespace coulomb_adapt
         // The program runs on MPI_COMM_WORLD: rank 0 reads the file.
         this->requested_cell_type = requested_cell_type;
         group_use                 = use;
-        geometry                  = read_two_body_gmsh_geometry(
+        check_mesh_size_before_meshing(max_dofs, degree, global_refinements);
+        geometry = read_two_body_gmsh_geometry(
           file, requested_cell_type, size_factor, use, MPI_COMM_WORLD);
         check_point_supports();
         check_shared_groups();
       }
       prm.leave_subsection();
+    }
+
+
+
+    // gmsh meshes the file here, before any other check: a small 'Mesh
+    // size factor' (1e-4 on blocks.geo) meshed for minutes without a line
+    // of output, and 0.03 was refused only after 20 s of meshing, naming
+    // 'Maximum number of DoFs'. The probes mesh the file 2^k times coarser,
+    // from k = 10 down: the cells grow about 4-fold per step, so a probe
+    // whose prediction n 4^k (an overestimate while gmsh's coarsest mesh
+    // of the geometry holds it up) is below the limit clears the file, and
+    // one with enough cells to predict (2000) refuses it. Normal files
+    // take 2-3 small probes. Every rank takes the same decisions (the
+    // reader broadcasts).
+    void
+    GmshFile::check_mesh_size_before_meshing(
+      const double       max_dofs,
+      const unsigned int degree,
+      const unsigned int global_refinements) const
+    {
+      const std::string extension =
+        std::filesystem::path(mesh_file).extension().string();
+      if (max_dofs <= 0 || extension == ".msh" || extension == ".MSH")
+        return;
+      const double dofs_per_cell =
+        (requested_cell_type == CellType::quadrilateral ? 2. : 1.) * degree *
+        degree * std::pow(4., global_refinements);
+      double previous_n_cells = -1;
+      for (int k = 10; k >= 1; --k)
+        {
+          std::optional<TwoBodyGmshMeshes> probe;
+          try
+            {
+              probe = read_two_body_gmsh_geometry(mesh_file,
+                                                  requested_cell_type,
+                                                  size_factor * std::pow(2., k),
+                                                  group_use,
+                                                  MPI_COMM_WORLD);
+            }
+          catch (const std::exception &)
+            {
+              // A size the geometry cannot be meshed with: finer probes.
+              continue;
+            }
+          const double n_cells =
+            probe->meshes[0].cells.size() + probe->meshes[1].cells.size();
+          const double predicted = n_cells * std::pow(4., k) * dofs_per_cell;
+          if (predicted <= max_dofs)
+            return;
+          // Refused only where the cells are seen to follow the factor
+          // (not for transfinite lines, whose counts it does not change:
+          // their probes are the file's own mesh, which the checks after
+          // meshing judge).
+          if (n_cells >= 2000 && previous_n_cells > 0 &&
+              n_cells >= 2.5 * previous_n_cells)
+            {
+              std::ostringstream s;
+              s << "the file's meshes would have about " << std::setprecision(2)
+                << predicted << " DoFs (meshed " << (1 << k)
+                << " times coarser they have " << n_cells
+                << " cells), above 'Adaptation/Maximum number of DoFs' ("
+                << max_dofs
+                << "): raise the factor, or that limit if the machine has "
+                   "the memory (about 1 kB per DoF)";
+              throw ParameterError(scene_path + "/Mesh size factor",
+                                   format_value(size_factor),
+                                   s.str());
+            }
+          previous_n_cells = n_cells;
+        }
     }
 
 

@@ -48,7 +48,10 @@ namespace coulomb_adapt
            return std::make_unique<GmshFile>(
              prm,
              parameters.finite_elements.plane_model,
-             parameters.mesh.cell_type);
+             parameters.mesh.cell_type,
+             parameters.adaptation.max_dofs,
+             parameters.finite_elements.degree,
+             parameters.mesh.global_refinements);
          }},
         {"manufactured",
          Manufactured::declare_parameters,

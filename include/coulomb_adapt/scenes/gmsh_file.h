@@ -33,9 +33,15 @@ namespace coulomb_adapt
       static void
       declare_parameters(ParameterHandler &prm);
 
-      GmshFile(ParameterHandler &prm,
-               const PlaneModel  plane_model,
-               const CellType    requested_cell_type);
+      /** @p max_dofs, @p degree, @p global_refinements: a .geo file whose
+       * meshes would have more DoFs than @p max_dofs is refused before it
+       * is meshed (check_mesh_size_before_meshing()). */
+      GmshFile(ParameterHandler  &prm,
+               const PlaneModel   plane_model,
+               const CellType     requested_cell_type,
+               const double       max_dofs           = 0,
+               const unsigned int degree             = 1,
+               const unsigned int global_refinements = 0);
 
       std::string
       name() const override;
@@ -106,6 +112,14 @@ namespace coulomb_adapt
       };
 
     private:
+      /** Refuse a .geo file whose meshes at 'Mesh size factor' would have
+       * more than @p max_dofs DoFs (0: no limit), from probes meshed
+       * 2^k times coarser. */
+      void
+      check_mesh_size_before_meshing(
+        const double       max_dofs,
+        const unsigned int degree,
+        const unsigned int global_refinements) const;
       /** Body @p b's surfaces (into @p use) and body force. */
       void
       parse_body(ParameterHandler  &prm,
