@@ -332,6 +332,20 @@ namespace coulomb_adapt
           "stresses, contact_pressure and tangential_traction by "
           "load_scale, displacement, gap and slip by displacement_scale, "
           "contact_error_density by both");
+    // The bodies' fields first: if writing them fails, contact.pvd does not
+    // list a cycle whose bodies' files are missing (it did, found by a
+    // walkthrough; the contact files are small, so they rarely fail after
+    // the bodies' succeeded).
+    if (write_fields)
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          BodyErrorFields fields;
+          if (error_estimate)
+            fields = {&error_estimate->indicator[b],
+                      &error_estimate->density[b],
+                      error_estimate->recovered[b].get()};
+          body_outputs[b]->write(*bodies[b], cycle, fields);
+        }
     if (contact_solver)
       {
         const std::vector<ContactNodeState> &scaled_states =
@@ -365,17 +379,6 @@ namespace coulomb_adapt
                               write_fields,
                               scaled_fields ? &scaled_states : nullptr,
                               scaled_fields ? &scaled_density : nullptr);
-      }
-    if (!write_fields)
-      return;
-    for (unsigned int b = 0; b < 2; ++b)
-      {
-        BodyErrorFields fields;
-        if (error_estimate)
-          fields = {&error_estimate->indicator[b],
-                    &error_estimate->density[b],
-                    error_estimate->recovered[b].get()};
-        body_outputs[b]->write(*bodies[b], cycle, fields);
       }
   }
 

@@ -44,7 +44,10 @@ namespace coulomb_adapt
                           "Which cycles' fields are written: all, only the "
                           "last one (the mesh adaptation's result), or none. "
                           "summary.json and the contact CSV are written "
-                          "after every cycle in any case.");
+                          "after every cycle in any case. A run that stops "
+                          "with an error writes no fields with 'last' (the "
+                          "finished cycles' meshes were adapted away): "
+                          "'all' keeps them.");
         prm.declare_entry(
           "Cells per VTU piece",
           "10000",
