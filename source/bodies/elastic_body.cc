@@ -373,16 +373,10 @@ namespace coulomb_adapt
       {
         // deal.II's text names neither the body nor the parameter.
         AssertThrow(false,
-                    ExcMessage(
-                      "body '" + name() +
-                      "': the iterative linear solver (CG + AMG) did not "
-                      "converge in " +
-                      std::to_string(e.last_step) +
-                      " iterations (the limit 'Linear solver/Maximum "
-                      "iterations'; residual " +
-                      Utilities::to_string(e.last_residual) +
-                      "). Raise 'Linear solver/Maximum iterations', or use "
-                      "'Linear solver/Type = direct'."));
+                    ExcMessage(iteration_limit_message("body '" + name() + "'",
+                                                       "CG + AMG",
+                                                       e.last_step,
+                                                       e.last_residual)));
       }
     constraints_.distribute(owned);
     displacement = owned;

@@ -284,19 +284,15 @@ namespace coulomb_adapt
         {
           // deal.II's text names neither the body, nor the phase, nor the
           // parameter.
-          AssertThrow(
-            false,
-            ExcMessage(
-              "body '" + body.name() +
-              "', the error indicator's corrected problem (the body under "
-              "the contact tractions projected onto the Coulomb cone): the "
-              "iterative linear solver did not converge in " +
-              std::to_string(e.last_step) +
-              " iterations (the limit 'Linear solver/Maximum iterations'; "
-              "residual " +
-              Utilities::to_string(e.last_residual) +
-              "). Raise 'Linear solver/Maximum iterations', or use "
-              "'Linear solver/Type = direct'."));
+          AssertThrow(false,
+                      ExcMessage(iteration_limit_message(
+                        "body '" + body.name() +
+                          "', the error indicator's corrected problem (the "
+                          "body under the contact tractions projected onto "
+                          "the Coulomb cone)",
+                        "",
+                        e.last_step,
+                        e.last_residual)));
         }
       // No free-mode component in u - u_reference. Removed before the
       // constraints are distributed: the free modes vanish at constrained

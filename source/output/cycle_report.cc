@@ -257,16 +257,7 @@ namespace coulomb_adapt
   void
   CycleReport::record_correction(const CorrectedContactSolution &c)
   {
-    if (c.within_solve_accuracy)
-      pcout << "  correction: " << c.n_projected_nodes
-            << " nodal reactions projected onto the Coulomb cone, "
-               "relative change "
-            << std::scientific << std::setprecision(3) << c.relative_change
-            << ", largest nodal change " << std::setprecision(2)
-            << c.largest_nodal_change << std::defaultfloat
-            << ": within the contact solve's accepted residual, the "
-               "corrected problem is skipped (U_c = U_h)";
-    else if (c.skipped)
+    if (c.skipped && !c.within_solve_accuracy)
       pcout << "  correction: skipped, the FE reactions are in the "
                "Coulomb cone (corrected fields = FE fields)";
     else
@@ -276,7 +267,10 @@ namespace coulomb_adapt
             << std::scientific << std::setprecision(3) << c.relative_change
             << ", largest nodal change " << std::setprecision(2)
             << c.largest_nodal_change << std::defaultfloat
-            << "; corrected problem solved";
+            << (c.within_solve_accuracy ?
+                  ": within the contact solve's accepted residual, the "
+                  "corrected problem is skipped (U_c = U_h)" :
+                  "; corrected problem solved");
     const double max_penetration = physical(c.max_penetration,
                                             units::Kind::displacement,
                                             "max_penetration_clipped");

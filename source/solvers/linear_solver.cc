@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #ifdef __GLIBC__
@@ -393,5 +394,22 @@ namespace coulomb_adapt
     if (direct)
       return solve_direct(A, x, b, settings.direct_solver);
     return solve_amg(A, x, b, near_null_space, settings, symmetric);
+  }
+  std::string
+  iteration_limit_message(const std::string &system,
+                          const std::string &solver_name,
+                          const unsigned int last_step,
+                          const double       last_residual)
+  {
+    std::ostringstream s;
+    s << system << ": the iterative linear solver"
+      << (solver_name.empty() ? "" : " (" + solver_name + ")")
+      << " did not converge in " << last_step
+      << " iterations (the limit 'Linear solver/Maximum iterations'; "
+         "residual "
+      << last_residual
+      << "). Raise 'Linear solver/Maximum iterations', or use 'Linear "
+         "solver/Type = direct'.";
+    return s.str();
   }
 } // namespace coulomb_adapt

@@ -52,6 +52,19 @@ namespace coulomb_adapt
                       const bool                              symmetric = true);
 
   /**
+   * The message for a Krylov solve of @p system (e.g. "body 'upper
+   * square'") that stopped at 'Linear solver/Maximum iterations' after
+   * @p last_step iterations at @p last_residual: deal.II's own text names
+   * neither the system nor the parameter. @p solver_name, if not empty,
+   * follows "the iterative linear solver" in parentheses.
+   */
+  std::string
+  iteration_limit_message(const std::string &system,
+                          const std::string &solver_name,
+                          const unsigned int last_step,
+                          const double       last_residual);
+
+  /**
    * ML smoothed-aggregation AMG for elasticity-like systems, with the
    * given near null space (rigid body modes, one vector of locally owned
    * values per mode) and two unknowns per node. Kept as an object so that
