@@ -391,10 +391,16 @@ namespace coulomb_adapt
         result.limited_by_max_n_cells = true;
         L = multiplier_for_cell_count(model, L, max_n_cells);
       }
-    else if (min_n_cells > 0 && model.predicted_n_cells(L) < min_n_cells)
+    else
       {
-        result.limited_by_min_n_cells = true;
-        L = multiplier_for_min_cell_count(model, L, min_n_cells);
+        // Never above the cap: 'Maximum number of DoFs' wins.
+        const double floor =
+          max_n_cells > 0 ? std::min(min_n_cells, max_n_cells) : min_n_cells;
+        if (floor > 0 && model.predicted_n_cells(L) < floor)
+          {
+            result.limited_by_min_n_cells = true;
+            L = multiplier_for_min_cell_count(model, L, floor);
+          }
       }
 
     double n_cells = 0;

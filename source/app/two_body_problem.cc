@@ -332,10 +332,9 @@ namespace coulomb_adapt
           "stresses, contact_pressure and tangential_traction by "
           "load_scale, displacement, gap and slip by displacement_scale, "
           "contact_error_density by both");
-    // The bodies' fields first: if writing them fails, contact.pvd does not
-    // list a cycle whose bodies' files are missing (it did, found by a
-    // walkthrough; the contact files are small, so they rarely fail after
-    // the bodies' succeeded).
+    // The bodies' fields first, their indexes last: if any file fails, no
+    // index lists a cycle whose files are missing (contact.pvd did, and
+    // body 1's .pvd when body 2's file failed; found by walkthroughs).
     if (write_fields)
       for (unsigned int b = 0; b < 2; ++b)
         {
@@ -380,6 +379,9 @@ namespace coulomb_adapt
                               scaled_fields ? &scaled_states : nullptr,
                               scaled_fields ? &scaled_density : nullptr);
       }
+    if (write_fields)
+      for (unsigned int b = 0; b < 2; ++b)
+        body_outputs[b]->write_index(mpi_communicator);
   }
 
 
@@ -435,9 +437,12 @@ namespace coulomb_adapt
       a.strategy == AdaptationStrategy::remesh && error_estimate &&
       error_estimate->epsilon < a.over_refinement_ratio * a.target_error &&
       cycle + 2 < a.n_cycles && n_dofs < a.max_dofs;
-    // Nor when this mesh was planned at 'Minimum number of cells'.
+    // Nor when this mesh was planned at 'Minimum number of cells', or has
+    // no more cells than that: a coarser plan would be raised to it, and
+    // from a smaller mesh "optimising again" would refine.
     const bool at_minimum_cells =
-      last_adaptation && last_adaptation->limited_by_min_cells;
+      (last_adaptation && last_adaptation->limited_by_min_cells) ||
+      n_cells[0] + n_cells[1] <= a.min_cells;
     const bool over_refined =
       over_refinement_possible && !at_coarsest_mesh && !at_minimum_cells;
     if (over_refined && error_estimate->epsilon <= a.target_error)
@@ -447,9 +452,10 @@ namespace coulomb_adapt
             << std::endl;
     else if (over_refinement_possible && at_minimum_cells &&
              error_estimate->epsilon <= a.target_error)
-      pcout << "  over-refined, but this mesh was planned at 'Adaptation/"
-               "Minimum number of cells' = "
-            << a.min_cells << ": not optimised again" << std::endl;
+      pcout << "  over-refined, but this mesh is at 'Adaptation/Minimum "
+               "number of cells' = "
+            << a.min_cells
+            << " (planned at it, or smaller): not optimised again" << std::endl;
     else if (over_refinement_possible &&
              error_estimate->epsilon <= a.target_error)
       pcout << "  over-refined, but the last remesh kept every body's cell "

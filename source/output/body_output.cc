@@ -119,10 +119,25 @@ namespace coulomb_adapt
     const std::string h5 =
       base_name + "_" + Utilities::int_to_string(cycle, 3) + ".h5";
     xdmf_entries.push_back(write_hdf5(comm, data_out, directory, h5, cycle));
-    write_xdmf_file(comm,
-                    directory + "/" + base_name + ".xdmf",
-                    xdmf_entries,
-                    tria.get_reference_cells()[0]);
+    reference_cell = tria.get_reference_cells()[0];
+  }
+
+
+
+  void
+  BodyOutput::write_index(const MPI_Comm comm) const
+  {
+    if (format == OutputFormat::hdf5)
+      write_xdmf_file(comm,
+                      directory + "/" + base_name + ".xdmf",
+                      xdmf_entries,
+                      reference_cell);
+    else
+      write_file(comm,
+                 directory + "/" + base_name + ".pvd",
+                 [&](std::ostream &pvd) {
+                   DataOutBase::write_pvd_record(pvd, pvd_records);
+                 });
   }
 
 
@@ -148,10 +163,5 @@ namespace coulomb_adapt
                                  base_name,
                                  cycle);
     pvd_records.emplace_back(cycle, pvtu);
-    write_file(comm,
-               directory + "/" + base_name + ".pvd",
-               [&](std::ostream &pvd) {
-                 DataOutBase::write_pvd_record(pvd, pvd_records);
-               });
   }
 } // namespace coulomb_adapt

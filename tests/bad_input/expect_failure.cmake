@@ -9,6 +9,8 @@
 # MAKE_FIFO (optional): a named pipe created first (removed if there).
 # ABSENT (optional): a ;-list of glob patterns that must match no file
 # afterwards (nothing half-written left behind).
+# NOT_IN_FILE (optional): FILE;REGEX, a file whose contents REGEX must not
+# match afterwards (an index that must not list a cycle).
 # SUMMARY (optional): the run's summary.json, which must say so:
 # status "failed", an error matching EXPECTED, failed_in_cycle equal to
 # FAILED_IN_CYCLE, and the FAILED_IN_CYCLE cycles before it kept.
@@ -46,6 +48,14 @@ foreach(pattern ${ABSENT})
     message(FATAL_ERROR "exit code ${result}, but these files were left: ${left}")
   endif()
 endforeach()
+if(DEFINED NOT_IN_FILE)
+  list(GET NOT_IN_FILE 0 checked_file)
+  list(GET NOT_IN_FILE 1 checked_regex)
+  file(READ ${checked_file} checked_contents)
+  if(checked_contents MATCHES "${checked_regex}")
+    message(FATAL_ERROR "exit code ${result}, but ${checked_file} matches '${checked_regex}':\n${checked_contents}")
+  endif()
+endif()
 if(DEFINED SUMMARY)
   file(READ ${SUMMARY} summary)
   string(JSON status GET "${summary}" status)

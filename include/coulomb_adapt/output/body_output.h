@@ -67,14 +67,20 @@ namespace coulomb_adapt
           const unsigned int     cycle,
           const BodyErrorFields &error_fields = BodyErrorFields());
 
+    /** The index of every cycle written (`<base>.pvd` or `<base>.xdmf`).
+     * Apart from write(), so that a run indexes a cycle only once all of
+     * its files are written: with body 2's file failing, body 1's index
+     * listed a cycle that the others did not. */
+    void
+    write_index(const MPI_Comm comm) const;
+
   private:
-    /** The cycle's `<base>_<cycle>.h5` and the index `<base>.xdmf`. */
+    /** The cycle's `<base>_<cycle>.h5`. */
     void
     write_hdf5_cycle(const DataOut<2>       &data_out,
                      const Triangulation<2> &tria,
                      const unsigned int      cycle);
-    /** The cycle's `.pvtu` (+ its `.vtu` pieces) and the index
-     * `<base>.pvd`. */
+    /** The cycle's `.pvtu` (+ its `.vtu` pieces). */
     void
     write_vtu_cycle(DataOutInPieces   &data_out,
                     const MPI_Comm     comm,
@@ -86,6 +92,8 @@ namespace coulomb_adapt
     const unsigned int                          cells_per_vtu_piece;
     std::vector<std::pair<double, std::string>> pvd_records;
     std::vector<XDMFEntry>                      xdmf_entries;
+    /** The reference cell of the meshes written (for the XDMF index). */
+    ReferenceCell reference_cell;
   };
 } // namespace coulomb_adapt
 
