@@ -103,7 +103,10 @@ namespace coulomb_adapt
       patch_subdivisions(tria, body.dof_handler().get_fe().degree, format),
       DataOut<2>::curved_inner_cells);
     if (format == OutputFormat::hdf5)
-      write_hdf5_cycle(data_out, tria, cycle);
+      write_hdf5_cycle(data_out,
+                       tria.get_communicator(),
+                       body.dof_handler().get_fe().reference_cell(),
+                       cycle);
     else
       write_vtu_cycle(data_out, tria.get_communicator(), cycle);
   }
@@ -111,15 +114,16 @@ namespace coulomb_adapt
 
 
   void
-  BodyOutput::write_hdf5_cycle(const DataOut<2>       &data_out,
-                               const Triangulation<2> &tria,
-                               const unsigned int      cycle)
+  BodyOutput::write_hdf5_cycle(const DataOut<2>    &data_out,
+                               const MPI_Comm       comm,
+                               const ReferenceCell &reference_cell_of_cells,
+                               const unsigned int   cycle)
   {
-    const MPI_Comm    comm = tria.get_communicator();
     const std::string h5 =
       base_name + "_" + Utilities::int_to_string(cycle, 3) + ".h5";
     xdmf_entries.push_back(write_hdf5(comm, data_out, directory, h5, cycle));
-    reference_cell = tria.get_reference_cells()[0];
+    // From the element, which every rank has: a rank may own no cells.
+    reference_cell = reference_cell_of_cells;
   }
 
 

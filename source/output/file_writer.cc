@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <regex>
 
 namespace coulomb_adapt
@@ -272,13 +273,41 @@ namespace coulomb_adapt
     DataOutBase::DataOutFilter filter(
       DataOutBase::DataOutFilterFlags(false, true));
     data_out.write_filtered_data(filter);
-    write_hdf5_file(comm,
-                    directory + "/" + file_name,
-                    [&](const std::string &temporary) {
-                      data_out.write_hdf5_parallel(filter, temporary, comm);
-                    });
-    // The XDMF file sits beside the HDF5 file: a relative name.
-    return data_out.create_xdmf_entry(filter, file_name, time, comm);
+    // deal.II 9.4's parallel HDF5 writer crashes on a rank without cells
+    // (3 ranks, a body of 2 cells: SIGSEGV in write_hdf5_parallel, found
+    // by a walkthrough; deal.II fixed it after 9.4). Only the ranks with
+    // cells write, on a communicator of their own; the first of them
+    // gives the XDMF entry to all.
+    const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
+    // (n_cells() of an empty filter is 2^32 - 1 in deal.II 9.4.)
+    const bool         has_data     = filter.n_nodes() > 0;
+    const unsigned int first_writer = Utilities::MPI::min(
+      has_data ? rank : std::numeric_limits<unsigned int>::max(), comm);
+    MPI_Comm  writers = MPI_COMM_NULL;
+    const int ierr =
+      MPI_Comm_split(comm, has_data ? 0 : MPI_UNDEFINED, rank, &writers);
+    AssertThrowMPI(ierr);
+    XDMFEntry entry;
+    try
+      {
+        write_hdf5_file(
+          comm, directory + "/" + file_name, [&](const std::string &temporary) {
+            if (has_data)
+              data_out.write_hdf5_parallel(filter, temporary, writers);
+          });
+        // The XDMF file sits beside the HDF5 file: a relative name.
+        if (has_data)
+          entry = data_out.create_xdmf_entry(filter, file_name, time, writers);
+      }
+    catch (...)
+      {
+        if (writers != MPI_COMM_NULL)
+          MPI_Comm_free(&writers);
+        throw;
+      }
+    if (writers != MPI_COMM_NULL)
+      MPI_Comm_free(&writers);
+    return Utilities::MPI::broadcast(comm, entry, first_writer);
   }
 
 

@@ -75,11 +75,13 @@ namespace coulomb_adapt
     write_index(const MPI_Comm comm) const;
 
   private:
-    /** The cycle's `<base>_<cycle>.h5`. */
+    /** The cycle's `<base>_<cycle>.h5`; @p reference_cell_of_cells is
+     * the element's (known to every rank, also one without cells). */
     void
-    write_hdf5_cycle(const DataOut<2>       &data_out,
-                     const Triangulation<2> &tria,
-                     const unsigned int      cycle);
+    write_hdf5_cycle(const DataOut<2>    &data_out,
+                     const MPI_Comm       comm,
+                     const ReferenceCell &reference_cell_of_cells,
+                     const unsigned int   cycle);
     /** The cycle's `.pvtu` (+ its `.vtu` pieces). */
     void
     write_vtu_cycle(DataOutInPieces   &data_out,
