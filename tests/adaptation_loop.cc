@@ -20,7 +20,8 @@
 //    without a cap; 4.2e5 -> 2.7e7 DoFs, killed for memory, on the seed's
 //    mesh with the default cap of 2e6). With a cap of 3000 DoFs every mesh
 //    stays within 4 times the cap (one level of refinement: the refine
-//    strategy rounds r_E to whole levels, which gave 2.2 times here; gmsh
+//    strategy rounds r_E to whole levels, which gave 1.25 times here, 2.2
+//    before its threshold aimed at the capped plan's prediction; gmsh
 //    1.06 times) and the log says the mesh was limited;
 //  - an epsilon_0 far above reach (100 %) with 'Over-refinement ratio'
 //    coarsens down to 'Minimum number of cells' (100) and stops there,

@@ -3,6 +3,8 @@
 #include <coulomb_adapt/adaptation/adaptation_strategy.h>
 #include <coulomb_adapt/adaptation/refinement_flags.h>
 
+#include <algorithm>
+
 namespace coulomb_adapt
 {
   namespace
@@ -55,10 +57,17 @@ namespace coulomb_adapt
       {bodies[0], bodies[1]}};
     const RefinementDecisions decisions =
       plans_optimal_mesh(parameters) ?
+        // A plan held to 'Maximum number of DoFs' aims at what that many
+        // cells reach: aiming at epsilon_0 itself, the rounding threshold
+        // grew until nearly every cell was refined (punch, cap 20,000: a
+        // plan of 9,610 cells gave 29,140 cells, 59,916 DoFs).
         decisions_from_size_ratios(const_bodies,
                                    estimate,
                                    ratios,
-                                   aimed_error) :
+                                   ratios.limited_by_max_n_cells ?
+                                     std::max(aimed_error,
+                                              ratios.predicted_epsilon) :
+                                     aimed_error) :
         decisions_from_indicator(const_bodies,
                                  estimate,
                                  parameters.refinement_criterion,
