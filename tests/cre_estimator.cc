@@ -6,10 +6,12 @@
 //  - manufactured solution (no contact; Q1, P1, Q2, P2, two meshes each):
 //    the bound epsilon(cre) >= exact epsilon on every mesh, for the
 //    classical edge tractions (closest to the averaged traction) and for
-//    the optimised ones, which give a smaller estimate that stays above
-//    the exact error: effectivity in [1, 2] (the classical technique has
-//    about 2.3 on triangles); k = 3 (the default) within 5 % of k = 4,
-//    where the local problems are resolved;
+//    the optimised ones, whose ||sigma^ - sigma_c|| is not above the
+//    classical one (per body the smaller of the two, both evaluated with
+//    local problems of degree p + k + 1, 'CRE evaluation degree
+//    increase') and stays above the exact error: effectivity in [1, 2]
+//    (the classical technique has about 2.4 on triangles); k = 3 (the
+//    default) within 5 % of k = 4, where the local problems are resolved;
 //  - frictionless contact, blocks with the centre line held (Q1):
 //    epsilon(cre) >= exact epsilon against a reference 3 refinements finer,
 //    whose own error (from the 2-refinement reference) is printed, with
@@ -55,7 +57,8 @@ namespace
       optimise_tractions,
       relax_equilibration,
       {parameters.error_indicator.cre_minimisation_tolerance,
-       parameters.error_indicator.cre_exact_minimisation_up_to},
+       parameters.error_indicator.cre_exact_minimisation_up_to,
+       parameters.error_indicator.cre_evaluation_degree_increase},
       parameters.linear_solver);
   }
 
@@ -142,6 +145,16 @@ main(int argc, char **argv)
           const double theta_classical =
             compare_with_exact_error(pointers(bodies), classical, exact)
               .effectivity;
+          // Each relative epsilon has its own sigma^'s normalisation: the
+          // optimisation lowers the absolute estimate ||sigma^ - sigma_c||
+          // (per body the smaller of the optimised and the classical
+          // tractions, both evaluated with the same local problems).
+          const auto absolute = [](const ErrorEstimate &estimate) {
+            return estimate.epsilon *
+                   std::sqrt(estimate.normalisation_squared);
+          };
+          const bool below_classical =
+            absolute(e) <= absolute(classical) * (1 + 1e-12);
           out << "  p = " << degree << ", " << cell_type << ", refinements "
               << refinements << ": epsilon(cre) " << 100 * e.epsilon
               << " %, exact " << 100 * c.epsilon_exact << " %, effectivity "
@@ -149,8 +162,8 @@ main(int argc, char **argv)
               << theta_classical << ")" << std::setprecision(3)
               << ", in [1, 2]: "
               << (c.effectivity >= 1 && c.effectivity <= 2 ? "yes" : "no")
-              << ", below the classical: "
-              << (c.effectivity <= theta_classical ? "yes" : "no")
+              << ", ||sigma^ - sigma_c|| not above the classical: "
+              << (below_classical ? "yes" : "no")
               << "; k = 4: " << 100 * resolved << " %, k = 3 within 5 %: "
               << (std::abs(e.epsilon - resolved) < 0.05 * resolved ? "yes" :
                                                                      "no")
@@ -161,7 +174,7 @@ main(int argc, char **argv)
                         !e.relaxed_equilibration[1],
                       ExcMessage("manufactured: relaxed modes used"));
           AssertThrow(c.effectivity >= 1 && c.effectivity <= 2 &&
-                        theta_classical >= c.effectivity &&
+                        below_classical &&
                         std::abs(e.epsilon - resolved) < 0.05 * resolved,
                       ExcMessage("manufactured: cre effectivity outside [1, 2] "
                                  "or above the classical technique's"));

@@ -104,7 +104,8 @@ namespace coulomb_adapt
       estimate.exact_minimisation_too_large =
         estimate.exact_minimisation_too_large ||
         errors.exact_minimisation_too_large;
-      estimate.relaxed_equilibration[b] = errors.relaxed;
+      estimate.relaxed_equilibration[b]    = errors.relaxed;
+      estimate.classical_tractions_kept[b] = errors.optimisation_kept_classical;
       estimate.contribution_squared[b].swap(errors.error_squared);
       estimate.node_system_defect =
         std::max(estimate.node_system_defect, errors.node_system_defect);
@@ -134,6 +135,8 @@ namespace coulomb_adapt
     ErrorEstimate estimate;
     estimate.estimator   = ErrorEstimator::cre;
     estimate.has_contact = (contact_solver != nullptr);
+    estimate.evaluation_degree_increase =
+      minimisation.evaluation_degree_increase;
     std::array<ContactTractionData, 2> contact;
     const CorrectedContactSolution     equilibrium =
       correct_contact_solutions(bodies,

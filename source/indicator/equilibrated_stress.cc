@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <set>
 
 namespace coulomb_adapt
@@ -526,6 +527,20 @@ namespace coulomb_adapt
     result.relaxed = optimise_tractions && relax_equilibration &&
                      degree_increase >= 3 &&
                      body.description().displacement_data_interpolated_exactly;
+    // The estimate at the minimum from local problems of a higher degree
+    // (CreMinimisation::evaluation_degree_increase).
+    const unsigned int evaluation_degree =
+      p + degree_increase + minimisation.evaluation_degree_increase;
+    std::optional<LocalNeumannProblem> evaluation_local;
+    std::optional<LocalProblemLoads>   evaluation_loads;
+    std::optional<LocalProblems>       evaluation;
+    if (minimisation.evaluation_degree_increase > 0)
+      {
+        evaluation_local.emplace(body, evaluation_degree);
+        evaluation_loads.emplace(
+          body.description(), cells, faces, contact, p, evaluation_degree);
+        evaluation.emplace(LocalProblems{*evaluation_local, *evaluation_loads});
+      }
     if (optimise_tractions)
       optimise_free_parameters(body,
                                cells,
@@ -542,9 +557,15 @@ namespace coulomb_adapt
                                result.relaxed,
                                minimisation,
                                result,
+                               evaluation ? &*evaluation : nullptr,
                                timer);
     else
-      classical_errors(body, cells, local, loads, u_kinematic, result);
+      classical_errors(body,
+                       cells,
+                       evaluation ? *evaluation_local : local,
+                       evaluation ? *evaluation_loads : loads,
+                       u_kinematic,
+                       result);
 
     result.node_system_defect =
       Utilities::MPI::max(result.node_system_defect, comm);

@@ -338,6 +338,19 @@ namespace coulomb_adapt
             << "); with the classical tractions epsilon would be " << std::fixed
             << std::setprecision(3) << 100 * e.epsilon_before_optimisation
             << " %" << std::defaultfloat << std::endl;
+    if (e.evaluation_degree_increase > 0)
+      {
+        pcout << "  cre: evaluated with local problems of degree p + "
+              << cre_degree_increase + e.evaluation_degree_increase
+              << ", not those of the minimisation (p + " << cre_degree_increase
+              << "), whose minimum is where they see least of sigma^";
+        for (unsigned int b = 0; b < 2; ++b)
+          if (e.classical_tractions_kept[b])
+            pcout << "; body " << b + 1
+                  << " keeps the classical tractions (the optimised ones "
+                     "evaluated there are above them)";
+        pcout << std::endl;
+      }
   }
 
 
@@ -382,7 +395,10 @@ namespace coulomb_adapt
         {"exact_minimisation_too_large", e.exact_minimisation_too_large},
         {"relaxed_equilibration",
          {e.relaxed_equilibration[0], e.relaxed_equilibration[1]}},
-        {"epsilon_classical_tractions", e.epsilon_before_optimisation}};
+        {"epsilon_classical_tractions", e.epsilon_before_optimisation},
+        {"evaluation_degree_increase", e.evaluation_degree_increase},
+        {"classical_tractions_kept",
+         {e.classical_tractions_kept[0], e.classical_tractions_kept[1]}}};
     if (compared.empty())
       return;
     auto record_of = [this](const ErrorEstimate &estimate) {

@@ -108,6 +108,9 @@ namespace coulomb_adapt
       bool compare_estimators;
       /** k of the cre estimator's local problems (degree p + k). */
       unsigned int cre_degree_increase;
+      /** The optimised estimate is evaluated with local problems of
+       * degree p + k + this (0: those of the minimisation). */
+      unsigned int cre_evaluation_degree_increase;
       /** Choose the equilibration's free parameters to minimise the cre
        * estimate (else: closest to the averaged traction). */
       bool cre_traction_optimisation;

@@ -67,6 +67,10 @@ namespace coulomb_adapt
      * CreMinimisation::exact_up_to and was minimised by the truncated CG
      * instead of exactly. */
     bool exact_minimisation_too_large = false;
+    /** Whether the optimised tractions, evaluated with the higher degree
+     * of CreMinimisation::evaluation_degree_increase, gave a larger
+     * estimate than the classical ones, which were then kept. */
+    bool optimisation_kept_classical = false;
   };
 
   /**
@@ -87,6 +91,10 @@ namespace coulomb_adapt
     types::global_dof_index exact_up_to = 0;
     /** The truncated CG's tolerance above exact_up_to. */
     static constexpr double large_system_tolerance = 1e-3;
+    /** > 0: the estimate at the minimum is evaluated with local problems
+     * this much higher in degree than the minimisation's (see
+     * optimise_free_parameters()). */
+    unsigned int evaluation_degree_increase = 0;
   };
 
   /**

@@ -72,6 +72,12 @@ namespace coulomb_adapt
     /** cre, per body: whether the relaxed equilibration modes were used
      * (equilibrated_stress_errors()). */
     std::array<bool, 2> relaxed_equilibration = {{false, false}};
+    /** cre: the estimate comes from local problems this much higher in
+     * degree than the minimisation's ('CRE evaluation degree increase'),
+     * and per body whether the optimised tractions, evaluated there, were
+     * above the classical ones, which were then kept. */
+    unsigned int        evaluation_degree_increase = 0;
+    std::array<bool, 2> classical_tractions_kept   = {{false, false}};
     /** The corrected solution (for scenes with contact). */
     CorrectedContactSolution correction;
     bool                     has_contact = false;

@@ -16,6 +16,14 @@ namespace coulomb_adapt
   {
     class LocalProblemLoads;
 
+    /** Local Neumann problems of one degree and the loads of the edge
+     * tractions on them. */
+    struct LocalProblems
+    {
+      const LocalNeumannProblem &local;
+      const LocalProblemLoads   &loads;
+    };
+
     /** Steps 5 and 6: the free parameters that minimise the estimate (see
      * the .cc; the faces' edge bubbles of degree p + 1 among them when
      * @p with_bubbles, and the modes that relax the prolongation
@@ -25,7 +33,14 @@ namespace coulomb_adapt
      * faces keep the classical moments. With @p timer, the cells' quadratic
      * forms, the parameters' matrix (built on the calling thread while
      * the forms are computed) and their assembly into it are timed in
-     * "error indicator: cell forms". */
+     * "error indicator: cell forms".
+     *
+     * With @p evaluation (local problems of a higher degree than @p local,
+     * and their loads), the errors at the minimum come from those instead
+     * of the minimisation's quadratic forms: the minimum is where the
+     * local problems of @p local's degree see least of sigma^, so their
+     * estimate there is low by more than their discretisation error
+     * elsewhere (doc/indicator.md section 4b). */
     void
     optimise_free_parameters(const ElasticBody                   &body,
                              const std::vector<CellData>         &cells,
@@ -37,7 +52,8 @@ namespace coulomb_adapt
                              const bool                           relaxed,
                              const CreMinimisation               &minimisation,
                              EquilibratedStressErrors            &result,
-                             TimerOutput *timer = nullptr);
+                             const LocalProblems *evaluation = nullptr,
+                             TimerOutput         *timer      = nullptr);
   } // namespace equilibration
 } // namespace coulomb_adapt
 
