@@ -171,12 +171,15 @@ namespace coulomb_adapt
         prm.declare_entry("CRE degree increase",
                           "3",
                           Patterns::Integer(1, 4),
-                          "k: the local problems of the cre estimator are "
-                          "solved with polynomials of degree p + k. Their "
+                          "k: the optimisation of the cre estimator's "
+                          "tractions solves its local problems with "
+                          "polynomials of degree p + k (the estimate itself: "
+                          "p + k + 'CRE evaluation degree increase'). Their "
                           "discretisation error lowers the estimate: on the "
                           "manufactured solution epsilon(cre) changes by "
-                          "up to 4 % from k = 3 to 4 and by up to 1.4 % "
-                          "from 4 to 5 (doc/indicator.md). With k >= 3 "
+                          "up to 2 % from k = 3 to 4 (tests/cre_estimator; "
+                          "4 % when the estimate was evaluated with degree "
+                          "p + k, doc/indicator.md). With k >= 3 "
                           "the traction optimisation also uses edge "
                           "bubbles of degree p + 1.");
         prm.declare_entry("CRE traction optimisation",
@@ -220,7 +223,9 @@ namespace coulomb_adapt
           "tighter (P1 triangles: effectivity about 0.99-1.1 "
           "instead of 1.6-2.1; so close to the exact error "
           "that the local problems' discretisation can put "
-          "it 0.5 % below, doc/indicator.md). Only used where the scene's "
+          "it 1 % below on coarse Q1 meshes, 5 % when evaluated with the "
+          "minimisation's own local problems, doc/indicator.md 4b). Only "
+          "used where the scene's "
           "displacement data are interpolated exactly (the "
           "bound assumes it); the log says when it is not. "
           "false: the prolongation conditions are kept.");
@@ -280,9 +285,8 @@ namespace coulomb_adapt
           "equilibration technique (Ladeveze-Leguillon 1983, "
           "Coorevits-Hild-Hjiaj 2001), an upper bound of the "
           "exact error for frictionless contact up to its "
-          "local problems' discretisation (with 'CRE relaxed "
-          "equilibration' one Q1 mesh measured 5 % below it, "
-          "doc/indicator.md 4b); conforming meshes only (not with Adaptation/Strategy = "
+          "local problems' discretisation (one coarse Q1 mesh "
+          "measured 1 % below it, doc/indicator.md 4b); conforming meshes only (not with Adaptation/Strategy = "
           "refine). All three add the same contact term and "
           "use the seed's normalisation. With polynomial "
           "degree 2, zz underestimates, more so on finer "
