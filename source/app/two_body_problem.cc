@@ -474,9 +474,8 @@ namespace coulomb_adapt
                             cycle_report->exact_error(),
                             error_estimate->misses_held_reaction(),
                             parameters.finite_elements.degree,
-                            (error_estimate->relaxed_equilibration[0] ||
-                             error_estimate->relaxed_equilibration[1]) &&
-                              error_estimate->evaluation_degree_increase == 0);
+                            error_estimate->relaxed_equilibration[0] ||
+                              error_estimate->relaxed_equilibration[1]);
         s << "target reached: epsilon = " << std::setprecision(4)
           << 100 * error_estimate->epsilon
           << " % <= epsilon_0 = " << 100 * a.target_error << " %"

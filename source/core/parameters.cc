@@ -195,18 +195,18 @@ namespace coulomb_adapt
         prm.declare_entry(
           "CRE evaluation degree increase",
           "1",
-          Patterns::Integer(0, 3),
-          "With the traction optimisation: the estimate at the optimised "
-          "tractions is evaluated with local problems of degree p + k + "
-          "this, not with those of the minimisation (degree p + k). The "
-          "minimum is where those local problems see least of sigma^: "
-          "evaluated with them, the estimate is low by more than their "
-          "discretisation error (frictionless Q1 blocks, upper 4 x 4 and "
-          "lower 6 x 7 cells: 7.03 % against an exact 7.31-7.40 %; "
-          "evaluated with one degree more 7.34 %, two 7.42 %; "
-          "doc/indicator.md 4b). Costs one more local problem per cell, "
-          "solved once. 0: the minimisation's estimate, as before "
-          "2026-11-30.");
+          Patterns::Integer(0, 2),
+          "The cre estimate is evaluated with local problems of degree "
+          "p + k + this; the optimisation of the edge tractions uses "
+          "degree p + k ('CRE degree increase'). Its minimum is where "
+          "those local problems see least of sigma^: evaluated with them, "
+          "the estimate is low by more than their discretisation error "
+          "(frictionless Q1 blocks, upper 4 x 4 and lower 6 x 7 cells: "
+          "7.03 % against an exact 7.41 %; evaluated with one degree more "
+          "7.34 %, two 7.42 %; doc/indicator.md 4b). Per body the classical "
+          "tractions are kept where, evaluated the same way, they are "
+          "lower. Costs one more local problem per cell, solved once. 0: "
+          "the minimisation's estimate, as before 2026-11-30.");
         prm.declare_entry(
           "CRE relaxed equilibration",
           "true",
@@ -293,7 +293,7 @@ namespace coulomb_adapt
           "meshes (manufactured, 4 uniform refinements: "
           "effectivity 0.45 to 0.09 with Q2, 0.69 to 0.54 "
           "with P2; spr 2.3 to 1.0 and 1.09 to 0.99, cre "
-          "1.03 to 1.05 and 1.66 to 1.97): use spr or cre "
+          "1.11 to 1.06 and 1.69 to 2.03): use spr or cre "
           "there.");
         prm.declare_entry("Recovery",
                           "",

@@ -1,3 +1,4 @@
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/thread_management.h>
 #include <deal.II/base/work_stream.h>
 
@@ -595,21 +596,28 @@ namespace coulomb_adapt
           },
           CellScratch(local, in.names.fe.n_dofs_per_cell()),
           CellCopy());
-        const MPI_Comm comm     = alpha.get_mpi_communicator();
-        result.sum_norm_squared = Utilities::MPI::sum(sum_norm, comm);
-        result.error_squared_before_optimisation =
-          Utilities::MPI::sum(classical, comm);
+        // Every rank takes part in every sum, whatever the comparison.
+        const MPI_Comm            comm = alpha.get_mpi_communicator();
+        const std::vector<double> own  = {sum_norm,
+                                          classical,
+                                          classical_sum_norm,
+                                          result.error_squared.l1_norm()};
+        std::vector<double>       totals(own.size());
+        Utilities::MPI::sum(make_array_view(own),
+                            comm,
+                            make_array_view(totals));
+        result.sum_norm_squared                  = totals[0];
+        result.error_squared_before_optimisation = totals[1];
         // Both sigma^ are statically admissible and evaluated with the
         // same local problems: where the minimum of the minimisation's
         // local problems is above the classical tractions' estimate here
-        // (Q2 with k = 3 on the manufactured solution: 3.18 % against
-        // 3.06 %), the body keeps the classical ones.
-        if (result.error_squared_before_optimisation <
-            Utilities::MPI::sum(result.error_squared.l1_norm(), comm))
+        // (Q2 with k = 3 on the manufactured solution, both bodies
+        // optimised: effectivity 1.15 against the classical tractions'
+        // 1.11), the body keeps the classical ones.
+        if (totals[1] < totals[3])
           {
-            result.error_squared = classical_squared;
-            result.sum_norm_squared =
-              Utilities::MPI::sum(classical_sum_norm, comm);
+            result.error_squared               = classical_squared;
+            result.sum_norm_squared            = totals[2];
             result.optimisation_kept_classical = true;
           }
       }

@@ -341,9 +341,11 @@ namespace coulomb_adapt
     if (e.evaluation_degree_increase > 0)
       {
         pcout << "  cre: evaluated with local problems of degree p + "
-              << cre_degree_increase + e.evaluation_degree_increase
-              << ", not those of the minimisation (p + " << cre_degree_increase
-              << "), whose minimum is where they see least of sigma^";
+              << cre_degree_increase + e.evaluation_degree_increase;
+        if (e.optimisation_parameters > 0)
+          pcout << ", not those of the minimisation (p + "
+                << cre_degree_increase
+                << "), whose minimum is where they see least of sigma^";
         for (unsigned int b = 0; b < 2; ++b)
           if (e.classical_tractions_kept[b])
             pcout << "; body " << b + 1

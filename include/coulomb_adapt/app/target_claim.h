@@ -45,21 +45,19 @@ namespace coulomb_adapt
    * held by the scene's point constraints off any held line (point
    * supports; ErrorEstimate::misses_held_reaction()), so it is not a
    * proven bound even for mu = 0. @p degree: the elements' polynomial
-   * degree (zz underestimates with degree 2).
-   * @p relaxed_minimum_evaluated_where_minimised: cre's optimisation moved
-   * the relaxed modes and its estimate comes from the local problems it
-   * minimised ('CRE evaluation degree increase' = 0): the minimum is where
-   * they see least of sigma^, which turned their discretisation error into
-   * an underestimate (frictionless Q1 blocks: effectivity 0.95), so no
-   * bound is claimed then. */
+   * degree (zz underestimates with degree 2). @p relaxed_equilibration:
+   * cre's optimisation moved the relaxed modes, whose minimum is where the
+   * local problems see least of sigma^: that turned their discretisation
+   * error into an underestimate (frictionless Q1 blocks: effectivity 0.95
+   * evaluated with the minimisation's local problems, 0.99 with one degree
+   * more), so no bound is claimed then. */
   TargetClaim
-  make_target_claim(
-    const ErrorEstimator         estimator,
-    const double                 friction_coefficient,
-    const std::optional<double> &epsilon_exact,
-    const bool                   reaction_not_carried,
-    const unsigned int           degree,
-    const bool relaxed_minimum_evaluated_where_minimised = false);
+  make_target_claim(const ErrorEstimator         estimator,
+                    const double                 friction_coefficient,
+                    const std::optional<double> &epsilon_exact,
+                    const bool                   reaction_not_carried,
+                    const unsigned int           degree,
+                    const bool                   relaxed_equilibration = false);
 
   /** Why zz does not estimate the error of elements of degree @p degree
    * (>= 2), with the measured effectivities; empty for degree 1. */
