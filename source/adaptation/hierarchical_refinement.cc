@@ -74,12 +74,17 @@ namespace coulomb_adapt
                                  parameters.refine_fraction,
                                  parameters.coarsen_fraction,
                                  degree);
+    // Coarsening counts the owned cells that can coarsen: a cell of the
+    // coarse mesh (level 0) asked to coarsen stays as it is.
     for (unsigned int b = 0; b < 2; ++b)
-      for (const signed char d : decisions[b])
-        {
-          report.n_refine_flags += (d > 0);
-          report.n_coarsen_flags += (d < 0);
-        }
+      for (const auto &cell :
+           bodies[b]->triangulation().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const signed char d = decisions[b][cell->active_cell_index()];
+            report.n_refine_flags += (d > 0);
+            report.n_coarsen_flags += (d < 0 && cell->level() > 0);
+          }
     const MPI_Comm comm    = bodies[0]->dof_handler().get_communicator();
     report.n_refine_flags  = Utilities::MPI::sum(report.n_refine_flags, comm);
     report.n_coarsen_flags = Utilities::MPI::sum(report.n_coarsen_flags, comm);
