@@ -137,6 +137,7 @@ namespace coulomb_adapt
     estimate.has_contact = (contact_solver != nullptr);
     estimate.evaluation_degree_increase =
       minimisation.evaluation_degree_increase;
+    estimate.relaxed_equilibration_requested = relax_equilibration;
     std::array<ContactTractionData, 2> contact;
     const CorrectedContactSolution     equilibrium =
       correct_contact_solutions(bodies,

@@ -39,16 +39,31 @@ namespace coulomb_adapt
         for (unsigned int k = 0; k < cell.nodes.size(); ++k)
           position.emplace(cell.nodes[k], cell.points[k]);
 
-      // The held faces per component: inside the body, every node held.
+      // The held faces per component: inside the body, every node held,
+      // or, for degree >= 2, the nodes inside the face held and one of its
+      // ends: the last face of a held line that stops short of a free
+      // point (hertz holds its axis but not the contact point; the held
+      // midpoint of that face had its reaction carried by no face, 6.8e-6
+      // of the largest residual on P2, found by a walkthrough). A face
+      // across the line holds at most one end and no inside node.
       std::array<std::vector<unsigned int>, 2> held_faces;
       for (unsigned int f = 0; f < faces.size(); ++f)
         if (faces[f].plus >= 0 && faces[f].minus >= 0 && !faces[f].at_boundary)
           for (unsigned int c = 0; c < 2; ++c)
             {
-              bool all_held = true;
-              for (const auto node : faces[f].nodes)
-                all_held = all_held && held(description, position.at(node), c);
-              if (all_held)
+              const FaceData &face      = faces[f];
+              unsigned int    held_ends = 0, free_ends = 0, held_inside = 0,
+                           free_inside = 0;
+              for (unsigned int k = 0; k < face.nodes.size(); ++k)
+                {
+                  const bool end = face.s[k] == 0 || face.s[k] == 1;
+                  const bool h =
+                    held(description, position.at(face.nodes[k]), c);
+                  (end ? (h ? held_ends : free_ends) :
+                         (h ? held_inside : free_inside)) += 1;
+                }
+              if (free_inside == 0 &&
+                  (free_ends == 0 || (held_inside > 0 && held_ends > 0)))
                 held_faces[c].push_back(f);
             }
 
@@ -78,11 +93,17 @@ namespace coulomb_adapt
       };
 
       // Each node's held faces share its reaction by their lengths.
+      // (A free end of a held face carries nothing.)
+      const auto held_node = [&](const types::global_dof_index node,
+                                 const unsigned int            c) {
+        return held(description, position.at(node), c);
+      };
       std::map<types::global_dof_index, std::array<double, 2>> held_length;
       for (unsigned int c = 0; c < 2; ++c)
         for (const unsigned int f : held_faces[c])
           for (const auto node : faces[f].nodes)
-            held_length[node][c] += faces[f].length;
+            if (held_node(node, c))
+              held_length[node][c] += faces[f].length;
 
       // What no held face carries: held nodes of owned cells (whose
       // stars, hence reactions, are complete here) off the held lines.
@@ -112,7 +133,7 @@ namespace coulomb_adapt
             for (unsigned int k = 0; k < face.nodes.size(); ++k)
               {
                 const auto node = face.nodes[k];
-                if (is_supported(node, c))
+                if (is_supported(node, c) || !held_node(node, c))
                   continue;
                 face.held_moments[k][c] = 0.5 * reaction.at(node)[c] *
                                           face.length / held_length.at(node)[c];

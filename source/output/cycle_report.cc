@@ -294,7 +294,8 @@ namespace coulomb_adapt
   CycleReport::log_equilibration(const ErrorEstimate &e,
                                  const unsigned int   cre_degree_increase) const
   {
-    pcout << "  cre: equilibrated stress of degree p + " << cre_degree_increase
+    pcout << "  cre: equilibrated stress (local problems of degree p + "
+          << cre_degree_increase << ")"
           << (e.has_contact ? " from the solution under the consistent "
                               "contact load (solved: the mortar's "
                               "dual-basis traction is not in the cone "
@@ -322,9 +323,10 @@ namespace coulomb_adapt
                   "relaxed" :
                 e.relaxed_equilibration[0] || e.relaxed_equilibration[1] ?
                   "relaxed in one body" :
-                  "kept: the relaxed modes need 'CRE relaxed "
-                  "equilibration', 'CRE degree increase' >= 3 and "
-                  "displacement data that the FE space interpolates "
+                !e.relaxed_equilibration_requested ?
+                  "kept: 'CRE relaxed equilibration = false'" :
+                  "kept: the relaxed modes need 'CRE degree increase' >= 3 "
+                  "and displacement data that the FE space interpolates "
                   "exactly")
             << (e.optimisation_steps > 0 ?
                   "; " + std::to_string(e.optimisation_steps) +

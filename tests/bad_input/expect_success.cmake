@@ -3,7 +3,8 @@
 # expression EXPECTED (the numbers it must print).
 # PREVIOUS_ARGS (optional): a run before, with these arguments instead.
 # ABSENT (optional): a ;-list of glob patterns that must match no file
-# afterwards.
+# afterwards. UNEXPECTED (optional): a regular expression the standard
+# output must not match (a warning that must be gone).
 set(launcher)
 if(DEFINED RANKS)
   set(launcher ${MPIEXEC} -np ${RANKS})
@@ -25,6 +26,9 @@ endif()
 string(REPLACE "\n" " " out_one_line "${out}")
 if(NOT out_one_line MATCHES "${EXPECTED}")
   message(FATAL_ERROR "the output does not match\n  '${EXPECTED}':\n${out}")
+endif()
+if(DEFINED UNEXPECTED AND out_one_line MATCHES "${UNEXPECTED}")
+  message(FATAL_ERROR "the output matches '${UNEXPECTED}', which it must not:\n${out}")
 endif()
 foreach(pattern ${ABSENT})
   file(GLOB left ${pattern})

@@ -72,6 +72,8 @@ namespace coulomb_adapt
     /** cre, per body: whether the relaxed equilibration modes were used
      * (equilibrated_stress_errors()). */
     std::array<bool, 2> relaxed_equilibration = {{false, false}};
+    /** cre: whether 'CRE relaxed equilibration' asked for them. */
+    bool relaxed_equilibration_requested = false;
     /** cre: the estimate comes from local problems this much higher in
      * degree than the minimisation's ('CRE evaluation degree increase'),
      * and per body whether the optimised tractions, evaluated there, were
