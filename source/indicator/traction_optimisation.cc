@@ -385,6 +385,25 @@ namespace coulomb_adapt
 
 
 
+      // The local problem of cell @p slot factored and the load of
+      // sigma^_0 in scratch.load, its rigid-motion part (its defect) in
+      // copy.defect and removed: the solution's stress ignores it
+      // (round-off, or the body force's quadrature); its whitened length
+      // would not.
+      void
+      prepare_cell(const FormInputs  &in,
+                   const unsigned int slot,
+                   CellScratch       &scratch,
+                   CellCopy          &copy)
+      {
+        scratch.local.reinit(in.cells[slot].cell, in.u_kinematic);
+        in.loads.cell_load(scratch.local, slot, scratch.load);
+        copy.defect = scratch.local.load_defect(scratch.load);
+        scratch.local.remove_rigid_load(scratch.load);
+      }
+
+
+
       // Everything of one owned cell (run on any thread).
       void
       cell_form(const FormInputs  &in,
@@ -392,14 +411,7 @@ namespace coulomb_adapt
                 CellScratch       &scratch,
                 CellCopy          &copy)
       {
-        LocalNeumannProblem &local = scratch.local;
-        local.reinit(in.cells[slot].cell, in.u_kinematic);
-        in.loads.cell_load(local, slot, scratch.load);
-        copy.defect = local.load_defect(scratch.load);
-        // The solution's stress ignores the load's rigid-motion part
-        // (round-off, or the body force's quadrature); its whitened length
-        // would not.
-        local.remove_rigid_load(scratch.load);
+        prepare_cell(in, slot, scratch, copy);
         copy.form.active_cell_index = in.cells[slot].cell->active_cell_index();
         quadratic_form(parameter_loads(in, slot, scratch, copy), scratch, copy);
       }
@@ -544,13 +556,10 @@ namespace coulomb_adapt
                     CellScratch                         &scratch,
                     CellCopy                            &copy)
       {
-        LocalNeumannProblem &local = scratch.local;
-        local.reinit(in.cells[slot].cell, in.u_kinematic);
-        in.loads.cell_load(local, slot, scratch.load);
-        copy.defect = local.load_defect(scratch.load);
-        local.remove_rigid_load(scratch.load);
-        Vector<double> &w         = scratch.w;
-        const auto      classical = error_and_product(local, scratch.load, w);
+        prepare_cell(in, slot, scratch, copy);
+        const LocalNeumannProblem &local = scratch.local;
+        Vector<double>            &w     = scratch.w;
+        const auto classical = error_and_product(local, scratch.load, w);
         copy.packed.assign(classical.begin(), classical.end());
         const unsigned int n = parameter_loads(in, slot, scratch, copy);
         for (unsigned int i = 0; i < n; ++i)
