@@ -111,8 +111,8 @@ namespace coulomb_adapt
                       "cells up to level " +
                         std::to_string(l.finest_cell_level) :
                     l.coarsening > 0 ?
-                      "graded zone " + std::to_string(1u << l.coarsening) +
-                        "x coarser" :
+                      (l.every_size_scaled ? "mesh sizes " : "graded zone ") +
+                        std::to_string(1u << l.coarsening) + "x coarser" :
                       std::to_string(l.global_refinements) +
                         " global refinements")
                 << ": " << l.n_dofs << " DoFs, ";

@@ -316,7 +316,8 @@ namespace coulomb_adapt
         const ElasticBodies bodies =
           make_bodies(mpi_communicator, *coarser, cell_type, 0, fe_parameters);
         NestedIterationLevel level;
-        level.coarsening = k;
+        level.coarsening        = k;
+        level.every_size_scaled = scene.coarser_meshes_scale_every_size();
         solve_level(
           bodies, contact_parameters, solver_parameters, states, level, levels);
       }

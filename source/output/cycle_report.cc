@@ -168,6 +168,8 @@ namespace coulomb_adapt
                                     {"wall_time_s", l.wall_time}};
             if (l.from_own_hierarchy)
               level["finest_cell_level"] = l.finest_cell_level;
+            if (l.every_size_scaled)
+              level["every_mesh_size_scaled"] = true;
             if (!l.newton_iterations_per_load_step.empty())
               level["newton_iterations_per_load_step"] =
                 l.newton_iterations_per_load_step;

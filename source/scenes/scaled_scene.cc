@@ -213,6 +213,14 @@ namespace coulomb_adapt
 
 
 
+  bool
+  ScaledScene::coarser_meshes_scale_every_size() const
+  {
+    return scene->coarser_meshes_scale_every_size();
+  }
+
+
+
   std::unique_ptr<Scene>
   ScaledScene::with_coarser_graded_meshes(const unsigned int k) const
   {

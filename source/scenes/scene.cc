@@ -97,4 +97,12 @@ namespace coulomb_adapt
   {
     return nullptr;
   }
+
+
+
+  bool
+  Scene::coarser_meshes_scale_every_size() const
+  {
+    return false;
+  }
 } // namespace coulomb_adapt

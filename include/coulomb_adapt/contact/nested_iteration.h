@@ -21,6 +21,9 @@ namespace coulomb_adapt
     /** For graded meshes: the level's graded zone is 2^coarsening times
      * coarser than the fine mesh's (0 for uniform refinement levels). */
     unsigned int coarsening = 0;
+    /** With coarsening > 0: every mesh size scaled by 2^coarsening (a
+     * .geo file's meshes), not only a graded zone. */
+    bool every_size_scaled = false;
     /** Whether the level is an adapted cycle's own meshes with their
      * cells beyond finest_cell_level coarsened. */
     bool                    from_own_hierarchy = false;

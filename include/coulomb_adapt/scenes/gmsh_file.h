@@ -77,6 +77,12 @@ namespace coulomb_adapt
       std::unique_ptr<Scene>
       with_coarser_graded_meshes(const unsigned int k) const override;
 
+      bool
+      coarser_meshes_scale_every_size() const override
+      {
+        return true;
+      }
+
       /** What applies on the curves of one physical group. */
       struct GroupConditions
       {

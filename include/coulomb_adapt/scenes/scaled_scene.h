@@ -77,6 +77,9 @@ namespace coulomb_adapt
     std::unique_ptr<Scene>
     with_coarser_graded_meshes(const unsigned int k) const override;
 
+    bool
+    coarser_meshes_scale_every_size() const override;
+
   private:
     ScaledScene(std::unique_ptr<Scene>  scene,
                 std::shared_ptr<double> load_scale,

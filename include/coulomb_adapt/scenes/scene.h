@@ -205,6 +205,12 @@ namespace coulomb_adapt
      * nullptr (the default) where the scene has no such grading. */
     virtual std::unique_ptr<Scene>
     with_coarser_graded_meshes(const unsigned int k) const;
+
+    /** Whether with_coarser_graded_meshes() scales every mesh size alike
+     * (a .geo file meshed at 2^k times its sizes), not only a graded
+     * zone: the log names the levels accordingly. */
+    virtual bool
+    coarser_meshes_scale_every_size() const;
   };
 } // namespace coulomb_adapt
 
