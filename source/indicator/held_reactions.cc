@@ -39,6 +39,11 @@ namespace coulomb_adapt
         for (unsigned int k = 0; k < cell.nodes.size(); ++k)
           position.emplace(cell.nodes[k], cell.points[k]);
 
+      const auto held_node = [&](const types::global_dof_index node,
+                                 const unsigned int            c) {
+        return held(description, position.at(node), c);
+      };
+
       // The held faces per component: inside the body, every node held,
       // or, for degree >= 2, the nodes inside the face held and one of its
       // ends: the last face of a held line that stops short of a free
@@ -56,9 +61,8 @@ namespace coulomb_adapt
                            free_inside = 0;
               for (unsigned int k = 0; k < face.nodes.size(); ++k)
                 {
-                  const bool end = face.s[k] == 0 || face.s[k] == 1;
-                  const bool h =
-                    held(description, position.at(face.nodes[k]), c);
+                  const bool end = is_face_end(face, k);
+                  const bool h   = held_node(face.nodes[k], c);
                   (end ? (h ? held_ends : free_ends) :
                          (h ? held_inside : free_inside)) += 1;
                 }
@@ -94,10 +98,6 @@ namespace coulomb_adapt
 
       // Each node's held faces share its reaction by their lengths.
       // (A free end of a held face carries nothing.)
-      const auto held_node = [&](const types::global_dof_index node,
-                                 const unsigned int            c) {
-        return held(description, position.at(node), c);
-      };
       std::map<types::global_dof_index, std::array<double, 2>> held_length;
       for (unsigned int c = 0; c < 2; ++c)
         for (const unsigned int f : held_faces[c])

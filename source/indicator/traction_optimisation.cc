@@ -814,7 +814,7 @@ namespace coulomb_adapt
         std::map<types::global_dof_index, bool> couple_allowed;
         for (const FaceData &face : faces)
           for (unsigned int k = 0; k < face.nodes.size(); ++k)
-            if (face.s[k] == 0 || face.s[k] == 1)
+            if (is_face_end(face, k))
               {
                 auto [entry, inserted] =
                   couple_allowed.emplace(face.nodes[k], true);

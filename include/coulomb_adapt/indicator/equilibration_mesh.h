@@ -92,6 +92,14 @@ namespace coulomb_adapt
       return largest;
     }
 
+    // Whether node @p k of @p face is one of its ends (a vertex), not a
+    // node inside it.
+    inline bool
+    is_face_end(const FaceData &face, const unsigned int k)
+    {
+      return face.s[k] == 0 || face.s[k] == 1;
+    }
+
     // Lagrange polynomials of the face's nodes at parameter s (p <= 2:
     // at most three nodes; a fixed array, as this is called per
     // quadrature point of every face).
