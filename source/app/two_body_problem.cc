@@ -475,7 +475,9 @@ namespace coulomb_adapt
                             error_estimate->misses_held_reaction(),
                             parameters.finite_elements.degree,
                             error_estimate->relaxed_equilibration[0] ||
-                              error_estimate->relaxed_equilibration[1]);
+                              error_estimate->relaxed_equilibration[1],
+                            error_estimate->evaluation_degree_increase,
+                            error_estimate->penetration_after > 0);
         s << "target reached: epsilon = " << std::setprecision(4)
           << 100 * error_estimate->epsilon
           << " % <= epsilon_0 = " << 100 * a.target_error << " %"

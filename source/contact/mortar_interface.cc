@@ -372,7 +372,15 @@ namespace coulomb_adapt
   std::vector<MortarInterface::OverlapPoint>
   MortarInterface::overlap_quadrature(const unsigned int n_points) const
   {
-    const QGauss<1>           gauss(n_points);
+    return overlap_quadrature(QGauss<1>(n_points));
+  }
+
+
+
+  std::vector<MortarInterface::OverlapPoint>
+  MortarInterface::overlap_quadrature(const Quadrature<1> &gauss) const
+  {
+    const unsigned int        n_points = gauss.size();
     std::vector<OverlapPoint> points;
     points.reserve(overlap_list.size() * n_points);
     for (unsigned int o = 0; o < overlap_list.size(); ++o)

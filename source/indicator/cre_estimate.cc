@@ -1,6 +1,7 @@
 #include <coulomb_adapt/core/optional_timer_section.h>
 #include <coulomb_adapt/indicator/equilibrated_stress.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
+#include <coulomb_adapt/indicator/kinematic_admissibility.h>
 
 #include <cmath>
 #include <optional>
@@ -121,6 +122,94 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // The bound for mu = 0 with a kinematic side U_c that may penetrate
+    // between the mortar's nodes (kinematic_admissibility.h). With
+    // e = ||sigma - sigma_c||, A^2 = sum_E ||sigma^ - sigma_c||_E^2 and
+    // p^, g the pressure of sigma^ and the pointwise gap,
+    //   e^2 <= A^2 + 2 int p^ g(U_c) + 2 int p |g^-(U_c)|   (p exact),
+    // and with the opening delta, b = ||sigma(delta)||, S its computable
+    // work, int p |g^-| <= e b + S, so that
+    //   e <= b + sqrt(A^2 + 2 int p^ g+(U_c) + b^2 + 2 S) =: b + eta.
+    // The cells get a_E^2 + c_E (c_E the contact term on E's faces, each
+    // piece counted on both sides) and b^2 + 2 S in proportion to
+    // ||sigma(delta)||_E^2; then (eta + b)^2 = (1 + gamma) eta^2 +
+    // (1 + 1 / gamma) b^2 with gamma = b / eta splits the sum into cell
+    // contributions. The seed's contact term (estimate.contact, nodal,
+    // clipped) is added to this and to the exact error (3-8) as before.
+    // Without penetration it is the hypercircle with the pointwise contact
+    // term. With friction no bound is claimed: the penetration is measured
+    // and reported only.
+    void
+    add_kinematic_admissibility(
+      const std::array<const ElasticBody *, 2> &bodies,
+      const MortarInterface                    &mortar,
+      const CorrectedContactSolution           &equilibrium,
+      const double                              mu,
+      const double                              normalisation_squared,
+      std::array<double, 2>                    &volume_squared,
+      ErrorEstimate                            &estimate)
+    {
+      const std::array<const TrilinosWrappers::MPI::Vector *, 2> judged = {
+        {&estimate.correction.displacement(0),
+         &estimate.correction.displacement(1)}};
+      std::vector<double> pressure;
+      for (const auto &f : equilibrium.fields)
+        pressure.push_back(f.pressure);
+      const KinematicAdmissibility admissible =
+        make_kinematically_admissible(mortar, bodies, judged, pressure);
+      estimate.penetration = admissible.penetration;
+      if (mu > 0)
+        return;
+      estimate.opened_nodes      = admissible.n_opened_nodes;
+      estimate.penetration_after = admissible.penetration_after;
+      const ContactErrorTerm pressure_gap =
+        pressure_gap_term(mortar, equilibrium.fields, judged);
+      const double opening = std::sqrt(admissible.opening_norm_squared);
+      // S < -b^2 / 2 would make the opening's share negative; a larger S
+      // only loosens the bound.
+      const double opening_share =
+        admissible.opened() ?
+          1 + 2 * std::max(admissible.opening_work /
+                             admissible.opening_norm_squared,
+                           -0.5) :
+          0.;
+
+      double eta_squared = 0;
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          Vector<double> &e2 = estimate.contribution_squared[b];
+          if (admissible.opened())
+            e2.add(opening_share, admissible.opening_squared[b]);
+          const auto cells = owned_boundary_cell_indices(*bodies[b]);
+          for (const auto &[id, value] :
+               (b == 0 ? pressure_gap.slave_cells : pressure_gap.master_cells))
+            if (const auto c = cells.find(id); c != cells.end())
+              e2(c->second) += value;
+          volume_squared[b] =
+            Utilities::MPI::sum(e2.l1_norm(),
+                                bodies[b]->triangulation().get_communicator());
+          eta_squared += volume_squared[b];
+        }
+      if (!admissible.opened())
+        return;
+      const double gamma = opening / std::sqrt(eta_squared);
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          Vector<double> &e2 = estimate.contribution_squared[b];
+          e2 *= 1 + gamma;
+          e2.add(1 + 1 / gamma, admissible.opening_squared[b]);
+          volume_squared[b] =
+            Utilities::MPI::sum(e2.l1_norm(),
+                                bodies[b]->triangulation().get_communicator());
+        }
+      estimate.epsilon_opening = opening / std::sqrt(normalisation_squared);
+    }
+  } // namespace
+
+
+
   ErrorEstimate
   estimate_error_cre(const std::array<const ElasticBody *, 2> &bodies,
                      const ContactSolution                    *contact_solver,
@@ -171,6 +260,14 @@ namespace coulomb_adapt
 
     const OptionalTimerSection section(options.timer,
                                        "error indicator: contributions");
+    if (estimate.has_contact)
+      add_kinematic_admissibility(bodies,
+                                  contact_solver->mortar_interface(),
+                                  equilibrium,
+                                  mu,
+                                  normalisation_squared,
+                                  volume_squared,
+                                  estimate);
     finish_error_estimate(bodies,
                           volume_squared,
                           normalisation_squared,

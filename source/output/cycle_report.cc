@@ -361,6 +361,51 @@ namespace coulomb_adapt
 
 
 
+  // Where U_c penetrates between the mortar's nodes, the cre bound needs
+  // the kinematic side opened (kinematic_admissibility.h): the log says by
+  // how much, and what it costs the estimate.
+  nlohmann::json
+  CycleReport::log_kinematic_admissibility(const ErrorEstimate &e)
+  {
+    const double penetration =
+      physical(e.penetration, units::Kind::displacement, "penetration");
+    const double       after  = physical(e.penetration_after,
+                                  units::Kind::displacement,
+                                  "penetration_after_opening");
+    const unsigned int opened = e.opened_nodes[0] + e.opened_nodes[1];
+    if (e.penetration == 0)
+      pcout << "  cre: the kinematic side does not penetrate between the "
+               "mortar's nodes (checked pointwise)"
+            << std::endl;
+    else if (opened == 0)
+      pcout << "  cre: the kinematic side penetrates by up to "
+            << std::setprecision(3) << penetration
+            << " mm between the mortar's nodes; with friction the estimate "
+               "is no bound, so it is not opened"
+            << std::endl;
+    else
+      {
+        pcout << "  cre: the kinematic side penetrates by up to "
+              << std::setprecision(3) << penetration
+              << " mm between the mortar's nodes: opened " << e.opened_nodes[0]
+              << " slave and " << e.opened_nodes[1]
+              << " master nodes to remove it, which adds " << std::fixed
+              << std::setprecision(3) << 100 * e.epsilon_opening
+              << " % (||sigma(u^ - U_c)|| / D) to the estimate"
+              << std::defaultfloat;
+        if (e.penetration_after > 0)
+          pcout << "; " << std::setprecision(3) << after
+                << " mm remain (constrained nodes): the estimate is no bound";
+        pcout << std::endl;
+      }
+    return {{"penetration", penetration},
+            {"opened_nodes", {e.opened_nodes[0], e.opened_nodes[1]}},
+            {"penetration_after_opening", after},
+            {"epsilon_opening", e.epsilon_opening}};
+  }
+
+
+
   void
   CycleReport::record_error_estimate(
     const ErrorEstimate                      &e,
@@ -369,8 +414,13 @@ namespace coulomb_adapt
   {
     if (e.has_contact)
       record_correction(e.correction);
+    nlohmann::json admissibility;
     if (e.estimator == ErrorEstimator::cre)
-      log_equilibration(e, cre_degree_increase);
+      {
+        log_equilibration(e, cre_degree_increase);
+        if (e.has_contact)
+          admissibility = log_kinematic_admissibility(e);
+      }
     auto log_epsilon = [&](const ErrorEstimate &estimate) {
       pcout << "  error indicator (" << to_string(estimate.estimator)
             << "): epsilon = " << std::fixed << std::setprecision(3)
@@ -404,7 +454,8 @@ namespace coulomb_adapt
         {"epsilon_classical_tractions", e.epsilon_before_optimisation},
         {"evaluation_degree_increase", e.evaluation_degree_increase},
         {"classical_tractions_kept",
-         {e.classical_tractions_kept[0], e.classical_tractions_kept[1]}}};
+         {e.classical_tractions_kept[0], e.classical_tractions_kept[1]}},
+        {"kinematic_admissibility", admissibility}};
     if (compared.empty())
       return;
     auto record_of = [this](const ErrorEstimate &estimate) {

@@ -45,19 +45,23 @@ namespace coulomb_adapt
    * held by the scene's point constraints off any held line (point
    * supports; ErrorEstimate::misses_held_reaction()), so it is not a
    * proven bound even for mu = 0. @p degree: the elements' polynomial
-   * degree (zz underestimates with degree 2). @p relaxed_equilibration:
-   * cre's optimisation moved the relaxed modes, whose minimum is where the
-   * local problems see least of sigma^: that turned their discretisation
-   * error into an underestimate (frictionless Q1 blocks: effectivity 0.95
-   * evaluated with the minimisation's local problems, 0.99 with one degree
-   * more), so no bound is claimed then. */
+   * degree (zz underestimates with degree 2). @p relaxed_equilibration
+   * with @p evaluation_degree_increase = 0: cre's optimisation moved the
+   * relaxed modes and the estimate was evaluated with the minimisation's
+   * own local problems, where its minimum sees least of sigma^ (frictionless
+   * Q1 blocks: effectivity 0.95 before the kinematic side was opened), so
+   * no bound is claimed then. @p penetration_left: cre's kinematic side
+   * still penetrates after the opening (ErrorEstimate::penetration_after),
+   * so it is not admissible and no bound is claimed. */
   TargetClaim
   make_target_claim(const ErrorEstimator         estimator,
                     const double                 friction_coefficient,
                     const std::optional<double> &epsilon_exact,
                     const bool                   reaction_not_carried,
                     const unsigned int           degree,
-                    const bool                   relaxed_equilibration = false);
+                    const bool                   relaxed_equilibration = false,
+                    const unsigned int           evaluation_degree_increase = 1,
+                    const bool                   penetration_left = false);
 
   /** Why zz does not estimate the error of elements of degree @p degree
    * (>= 2), with the measured effectivities; empty for degree 1. */

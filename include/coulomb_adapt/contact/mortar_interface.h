@@ -2,6 +2,7 @@
 #define coulomb_adapt_contact_mortar_interface_h
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/quadrature.h>
 #include <deal.II/base/tensor.h>
 
 #include <deal.II/grid/cell_id.h>
@@ -173,6 +174,12 @@ namespace coulomb_adapt
      * of degree 2 n_points - 1 in the slave parameter. */
     std::vector<OverlapPoint>
     overlap_quadrature(const unsigned int n_points) const;
+
+    /** The same with any quadrature of [0, 1] mapped onto every overlap
+     * (Gauss-Lobatto: the overlap's ends included, where the gap of
+     * linear segments is smallest). */
+    std::vector<OverlapPoint>
+    overlap_quadrature(const Quadrature<1> &quadrature) const;
 
     /** Whether the master surface covers slave node j's support
      * completely (sum_l M_jl = D_jj): only such nodes can come into

@@ -80,6 +80,16 @@ namespace coulomb_adapt
      * above the classical ones, which were then kept. */
     unsigned int        evaluation_degree_increase = 0;
     std::array<bool, 2> classical_tractions_kept   = {{false, false}};
+    /** cre: the largest pointwise penetration of U_c between the mortar's
+     * nodes (mm; 0 if none), and for mu = 0, where the estimate is a
+     * bound, the interface nodes opened to remove it (slave, master), the
+     * penetration they could not remove (a constraint held a node), and
+     * ||sigma(u^ - U_c)|| / D, which the estimate includes
+     * (kinematic_admissibility.h). */
+    double                      penetration       = 0;
+    std::array<unsigned int, 2> opened_nodes      = {{0, 0}};
+    double                      penetration_after = 0;
+    double                      epsilon_opening   = 0;
     /** The corrected solution (for scenes with contact). */
     CorrectedContactSolution correction;
     bool                     has_contact = false;

@@ -189,6 +189,11 @@ namespace coulomb_adapt
     void
     log_equilibration(const ErrorEstimate &e,
                       const unsigned int   cre_degree_increase) const;
+    /** The log line on the cre kinematic side's penetration between the
+     * mortar's nodes and its opening; returns the summary's record of
+     * it. */
+    nlohmann::json
+    log_kinematic_admissibility(const ErrorEstimate &e);
 
     const MPI_Comm            mpi_communicator;
     const ConditionalOStream &pcout;

@@ -1,0 +1,102 @@
+#ifndef coulomb_adapt_indicator_kinematic_admissibility_h
+#define coulomb_adapt_indicator_kinematic_admissibility_h
+
+#include <deal.II/base/point.h>
+
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/contact/mortar_interface.h>
+#include <coulomb_adapt/indicator/contact_error.h>
+
+#include <array>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * The CRE's bound for mu = 0 (theory.md section 7.4) needs a kinematic
+   * side without penetration anywhere on the interface. The mortar method
+   * keeps the bodies apart only in the weak sense of its dual basis (one
+   * weighted gap per slave node), so between the nodes, where a master
+   * node or the end of the master's contact zone falls inside a slave
+   * segment, the corrected displacement U_c can penetrate: a flat punch's
+   * corner on a remeshed block whose nodes do not meet it
+   * (doc/indicator.md section 4c). For a penetrating U_c the hypercircle
+   * misses the term 2 int p |g^-| of the exact pressure p, which nothing
+   * computable bounds.
+   *
+   * So interface nodes are opened (moved into their own body, along the
+   * normal) just enough to remove every penetration: u^ = U_c + delta.
+   * Each penetration is removed by the node that does it at least cost
+   * (in energy and in the contact term it adds), greedily, worst first.
+   * The gap rise of delta covers every penetration, so the term the
+   * hypercircle misses is at most the exact contact traction's work on
+   * delta, int p rise(delta) = sum_b int (sigma - sigma_c) : eps(delta_b)
+   * + S <= e b + S, with e = ||sigma - sigma_c||, b = ||sigma(delta)||
+   * and S = opening_work; cre_estimate.cc solves the quadratic inequality
+   * this gives for e.
+   */
+  struct KinematicAdmissibility
+  {
+    /** Largest penetration of U_c between the bodies, pointwise on the
+     * mortar overlaps (mm); 0 if none beyond round-off. */
+    double penetration = 0;
+    /** Where (on the slave side) it is largest. */
+    Point<2> where;
+    /** Interface nodes opened in each body (0: slave, 1: master). */
+    std::array<unsigned int, 2> n_opened_nodes = {{0, 0}};
+    /** Largest penetration of u^ (0 unless a constraint held an opened
+     * node back). */
+    double penetration_after = 0;
+    /** u^ of each body, with ghost entries; empty if nothing was opened. */
+    std::array<TrilinosWrappers::MPI::Vector, 2> displacement;
+    /** ||sigma(delta)||^2 on each active cell of each body (0 on the cells
+     * this rank does not own), and its sum over both bodies and all ranks
+     * (N per unit thickness). */
+    std::array<Vector<double>, 2> opening_squared;
+    double                        opening_norm_squared = 0;
+    /** S = sum_b int sigma(U_c) : eps(delta) - l_b(delta), with l_b the
+     * body's external load: what U_c's stress does on the opening beyond
+     * the loads, the computable part of the exact contact traction's
+     * work on it (N per unit thickness). */
+    double opening_work = 0;
+
+    bool
+    opened() const
+    {
+      return n_opened_nodes[0] + n_opened_nodes[1] > 0;
+    }
+  };
+
+  /**
+   * Measure U_c's pointwise penetration (@p displacements of the slave
+   * and the master body, with ghost entries) on every overlap of
+   * @p mortar, and open interface nodes where it penetrates. @p pressure:
+   * the equilibrated stress's pressure lambda_n at each slave node, which
+   * the contact term multiplies with the opened gap.
+   */
+  KinematicAdmissibility
+  make_kinematically_admissible(
+    const MortarInterface                                      &mortar,
+    const std::array<const ElasticBody *, 2>                   &bodies,
+    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
+    const std::vector<double>                                  &pressure);
+
+  /**
+   * The contact term of the bound for mu = 0: c = lambda_n g, with the
+   * pressure lambda_n of @p fields (the equilibrated stress's, its nodal
+   * values interpolated with the standard slave basis) and the pointwise
+   * gap g of the displacements (>= 0 where they are admissible; a
+   * penetration left is counted as 0, and reported by the caller), on
+   * every overlap, in the layout of integrate_contact_error().
+   */
+  ContactErrorTerm
+  pressure_gap_term(
+    const MortarInterface                                      &mortar,
+    const std::vector<ContactNodeFields>                       &fields,
+    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements);
+} // namespace coulomb_adapt
+
+#endif

@@ -1,0 +1,460 @@
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/work_stream.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/grid/filtered_iterator.h>
+
+#include <coulomb_adapt/indicator/kinematic_admissibility.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace coulomb_adapt
+{
+  namespace
+  {
+    // Where the gap is sampled on each overlap: the ends (the gap of linear
+    // segments is linear there, so its smallest value is at an end) and,
+    // for quadratic segments, enough points between them to see a
+    // parabola's minimum to a fraction of its depth.
+    QGaussLobatto<1>
+    gap_samples(const unsigned int degree)
+    {
+      return QGaussLobatto<1>(degree == 1 ? 2 : 9);
+    }
+
+
+
+    // The normal gap between the bodies at every sample point:
+    // g = (y - x) . n - n . (u^1(x) - u^2(y)), with n the slave segment's
+    // normal (curved segments: the interpolated nodal normal), as the
+    // mortar measures the initial gap and the weighted jumps.
+    std::vector<double>
+    pointwise_gaps(const MortarInterface                            &mortar,
+                   const std::vector<MortarInterface::OverlapPoint> &points,
+                   const std::vector<Tensor<1, 2>> &slave_values,
+                   const std::vector<Tensor<1, 2>> &master_values)
+    {
+      const auto         &slave_nodes     = mortar.slave_nodes();
+      const auto         &slave_segments  = mortar.slave_segment_list();
+      const auto         &master_segments = mortar.master_segment_list();
+      std::vector<double> gaps(points.size());
+      for (unsigned int q = 0; q < points.size(); ++q)
+        {
+          const auto  &overlap = mortar.overlaps()[points[q].overlap];
+          const auto  &s_seg   = slave_segments[overlap.slave_segment];
+          const auto  &m_seg   = master_segments[overlap.master_segment];
+          const auto   phi_s   = mortar.slave_shape_values(points[q].xi);
+          const auto   phi_m   = mortar.master_shape_values(points[q].eta);
+          Tensor<1, 2> jump, n;
+          for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
+            {
+              jump += phi_s[k] * slave_values[s_seg.nodes[k]];
+              n += phi_s[k] * slave_nodes[s_seg.nodes[k]].normal;
+            }
+          for (unsigned int k = 0; k < m_seg.nodes.size(); ++k)
+            jump -= phi_m[k] * master_values[m_seg.nodes[k]];
+          n = s_seg.curved ? n / n.norm() : s_seg.normal;
+          gaps[q] =
+            (points[q].master_point - points[q].slave_point) * n - n * jump;
+        }
+      return gaps;
+    }
+
+
+
+    // Penetration below this is round-off of the displacements.
+    double
+    negligible_penetration(const std::vector<Tensor<1, 2>> &slave_values,
+                           const std::vector<Tensor<1, 2>> &master_values)
+    {
+      double scale = 0;
+      for (const auto *values : {&slave_values, &master_values})
+        for (const auto &u : *values)
+          scale = std::max(scale, u.norm());
+      return 1e-10 * scale;
+    }
+
+
+
+    // ||sigma(delta)||^2 on every owned cell of the body (N per unit
+    // thickness).
+    // ... and the sum of int sigma(U) : eps(delta) over them (every rank).
+    Vector<double>
+    cell_energies(const ElasticBody                   &body,
+                  const TrilinosWrappers::MPI::Vector &delta,
+                  const TrilinosWrappers::MPI::Vector &judged,
+                  double                              &work)
+    {
+      struct Scratch
+      {
+        explicit Scratch(const ElasticBody &body)
+          : fe_values(body.mapping(),
+                      body.dof_handler().get_fe(),
+                      body.cell_quadrature(),
+                      update_gradients | update_JxW_values)
+          , strains(body.cell_quadrature().size())
+          , judged_strains(body.cell_quadrature().size())
+        {}
+        Scratch(const Scratch &other)
+          : fe_values(other.fe_values.get_mapping(),
+                      other.fe_values.get_fe(),
+                      other.fe_values.get_quadrature(),
+                      other.fe_values.get_update_flags())
+          , strains(other.strains.size())
+          , judged_strains(other.strains.size())
+        {}
+        FEValues<2>                        fe_values;
+        std::vector<SymmetricTensor<2, 2>> strains;
+        std::vector<SymmetricTensor<2, 2>> judged_strains;
+      };
+      struct Copy
+      {
+        unsigned int index  = 0;
+        double       energy = 0;
+        double       work   = 0;
+      };
+      Vector<double> energies(body.triangulation().n_active_cells());
+      const FEValuesExtractors::Vector u(0);
+      using OwnedCell = FilteredIterator<DoFHandler<2>::active_cell_iterator>;
+      const DoFHandler<2> &dofs = body.dof_handler();
+      WorkStream::run(
+        OwnedCell(IteratorFilters::LocallyOwnedCell(), dofs.begin_active()),
+        OwnedCell(IteratorFilters::LocallyOwnedCell(), dofs.end()),
+        [&](const OwnedCell &cell, Scratch &scratch, Copy &copy) {
+          copy.index  = cell->active_cell_index();
+          copy.energy = 0;
+          copy.work   = 0;
+          scratch.fe_values.reinit(cell);
+          scratch.fe_values[u].get_function_symmetric_gradients(
+            delta, scratch.strains);
+          scratch.fe_values[u].get_function_symmetric_gradients(
+            judged, scratch.judged_strains);
+          for (const unsigned int q :
+               scratch.fe_values.quadrature_point_indices())
+            {
+              const SymmetricTensor<2, 2> stress =
+                body.material().stress(scratch.strains[q]);
+              copy.energy +=
+                stress * scratch.strains[q] * scratch.fe_values.JxW(q);
+              copy.work +=
+                stress * scratch.judged_strains[q] * scratch.fe_values.JxW(q);
+            }
+        },
+        [&](const Copy &copy) {
+          energies(copy.index) = copy.energy;
+          work += copy.work;
+        },
+        Scratch(body),
+        Copy());
+      return energies;
+    }
+
+
+
+    // The outward unit normal of the master body at each master node: the
+    // mean of its segments' normals.
+    std::vector<Tensor<1, 2>>
+    master_nodal_normals(const MortarInterface &mortar)
+    {
+      std::vector<Tensor<1, 2>> normals(mortar.master_nodes().size());
+      for (const auto &segment : mortar.master_segment_list())
+        for (const unsigned int l : segment.nodes)
+          normals[l] += segment.normal;
+      for (auto &n : normals)
+        if (n.norm() > 0)
+          n /= n.norm();
+      return normals;
+    }
+
+
+
+    // What opening each node of @p nodes by 1 along @p normals costs in
+    // energy: n . K_jj n from the body's stiffness matrix, or infinity for
+    // a node that cannot move on its own (a DoF constrained: a support, a
+    // hanging node, a held line). Gathered from the ranks that own the
+    // rows, so that every rank opens the same nodes.
+    std::vector<double>
+    opening_stiffness(const std::vector<MortarInterface::Node> &nodes,
+                      const std::vector<Tensor<1, 2>>          &normals,
+                      const ElasticBody                        &body)
+    {
+      const IndexSet     &owned = body.locally_owned_dof_set();
+      const auto         &K     = body.system_matrix();
+      std::vector<double> packed;
+      for (unsigned int n = 0; n < nodes.size(); ++n)
+        if (owned.is_element(nodes[n].dofs[0]))
+          {
+            const auto &dofs = nodes[n].dofs;
+            double      k    = std::numeric_limits<double>::infinity();
+            if (!body.constraints().is_constrained(dofs[0]) &&
+                !body.constraints().is_constrained(dofs[1]))
+              {
+                k = 0;
+                for (unsigned int c = 0; c < 2; ++c)
+                  for (unsigned int d = 0; d < 2; ++d)
+                    k += normals[n][c] * K.el(dofs[c], dofs[d]) * normals[n][d];
+              }
+            packed.insert(packed.end(), {double(n), k});
+          }
+      std::vector<double> stiffness(nodes.size(),
+                                    std::numeric_limits<double>::infinity());
+      for (const auto &v :
+           Utilities::MPI::all_gather(body.triangulation().get_communicator(),
+                                      packed))
+        for (std::size_t i = 0; i < v.size(); i += 2)
+          stiffness[static_cast<unsigned int>(v[i])] = v[i + 1];
+      return stiffness;
+    }
+
+
+
+    // A node that can open one overlap point: its side, index, and how much
+    // the gap there rises per unit of its opening.
+    struct Candidate
+    {
+      unsigned int side;
+      unsigned int node;
+      double       rise;
+    };
+  } // namespace
+
+
+
+  KinematicAdmissibility
+  make_kinematically_admissible(
+    const MortarInterface                                      &mortar,
+    const std::array<const ElasticBody *, 2>                   &bodies,
+    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
+    const std::vector<double>                                  &pressure)
+  {
+    KinematicAdmissibility                                          result;
+    const std::array<const std::vector<MortarInterface::Node> *, 2> nodes = {
+      {&mortar.slave_nodes(), &mortar.master_nodes()}};
+    const auto points =
+      mortar.overlap_quadrature(gap_samples(mortar.slave_element_degree()));
+    std::array<std::vector<Tensor<1, 2>>, 2> values;
+    for (unsigned int s = 0; s < 2; ++s)
+      values[s] =
+        MortarInterface::gather_nodal_displacements(*nodes[s],
+                                                    *displacements[s]);
+    const double negligible = negligible_penetration(values[0], values[1]);
+    std::vector<double> gaps =
+      pointwise_gaps(mortar, points, values[0], values[1]);
+    for (unsigned int q = 0; q < points.size(); ++q)
+      if (-gaps[q] > std::max(negligible, result.penetration))
+        {
+          result.penetration = -gaps[q];
+          result.where       = points[q].slave_point;
+        }
+    if (result.penetration == 0)
+      return result;
+
+    // Each node moves into its own body: the slave node against its
+    // normal, the master node against the master's normal. Opening node i
+    // by delta costs about K_ii delta^2 in energy and 2 P_i delta in the
+    // contact term (P_i = int p^ times the gap's rise per unit opening of
+    // i), so each penetration is removed by the node for which that is
+    // least.
+    const std::array<std::vector<Tensor<1, 2>>, 2> normals = {
+      {[&] {
+         std::vector<Tensor<1, 2>> n;
+         for (const auto &node : mortar.slave_nodes())
+           n.push_back(node.normal);
+         return n;
+       }(),
+       master_nodal_normals(mortar)}};
+    std::array<std::vector<double>, 2> stiffness;
+    for (unsigned int s = 0; s < 2; ++s)
+      stiffness[s] = opening_stiffness(*nodes[s], normals[s], *bodies[s]);
+    const auto candidates = [&](const unsigned int q) {
+      const auto &overlap = mortar.overlaps()[points[q].overlap];
+      const auto &s_seg   = mortar.slave_segment_list()[overlap.slave_segment];
+      const auto &m_seg = mortar.master_segment_list()[overlap.master_segment];
+      const auto  phi_s = mortar.slave_shape_values(points[q].xi);
+      const auto  phi_m = mortar.master_shape_values(points[q].eta);
+      const Tensor<1, 2>     n = s_seg.normal;
+      std::vector<Candidate> list;
+      for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
+        list.push_back(
+          {0, s_seg.nodes[k], phi_s[k] * (normals[0][s_seg.nodes[k]] * n)});
+      for (unsigned int k = 0; k < m_seg.nodes.size(); ++k)
+        list.push_back(
+          {1, m_seg.nodes[k], -phi_m[k] * (normals[1][m_seg.nodes[k]] * n)});
+      return list;
+    };
+
+    // Worst penetration first, each by its cheapest node; the gaps move
+    // linearly with the openings, so they are updated exactly.
+    std::array<std::vector<double>, 2> opening = {
+      {std::vector<double>(nodes[0]->size(), 0.),
+       std::vector<double>(nodes[1]->size(), 0.)}};
+    std::array<std::vector<double>, 2> pressure_work = opening;
+    {
+      for (unsigned int q = 0; q < points.size(); ++q)
+        {
+          const auto &overlap = mortar.overlaps()[points[q].overlap];
+          const auto &s_seg =
+            mortar.slave_segment_list()[overlap.slave_segment];
+          const auto phi = mortar.slave_shape_values(points[q].xi);
+          double     p   = 0;
+          for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
+            p += phi[k] * pressure[s_seg.nodes[k]];
+          for (const auto &c : candidates(q))
+            if (c.rise > 0)
+              pressure_work[c.side][c.node] +=
+                std::max(p, 0.) * c.rise * points[q].weight;
+        }
+    }
+    for (unsigned int step = 0; step < 4 * points.size(); ++step)
+      {
+        unsigned int worst = points.size();
+        double       depth = negligible;
+        for (unsigned int q = 0; q < points.size(); ++q)
+          if (-gaps[q] > depth)
+            {
+              depth = -gaps[q];
+              worst = q;
+            }
+        if (worst == points.size())
+          break;
+        const Candidate *best = nullptr;
+        double           cost = std::numeric_limits<double>::max();
+        const auto       list = candidates(worst);
+        for (const auto &c : list)
+          if (c.rise > 1e-3 && std::isfinite(stiffness[c.side][c.node]))
+            {
+              const double amount = depth / c.rise;
+              const double added = stiffness[c.side][c.node] * amount * amount +
+                                   2 * pressure_work[c.side][c.node] * amount;
+              if (added < cost)
+                {
+                  cost = added;
+                  best = &c;
+                }
+            }
+        if (best == nullptr)
+          break;
+        const double amount = depth / best->rise;
+        opening[best->side][best->node] += amount;
+        for (unsigned int q = 0; q < points.size(); ++q)
+          for (const auto &c : candidates(q))
+            if (c.side == best->side && c.node == best->node)
+              gaps[q] += amount * c.rise;
+      }
+
+    // u^ = U_c + delta on the owned DoFs of the opened nodes; the bodies'
+    // constraints then hold for u^ as for U_c.
+    for (unsigned int s = 0; s < 2; ++s)
+      {
+        const ElasticBody &body  = *bodies[s];
+        const MPI_Comm     comm  = body.triangulation().get_communicator();
+        const IndexSet    &owned = body.locally_owned_dof_set();
+        // Entry by entry: U_c has ghost entries, u^ and delta do not.
+        TrilinosWrappers::MPI::Vector opened(owned, comm);
+        for (const auto i : owned)
+          opened(i) = (*displacements[s])(i);
+        opened.compress(VectorOperation::insert);
+        for (unsigned int j = 0; j < nodes[s]->size(); ++j)
+          if (opening[s][j] > 0)
+            {
+              ++result.n_opened_nodes[s];
+              const Tensor<1, 2> move = -opening[s][j] * normals[s][j];
+              for (unsigned int c = 0; c < 2; ++c)
+                if (owned.is_element((*nodes[s])[j].dofs[c]))
+                  opened((*nodes[s])[j].dofs[c]) += move[c];
+            }
+        opened.compress(VectorOperation::insert);
+        body.constraints().distribute(opened);
+        result.displacement[s].reinit(body.locally_owned_dof_set(),
+                                      body.locally_relevant_dof_set(),
+                                      comm);
+        result.displacement[s] = opened;
+        TrilinosWrappers::MPI::Vector delta(owned, comm);
+        for (const auto i : owned)
+          delta(i) = opened(i) - (*displacements[s])(i);
+        delta.compress(VectorOperation::insert);
+        TrilinosWrappers::MPI::Vector delta_ghosted(
+          body.locally_owned_dof_set(), body.locally_relevant_dof_set(), comm);
+        delta_ghosted = delta;
+        double work   = 0;
+        result.opening_squared[s] =
+          cell_energies(body, delta_ghosted, *displacements[s], work);
+        result.opening_norm_squared +=
+          Utilities::MPI::sum(result.opening_squared[s].l1_norm(), comm);
+        // sigma(U_c) is symmetric in the energy product: int sigma(U_c) :
+        // eps(delta) = int sigma(delta) : eps(U_c).
+        result.opening_work +=
+          Utilities::MPI::sum(work, comm) - (delta * body.system_rhs());
+        values[s] =
+          MortarInterface::gather_nodal_displacements(*nodes[s],
+                                                      result.displacement[s]);
+      }
+
+    for (const double g : pointwise_gaps(mortar, points, values[0], values[1]))
+      if (-g > negligible)
+        result.penetration_after = std::max(result.penetration_after, -g);
+    return result;
+  }
+
+
+
+  ContactErrorTerm
+  pressure_gap_term(
+    const MortarInterface                                      &mortar,
+    const std::vector<ContactNodeFields>                       &fields,
+    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements)
+  {
+    // p g is of degree 2p on each overlap (straight segments): Gauss
+    // points enough for it, and for one more factor phi_j in the nodal
+    // densities.
+    const unsigned int degree = mortar.slave_element_degree();
+    const auto         points = mortar.overlap_quadrature(degree + 2);
+    const auto         gaps   = pointwise_gaps(
+      mortar,
+      points,
+      MortarInterface::gather_nodal_displacements(mortar.slave_nodes(),
+                                                  *displacements[0]),
+      MortarInterface::gather_nodal_displacements(mortar.master_nodes(),
+                                                  *displacements[1]));
+    const auto &segments = mortar.slave_segment_list();
+    const auto &masters  = mortar.master_segment_list();
+
+    ContactErrorTerm term;
+    term.nodal_density.assign(mortar.slave_nodes().size(), 0.);
+    std::vector<double> share_weight(mortar.slave_nodes().size(), 0.);
+    for (unsigned int q = 0; q < points.size(); ++q)
+      {
+        const auto &overlap = mortar.overlaps()[points[q].overlap];
+        const auto &segment = segments[overlap.slave_segment];
+        const auto  phi     = mortar.slave_shape_values(points[q].xi);
+        double      p       = 0;
+        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+          p += phi[k] * fields[segment.nodes[k]].pressure;
+        // Quadratic interpolants overshoot below 0 where the zone opens
+        // (contact_error.cc): the pressure of sigma^ is projected as there.
+        const double c = std::max(p, 0.) * std::max(gaps[q], 0.);
+        const double w = points[q].weight;
+        term.integral += c * w;
+        term.slave_cells[segment.cell] += c * w;
+        term.master_cells[masters[overlap.master_segment].cell] += c * w;
+        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+          {
+            const double share =
+              segment.nodes.size() == 3 ?
+                std::array<double, 3>{
+                  {(1 - points[q].xi) * (1 - points[q].xi),
+                   points[q].xi * points[q].xi,
+                   2 * points[q].xi * (1 - points[q].xi)}}[k] :
+                phi[k];
+            term.nodal_density[segment.nodes[k]] += share * c * w;
+            share_weight[segment.nodes[k]] += share * w;
+          }
+      }
+    for (unsigned int j = 0; j < term.nodal_density.size(); ++j)
+      term.nodal_density[j] /= share_weight[j] > 0 ? share_weight[j] : 1.;
+    return term;
+  }
+} // namespace coulomb_adapt
