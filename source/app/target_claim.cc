@@ -13,7 +13,8 @@ namespace coulomb_adapt
                     const unsigned int           degree,
                     const bool                   relaxed_equilibration,
                     const unsigned int           evaluation_degree_increase,
-                    const bool                   penetration_left)
+                    const bool                   penetration_left,
+                    const bool                   negative_pressure)
   {
     TargetClaim claim;
     claim.epsilon_exact = epsilon_exact;
@@ -33,7 +34,12 @@ namespace coulomb_adapt
     else if (friction_coefficient == 0 && penetration_left)
       claim.kind_of_estimate =
         "not a proven bound here: the kinematic side still penetrates "
-        "between the mortar's nodes where a constraint held a node back";
+        "between the mortar's nodes after the opening (the log says where)";
+    else if (friction_coefficient == 0 && negative_pressure)
+      claim.kind_of_estimate =
+        "not a proven bound here: the equilibrated pressure is negative "
+        "between the nodes (quadratic interpolation), so sigma^ is not "
+        "statically admissible";
     else if (friction_coefficient == 0 && relaxed_equilibration &&
              evaluation_degree_increase == 0)
       // The relaxed modes minimise over tractions whose local problems

@@ -477,7 +477,8 @@ namespace coulomb_adapt
                             error_estimate->relaxed_equilibration[0] ||
                               error_estimate->relaxed_equilibration[1],
                             error_estimate->evaluation_degree_increase,
-                            error_estimate->penetration_after > 0);
+                            error_estimate->penetration_after > 0,
+                            error_estimate->negative_pressure > 1e-8);
         s << "target reached: epsilon = " << std::setprecision(4)
           << 100 * error_estimate->epsilon
           << " % <= epsilon_0 = " << 100 * a.target_error << " %"

@@ -4,6 +4,7 @@
 #include <coulomb_adapt/indicator/kinematic_admissibility.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace coulomb_adapt
@@ -157,13 +158,17 @@ namespace coulomb_adapt
       std::vector<double> pressure;
       for (const auto &f : equilibrium.fields)
         pressure.push_back(f.pressure);
-      const KinematicAdmissibility admissible =
-        make_kinematically_admissible(mortar, bodies, judged, pressure);
-      estimate.penetration = admissible.penetration;
+      const KinematicAdmissibility admissible = make_kinematically_admissible(
+        mortar, bodies, judged, pressure, mu == 0);
+      estimate.penetration    = admissible.penetration;
+      estimate.penetration_at = admissible.where;
       if (mu > 0)
         return;
+      estimate.opening_applied   = admissible.opening_applied;
       estimate.opened_nodes      = admissible.n_opened_nodes;
       estimate.penetration_after = admissible.penetration_after;
+      estimate.negative_pressure =
+        pressure_gap_negative_pressure(mortar, equilibrium.fields);
       const ContactErrorTerm pressure_gap =
         pressure_gap_term(mortar, equilibrium.fields, judged);
       const double opening = std::sqrt(admissible.opening_norm_squared);
@@ -194,7 +199,22 @@ namespace coulomb_adapt
         }
       if (!admissible.opened())
         return;
-      const double gamma = opening / std::sqrt(eta_squared);
+      // eta = 0 (sigma^ = sigma(u^), no contact term): the bound is b.
+      const double gamma = eta_squared > 0 ?
+                             opening / std::sqrt(eta_squared) :
+                             std::numeric_limits<double>::infinity();
+      if (!std::isfinite(gamma))
+        {
+          for (unsigned int b = 0; b < 2; ++b)
+            {
+              estimate.contribution_squared[b] = admissible.opening_squared[b];
+              volume_squared[b]                = Utilities::MPI::sum(
+                estimate.contribution_squared[b].l1_norm(),
+                bodies[b]->triangulation().get_communicator());
+            }
+          estimate.epsilon_opening = opening / std::sqrt(normalisation_squared);
+          return;
+        }
       for (unsigned int b = 0; b < 2; ++b)
         {
           Vector<double> &e2 = estimate.contribution_squared[b];

@@ -74,7 +74,7 @@ namespace coulomb_adapt
       for (const auto *values : {&slave_values, &master_values})
         for (const auto &u : *values)
           scale = std::max(scale, u.norm());
-      return 1e-10 * scale;
+      return 1e-9 * scale;
     }
 
 
@@ -228,7 +228,8 @@ namespace coulomb_adapt
     const MortarInterface                                      &mortar,
     const std::array<const ElasticBody *, 2>                   &bodies,
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
-    const std::vector<double>                                  &pressure)
+    const std::vector<double>                                  &pressure,
+    const bool                                                  open)
   {
     KinematicAdmissibility                                          result;
     const std::array<const std::vector<MortarInterface::Node> *, 2> nodes = {
@@ -249,8 +250,9 @@ namespace coulomb_adapt
           result.penetration = -gaps[q];
           result.where       = points[q].slave_point;
         }
-    if (result.penetration == 0)
+    if (result.penetration == 0 || !open)
       return result;
+    result.opening_applied = true;
 
     // Each node moves into its own body: the slave node against its
     // normal, the master node against the master's normal. Opening node i
@@ -308,12 +310,15 @@ namespace coulomb_adapt
                 std::max(p, 0.) * c.rise * points[q].weight;
         }
     }
+    // A point no free node can open stays penetrating (penetration_after
+    // says so); the others are still opened.
+    std::vector<bool> unopenable(points.size(), false);
     for (unsigned int step = 0; step < 4 * points.size(); ++step)
       {
         unsigned int worst = points.size();
         double       depth = negligible;
         for (unsigned int q = 0; q < points.size(); ++q)
-          if (-gaps[q] > depth)
+          if (!unopenable[q] && -gaps[q] > depth)
             {
               depth = -gaps[q];
               worst = q;
@@ -336,7 +341,10 @@ namespace coulomb_adapt
                 }
             }
         if (best == nullptr)
-          break;
+          {
+            unopenable[worst] = true;
+            continue;
+          }
         const double amount = depth / best->rise;
         opening[best->side][best->node] += amount;
         for (unsigned int q = 0; q < points.size(); ++q)
@@ -363,8 +371,10 @@ namespace coulomb_adapt
               ++result.n_opened_nodes[s];
               const Tensor<1, 2> move = -opening[s][j] * normals[s][j];
               for (unsigned int c = 0; c < 2; ++c)
-                if (owned.is_element((*nodes[s])[j].dofs[c]))
-                  opened((*nodes[s])[j].dofs[c]) += move[c];
+                if (const auto dof = (*nodes[s])[j].dofs[c];
+                    owned.is_element(dof))
+                  // Set, not added: the compress() below inserts.
+                  opened(dof) = opened(dof) + move[c];
             }
         opened.compress(VectorOperation::insert);
         body.constraints().distribute(opened);
@@ -456,5 +466,30 @@ namespace coulomb_adapt
     for (unsigned int j = 0; j < term.nodal_density.size(); ++j)
       term.nodal_density[j] /= share_weight[j] > 0 ? share_weight[j] : 1.;
     return term;
+  }
+
+
+
+  double
+  pressure_gap_negative_pressure(const MortarInterface                &mortar,
+                                 const std::vector<ContactNodeFields> &fields)
+  {
+    double largest = 0, most_negative = 0;
+    for (const auto &f : fields)
+      largest = std::max(largest, f.pressure);
+    const auto points =
+      mortar.overlap_quadrature(gap_samples(mortar.slave_element_degree()));
+    for (const auto &point : points)
+      {
+        const auto &segment =
+          mortar.slave_segment_list()[mortar.overlaps()[point.overlap]
+                                        .slave_segment];
+        const auto phi = mortar.slave_shape_values(point.xi);
+        double     p   = 0;
+        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+          p += phi[k] * fields[segment.nodes[k]].pressure;
+        most_negative = std::min(most_negative, p);
+      }
+    return largest > 0 ? -most_negative / largest : 0.;
   }
 } // namespace coulomb_adapt

@@ -369,39 +369,52 @@ namespace coulomb_adapt
   {
     const double penetration =
       physical(e.penetration, units::Kind::displacement, "penetration");
-    const double       after  = physical(e.penetration_after,
+    const double after = physical(e.penetration_after,
                                   units::Kind::displacement,
                                   "penetration_after_opening");
-    const unsigned int opened = e.opened_nodes[0] + e.opened_nodes[1];
     if (e.penetration == 0)
       pcout << "  cre: the kinematic side does not penetrate between the "
                "mortar's nodes (checked pointwise)"
-            << std::endl;
-    else if (opened == 0)
-      pcout << "  cre: the kinematic side penetrates by up to "
-            << std::setprecision(3) << penetration
-            << " mm between the mortar's nodes; with friction the estimate "
-               "is no bound, so it is not opened"
             << std::endl;
     else
       {
         pcout << "  cre: the kinematic side penetrates by up to "
               << std::setprecision(3) << penetration
-              << " mm between the mortar's nodes: opened " << e.opened_nodes[0]
-              << " slave and " << e.opened_nodes[1]
-              << " master nodes to remove it, which adds " << std::fixed
-              << std::setprecision(3) << 100 * e.epsilon_opening
-              << " % (||sigma(u^ - U_c)|| / D) to the estimate"
-              << std::defaultfloat;
+              << " mm between the mortar's nodes (at x = "
+              << e.penetration_at[0] << ", y = " << e.penetration_at[1] << ")";
+        if (!e.opening_applied)
+          pcout << "; with friction the estimate is no bound, so it is not "
+                   "opened";
+        else
+          pcout << ": opened " << e.opened_nodes[0] << " slave and "
+                << e.opened_nodes[1]
+                << " master nodes to remove it, ||sigma(u^ - U_c)|| / D = "
+                << std::fixed << std::setprecision(3) << 100 * e.epsilon_opening
+                << " %, which the bound adds twice (doc/indicator.md 4c)"
+                << std::defaultfloat;
         if (e.penetration_after > 0)
           pcout << "; " << std::setprecision(3) << after
-                << " mm remain (constrained nodes): the estimate is no bound";
+                << " mm remain, which no free node could open: the estimate "
+                   "is no bound";
         pcout << std::endl;
       }
-    return {{"penetration", penetration},
-            {"opened_nodes", {e.opened_nodes[0], e.opened_nodes[1]}},
-            {"penetration_after_opening", after},
-            {"epsilon_opening", e.epsilon_opening}};
+    if (e.negative_pressure > 1e-8)
+      pcout << "  cre: the equilibrated pressure is negative between the "
+               "nodes (down to "
+            << std::setprecision(3) << e.negative_pressure
+            << " of the largest, quadratic interpolation): sigma^ is not "
+               "admissible there, the estimate is no bound"
+            << std::endl;
+    nlohmann::json record = {{"penetration", penetration},
+                             {"negative_pressure_relative",
+                              e.negative_pressure}};
+    if (e.opening_applied)
+      {
+        record["opened_nodes"] = {e.opened_nodes[0], e.opened_nodes[1]};
+        record["penetration_after_opening"] = after;
+        record["epsilon_opening"]           = e.epsilon_opening;
+      }
+    return record;
   }
 
 

@@ -52,7 +52,10 @@ namespace coulomb_adapt
    * Q1 blocks: effectivity 0.95 before the kinematic side was opened), so
    * no bound is claimed then. @p penetration_left: cre's kinematic side
    * still penetrates after the opening (ErrorEstimate::penetration_after),
-   * so it is not admissible and no bound is claimed. */
+   * so it is not admissible and no bound is claimed. @p negative_pressure:
+   * sigma^'s pressure is negative between the nodes (quadratic
+   * interpolants; ErrorEstimate::negative_pressure), so sigma^ is not
+   * admissible either. */
   TargetClaim
   make_target_claim(const ErrorEstimator         estimator,
                     const double                 friction_coefficient,
@@ -61,7 +64,8 @@ namespace coulomb_adapt
                     const unsigned int           degree,
                     const bool                   relaxed_equilibration = false,
                     const unsigned int           evaluation_degree_increase = 1,
-                    const bool                   penetration_left = false);
+                    const bool                   penetration_left  = false,
+                    const bool                   negative_pressure = false);
 
   /** Why zz does not estimate the error of elements of degree @p degree
    * (>= 2), with the measured effectivities; empty for degree 1. */

@@ -1,6 +1,7 @@
 #ifndef coulomb_adapt_indicator_error_estimate_h
 #define coulomb_adapt_indicator_error_estimate_h
 
+#include <deal.II/base/point.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/lac/vector.h>
@@ -81,15 +82,19 @@ namespace coulomb_adapt
     unsigned int        evaluation_degree_increase = 0;
     std::array<bool, 2> classical_tractions_kept   = {{false, false}};
     /** cre: the largest pointwise penetration of U_c between the mortar's
-     * nodes (mm; 0 if none), and for mu = 0, where the estimate is a
-     * bound, the interface nodes opened to remove it (slave, master), the
-     * penetration they could not remove (a constraint held a node), and
-     * ||sigma(u^ - U_c)|| / D, which the estimate includes
-     * (kinematic_admissibility.h). */
-    double                      penetration       = 0;
+     * nodes (mm; 0 if none) and where; for mu = 0, where the estimate is a
+     * bound, whether the interface nodes were opened to remove it, how
+     * many (slave, master), the penetration left (no free node could
+     * open it), and ||sigma(u^ - U_c)|| / D (kinematic_admissibility.h);
+     * and the most negative pressure of sigma^ between the nodes relative
+     * to the largest (P2/Q2 interpolants; the bound needs it >= 0). */
+    double                      penetration = 0;
+    Point<2>                    penetration_at;
+    bool                        opening_applied   = false;
     std::array<unsigned int, 2> opened_nodes      = {{0, 0}};
     double                      penetration_after = 0;
     double                      epsilon_opening   = 0;
+    double                      negative_pressure = 0;
     /** The corrected solution (for scenes with contact). */
     CorrectedContactSolution correction;
     bool                     has_contact = false;

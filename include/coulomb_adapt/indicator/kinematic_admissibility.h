@@ -31,12 +31,14 @@ namespace coulomb_adapt
    * normal) just enough to remove every penetration: u^ = U_c + delta.
    * Each penetration is removed by the node that does it at least cost
    * (in energy and in the contact term it adds), greedily, worst first.
-   * The gap rise of delta covers every penetration, so the term the
-   * hypercircle misses is at most the exact contact traction's work on
-   * delta, int p rise(delta) = sum_b int (sigma - sigma_c) : eps(delta_b)
-   * + S <= e b + S, with e = ||sigma - sigma_c||, b = ||sigma(delta)||
-   * and S = opening_work; cre_estimate.cc solves the quadratic inequality
-   * this gives for e.
+   * u^ does not penetrate (g(U_c) + rise(delta) >= 0), so the term the
+   * hypercircle misses, -int p g(U_c) with p >= 0 the exact pressure, is
+   * at most the exact contact traction's work on delta, int p rise(delta)
+   * = sum_b int (sigma - sigma_c) : eps(delta_b) + S <= e b + S, with e =
+   * ||sigma - sigma_c||, b = ||sigma(delta)|| and S = opening_work;
+   * cre_estimate.cc solves the quadratic inequality this gives for e. (It
+   * is the same as ||sigma - sigma_c|| <= ||sigma - sigma(u^)|| + b with
+   * the hypercircle of u^.)
    */
   struct KinematicAdmissibility
   {
@@ -45,6 +47,8 @@ namespace coulomb_adapt
     double penetration = 0;
     /** Where (on the slave side) it is largest. */
     Point<2> where;
+    /** Whether the nodes were opened (false: measured only). */
+    bool opening_applied = false;
     /** Interface nodes opened in each body (0: slave, 1: master). */
     std::array<unsigned int, 2> n_opened_nodes = {{0, 0}};
     /** Largest penetration of u^ (0 unless a constraint held an opened
@@ -75,14 +79,16 @@ namespace coulomb_adapt
    * and the master body, with ghost entries) on every overlap of
    * @p mortar, and open interface nodes where it penetrates. @p pressure:
    * the equilibrated stress's pressure lambda_n at each slave node, which
-   * the contact term multiplies with the opened gap.
+   * the contact term multiplies with the opened gap. With @p open false
+   * (friction: no bound is claimed) the penetration is only measured.
    */
   KinematicAdmissibility
   make_kinematically_admissible(
     const MortarInterface                                      &mortar,
     const std::array<const ElasticBody *, 2>                   &bodies,
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
-    const std::vector<double>                                  &pressure);
+    const std::vector<double>                                  &pressure,
+    const bool                                                  open = true);
 
   /**
    * The contact term of the bound for mu = 0: c = lambda_n g, with the
@@ -97,6 +103,17 @@ namespace coulomb_adapt
     const MortarInterface                                      &mortar,
     const std::vector<ContactNodeFields>                       &fields,
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements);
+
+  /**
+   * The most negative pressure of @p fields between the slave nodes (their
+   * interpolant, sampled as the gaps are), relative to the largest nodal
+   * pressure; 0 if none. The bound needs sigma^'s pressure >= 0 (R in the
+   * cone): linear interpolants of admissible nodal values are, quadratic
+   * ones (P2/Q2) overshoot below 0 where the zone opens.
+   */
+  double
+  pressure_gap_negative_pressure(const MortarInterface                &mortar,
+                                 const std::vector<ContactNodeFields> &fields);
 } // namespace coulomb_adapt
 
 #endif
