@@ -341,7 +341,11 @@ namespace coulomb_adapt
                   std::string())
             << "); with the classical tractions epsilon would be " << std::fixed
             << std::setprecision(3) << 100 * e.epsilon_before_optimisation
-            << " %" << std::defaultfloat << std::endl;
+            << " %"
+            << (e.opened_nodes[0] + e.opened_nodes[1] > 0 ?
+                  " (without the opening of the kinematic side below)" :
+                  "")
+            << std::defaultfloat << std::endl;
     if (e.evaluation_degree_increase > 0)
       {
         pcout << "  cre: evaluated with local problems of degree p + "
