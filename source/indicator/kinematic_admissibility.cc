@@ -490,6 +490,6 @@ namespace coulomb_adapt
           p += phi[k] * fields[segment.nodes[k]].pressure;
         most_negative = std::min(most_negative, p);
       }
-    return largest > 0 ? -most_negative / largest : 0.;
+    return largest > 0 && most_negative < 0 ? -most_negative / largest : 0.;
   }
 } // namespace coulomb_adapt
