@@ -378,10 +378,11 @@ namespace coulomb_adapt
             }
         opened.compress(VectorOperation::insert);
         body.constraints().distribute(opened);
-        result.displacement[s].reinit(body.locally_owned_dof_set(),
-                                      body.locally_relevant_dof_set(),
-                                      comm);
-        result.displacement[s] = opened;
+        TrilinosWrappers::MPI::Vector opened_ghosted;
+        opened_ghosted.reinit(body.locally_owned_dof_set(),
+                              body.locally_relevant_dof_set(),
+                              comm);
+        opened_ghosted = opened;
         TrilinosWrappers::MPI::Vector delta(owned, comm);
         for (const auto i : owned)
           delta(i) = opened(i) - (*displacements[s])(i);
@@ -398,9 +399,8 @@ namespace coulomb_adapt
         // eps(delta) = int sigma(delta) : eps(U_c).
         result.opening_work +=
           Utilities::MPI::sum(work, comm) - (delta * body.system_rhs());
-        values[s] =
-          MortarInterface::gather_nodal_displacements(*nodes[s],
-                                                      result.displacement[s]);
+        values[s] = MortarInterface::gather_nodal_displacements(*nodes[s],
+                                                                opened_ghosted);
       }
 
     for (const double g : pointwise_gaps(mortar, points, values[0], values[1]))
@@ -418,8 +418,8 @@ namespace coulomb_adapt
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements)
   {
     // p g is of degree 2p on each overlap (straight segments): Gauss
-    // points enough for it, and for one more factor phi_j in the nodal
-    // densities.
+    // points enough for it. (The nodal densities are the seed's contact
+    // term's, which the output shows; this term has none.)
     const unsigned int degree = mortar.slave_element_degree();
     const auto         points = mortar.overlap_quadrature(degree + 2);
     const auto         gaps   = pointwise_gaps(
@@ -433,8 +433,6 @@ namespace coulomb_adapt
     const auto &masters  = mortar.master_segment_list();
 
     ContactErrorTerm term;
-    term.nodal_density.assign(mortar.slave_nodes().size(), 0.);
-    std::vector<double> share_weight(mortar.slave_nodes().size(), 0.);
     for (unsigned int q = 0; q < points.size(); ++q)
       {
         const auto &overlap = mortar.overlaps()[points[q].overlap];
@@ -450,21 +448,7 @@ namespace coulomb_adapt
         term.integral += c * w;
         term.slave_cells[segment.cell] += c * w;
         term.master_cells[masters[overlap.master_segment].cell] += c * w;
-        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
-          {
-            const double share =
-              segment.nodes.size() == 3 ?
-                std::array<double, 3>{
-                  {(1 - points[q].xi) * (1 - points[q].xi),
-                   points[q].xi * points[q].xi,
-                   2 * points[q].xi * (1 - points[q].xi)}}[k] :
-                phi[k];
-            term.nodal_density[segment.nodes[k]] += share * c * w;
-            share_weight[segment.nodes[k]] += share * w;
-          }
       }
-    for (unsigned int j = 0; j < term.nodal_density.size(); ++j)
-      term.nodal_density[j] /= share_weight[j] > 0 ? share_weight[j] : 1.;
     return term;
   }
 

@@ -54,8 +54,6 @@ namespace coulomb_adapt
     /** Largest penetration of u^ (0 unless a constraint held an opened
      * node back). */
     double penetration_after = 0;
-    /** u^ of each body, with ghost entries; empty if nothing was opened. */
-    std::array<TrilinosWrappers::MPI::Vector, 2> displacement;
     /** ||sigma(delta)||^2 on each active cell of each body (0 on the cells
      * this rank does not own), and its sum over both bodies and all ranks
      * (N per unit thickness). */
@@ -96,7 +94,8 @@ namespace coulomb_adapt
    * values interpolated with the standard slave basis) and the pointwise
    * gap g of the displacements (>= 0 where they are admissible; a
    * penetration left is counted as 0, and reported by the caller), on
-   * every overlap, in the layout of integrate_contact_error().
+   * every overlap, per slave and master cell as integrate_contact_error()
+   * gives it (without its nodal densities).
    */
   ContactErrorTerm
   pressure_gap_term(
