@@ -149,6 +149,7 @@ namespace coulomb_adapt
       const CorrectedContactSolution           &equilibrium,
       const double                              mu,
       const double                              normalisation_squared,
+      const parameters::LinearSolver           &solver_parameters,
       std::array<double, 2>                    &volume_squared,
       ErrorEstimate                            &estimate)
     {
@@ -159,7 +160,7 @@ namespace coulomb_adapt
       for (const auto &f : equilibrium.fields)
         pressure.push_back(f.pressure);
       const KinematicAdmissibility admissible = make_kinematically_admissible(
-        mortar, bodies, judged, pressure, mu == 0);
+        mortar, bodies, judged, pressure, solver_parameters, mu == 0);
       estimate.penetration    = admissible.penetration;
       estimate.penetration_at = admissible.where;
       if (mu > 0)
@@ -286,6 +287,7 @@ namespace coulomb_adapt
                                   equilibrium,
                                   mu,
                                   normalisation_squared,
+                                  solver_parameters,
                                   volume_squared,
                                   estimate);
     finish_error_estimate(bodies,

@@ -5,7 +5,10 @@
 
 #include <deal.II/grid/filtered_iterator.h>
 
+#include <deal.II/lac/solver_control.h>
+
 #include <coulomb_adapt/indicator/kinematic_admissibility.h>
+#include <coulomb_adapt/solvers/linear_solver.h>
 
 #include <algorithm>
 #include <cmath>
@@ -211,6 +214,70 @@ namespace coulomb_adapt
 
 
 
+    // The opening's least-energy extension into the body: @p delta keeps
+    // its values at the interface @p nodes (the gaps see only those) and
+    // at the constrained DoFs, and minimises ||sigma(delta)|| over the
+    // others, K_FF delta_F = -K_FI delta_I. Any conforming extension gives
+    // a bound (b and S are computed from the one used), so a solver that
+    // fails leaves the opening's hat functions (delta_F = 0), which the
+    // bound had before this extension: their b was 1.5 to 2 times larger
+    // (doc/indicator.md section 4c). S hardly changes: U_c is in
+    // equilibrium at the free DoFs.
+    void
+    extend_opening_into_body(const ElasticBody                        &body,
+                             const std::vector<MortarInterface::Node> &nodes,
+                             const parameters::LinearSolver &solver_parameters,
+                             TrilinosWrappers::MPI::Vector  &delta)
+    {
+      const MPI_Comm  comm  = body.triangulation().get_communicator();
+      const IndexSet &owned = body.locally_owned_dof_set();
+      const auto     &K     = body.system_matrix();
+      std::vector<types::global_dof_index> fixed;
+      for (const auto &node : nodes)
+        for (const auto dof : node.dofs)
+          if (owned.is_element(dof))
+            fixed.push_back(dof);
+      for (const auto i : owned)
+        if (body.constraints().is_constrained(i))
+          fixed.push_back(i);
+      // The fixed rows keep the size of K's diagonal, which AMG's smoother
+      // expects (as contact_correction.cc pins rigid modes).
+      double diagonal = 0;
+      for (const auto i : fixed)
+        diagonal = std::max(diagonal, K.diag_element(i));
+      diagonal = Utilities::MPI::max(diagonal, comm);
+
+      TrilinosWrappers::MPI::Vector load(owned, comm);
+      K.vmult(load, delta);
+      load *= -1;
+      for (const auto i : fixed)
+        load(i) = 0;
+      load.compress(VectorOperation::insert);
+      if (Utilities::MPI::max(load.linfty_norm(), comm) == 0)
+        return;
+      TrilinosWrappers::SparseMatrix matrix;
+      matrix.copy_from(K);
+      matrix.clear_rows(fixed, diagonal);
+      TrilinosWrappers::MPI::Vector interior(owned, comm);
+      try
+        {
+          // Not symmetric: the fixed rows are cleared, their columns not.
+          solve_linear_system(matrix,
+                              interior,
+                              load,
+                              body.rigid_body_modes(),
+                              solver_parameters,
+                              false);
+        }
+      catch (const SolverControl::NoConvergence &)
+        {
+          return;
+        }
+      delta += interior;
+    }
+
+
+
     // A node that can open one overlap point: its side, index, and how much
     // the gap there rises per unit of its opening.
     struct Candidate
@@ -229,7 +296,8 @@ namespace coulomb_adapt
     const std::array<const ElasticBody *, 2>                   &bodies,
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
     const std::vector<double>                                  &pressure,
-    const bool                                                  open)
+    const parameters::LinearSolver &solver_parameters,
+    const bool                      open)
   {
     KinematicAdmissibility                                          result;
     const std::array<const std::vector<MortarInterface::Node> *, 2> nodes = {
@@ -353,18 +421,14 @@ namespace coulomb_adapt
               gaps[q] += amount * c.rise;
       }
 
-    // u^ = U_c + delta on the owned DoFs of the opened nodes; the bodies'
-    // constraints then hold for u^ as for U_c.
+    // u^ = U_c + delta, delta given at the opened nodes and extended into
+    // the body; the bodies' constraints then hold for u^ as for U_c.
     for (unsigned int s = 0; s < 2; ++s)
       {
         const ElasticBody &body  = *bodies[s];
         const MPI_Comm     comm  = body.triangulation().get_communicator();
         const IndexSet    &owned = body.locally_owned_dof_set();
-        // Entry by entry: U_c has ghost entries, u^ and delta do not.
-        TrilinosWrappers::MPI::Vector opened(owned, comm);
-        for (const auto i : owned)
-          opened(i) = (*displacements[s])(i);
-        opened.compress(VectorOperation::insert);
+        TrilinosWrappers::MPI::Vector opening_at_nodes(owned, comm);
         for (unsigned int j = 0; j < nodes[s]->size(); ++j)
           if (opening[s][j] > 0)
             {
@@ -373,9 +437,18 @@ namespace coulomb_adapt
               for (unsigned int c = 0; c < 2; ++c)
                 if (const auto dof = (*nodes[s])[j].dofs[c];
                     owned.is_element(dof))
-                  // Set, not added: the compress() below inserts.
-                  opened(dof) = opened(dof) + move[c];
+                  opening_at_nodes(dof) = move[c];
             }
+        opening_at_nodes.compress(VectorOperation::insert);
+        if (result.n_opened_nodes[s] > 0)
+          extend_opening_into_body(body,
+                                   *nodes[s],
+                                   solver_parameters,
+                                   opening_at_nodes);
+        // Entry by entry: U_c has ghost entries, u^ and delta do not.
+        TrilinosWrappers::MPI::Vector opened(owned, comm);
+        for (const auto i : owned)
+          opened(i) = (*displacements[s])(i) + opening_at_nodes(i);
         opened.compress(VectorOperation::insert);
         body.constraints().distribute(opened);
         TrilinosWrappers::MPI::Vector opened_ghosted;

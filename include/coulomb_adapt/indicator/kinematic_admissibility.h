@@ -8,6 +8,7 @@
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/mortar_interface.h>
+#include <coulomb_adapt/core/parameters.h>
 #include <coulomb_adapt/indicator/contact_error.h>
 
 #include <array>
@@ -28,7 +29,8 @@ namespace coulomb_adapt
    * computable bounds.
    *
    * So interface nodes are opened (moved into their own body, along the
-   * normal) just enough to remove every penetration: u^ = U_c + delta.
+   * normal) just enough to remove every penetration, and the opening is
+   * extended into the bodies by least energy: u^ = U_c + delta.
    * Each penetration is removed by the node that does it at least cost
    * (in energy and in the contact term it adds), greedily, worst first.
    * u^ does not penetrate (g(U_c) + rise(delta) >= 0), so the term the
@@ -77,8 +79,11 @@ namespace coulomb_adapt
    * and the master body, with ghost entries) on every overlap of
    * @p mortar, and open interface nodes where it penetrates. @p pressure:
    * the equilibrated stress's pressure lambda_n at each slave node, which
-   * the contact term multiplies with the opened gap. With @p open false
-   * (friction: no bound is claimed) the penetration is only measured.
+   * the contact term multiplies with the opened gap. The opening is
+   * extended into each body by least energy (a linear solve with
+   * @p solver_parameters, on the body's stiffness with the interface
+   * nodes fixed). With @p open false (friction: no bound is claimed) the
+   * penetration is only measured.
    */
   KinematicAdmissibility
   make_kinematically_admissible(
@@ -86,7 +91,8 @@ namespace coulomb_adapt
     const std::array<const ElasticBody *, 2>                   &bodies,
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
     const std::vector<double>                                  &pressure,
-    const bool                                                  open = true);
+    const parameters::LinearSolver &solver_parameters,
+    const bool                      open = true);
 
   /**
    * The contact term of the bound for mu = 0: c = lambda_n g, with the
