@@ -278,6 +278,73 @@ namespace coulomb_adapt
 
 
 
+    // What opening one node further costs: the gap's rise at the point
+    // per unit of its opening, its stiffness K_ii in the normal direction,
+    // the pressure's work per unit of its opening P_i, and how far it is
+    // already open.
+    struct OpeningCost
+    {
+      double rise;
+      double stiffness;
+      double pressure_work;
+      double opened;
+    };
+
+
+
+    // The further openings Delta_i >= 0 of the nodes @p costs that lift
+    // the gap at one point by @p depth (sum_i rise_i Delta_i = depth) at
+    // least cost, sum_i K_i (a_i + Delta_i)^2 + 2 P_i Delta_i (a_i: the
+    // opening so far). Sharing the lift among the nodes beats the single
+    // cheapest node: a point midway between two master nodes needs twice
+    // its depth from either (4 times the energy), half from both. The
+    // optimality condition K_i (a_i + Delta_i) + P_i = lambda rise_i / 2
+    // for the nodes that open gives Delta_i(lambda), piecewise linear and
+    // increasing in lambda: the nodes join in the order of their
+    // thresholds t_i = 2 (P_i + K_i a_i) / rise_i.
+    std::vector<double>
+    least_cost_openings(const std::vector<OpeningCost> &costs,
+                        const double                    depth)
+    {
+      const unsigned int        n = costs.size();
+      std::vector<double>       threshold(n);
+      std::vector<unsigned int> order(n);
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          threshold[i] =
+            2 *
+            (costs[i].pressure_work + costs[i].stiffness * costs[i].opened) /
+            costs[i].rise;
+          order[i] = i;
+        }
+      std::sort(order.begin(), order.end(), [&](const auto i, const auto j) {
+        return threshold[i] < threshold[j];
+      });
+      // With the first k nodes of the order open: sum_i rise_i Delta_i =
+      // lambda sum rise_i^2 / (2 K_i) - sum rise_i (P_i + K_i a_i) / K_i.
+      double lambda = 0, slope = 0, offset = 0;
+      for (unsigned int k = 0; k < n; ++k)
+        {
+          const OpeningCost &c = costs[order[k]];
+          slope += c.rise * c.rise / (2 * c.stiffness);
+          offset +=
+            c.rise * (c.pressure_work + c.stiffness * c.opened) / c.stiffness;
+          lambda = (depth + offset) / slope;
+          if (k + 1 == n || lambda <= threshold[order[k + 1]])
+            break;
+        }
+      std::vector<double> amounts(n, 0.);
+      for (unsigned int i = 0; i < n; ++i)
+        amounts[i] = std::max(0.,
+                              (lambda * costs[i].rise -
+                               2 * (costs[i].pressure_work +
+                                    costs[i].stiffness * costs[i].opened)) /
+                                (2 * costs[i].stiffness));
+      return amounts;
+    }
+
+
+
     // A node that can open one overlap point: its side, index, and how much
     // the gap there rises per unit of its opening.
     struct Candidate
@@ -356,8 +423,9 @@ namespace coulomb_adapt
       return list;
     };
 
-    // Worst penetration first, each by its cheapest node; the gaps move
-    // linearly with the openings, so they are updated exactly.
+    // Worst penetration first, each by its cheapest openings of the nodes
+    // that can lift it; the gaps move linearly with the openings, so they
+    // are updated exactly.
     std::array<std::vector<double>, 2> opening = {
       {std::vector<double>(nodes[0]->size(), 0.),
        std::vector<double>(nodes[1]->size(), 0.)}};
@@ -393,32 +461,32 @@ namespace coulomb_adapt
             }
         if (worst == points.size())
           break;
-        const Candidate *best = nullptr;
-        double           cost = std::numeric_limits<double>::max();
-        const auto       list = candidates(worst);
-        for (const auto &c : list)
-          if (c.rise > 1e-3 && std::isfinite(stiffness[c.side][c.node]))
-            {
-              const double amount = depth / c.rise;
-              const double added = stiffness[c.side][c.node] * amount * amount +
-                                   2 * pressure_work[c.side][c.node] * amount;
-              if (added < cost)
-                {
-                  cost = added;
-                  best = &c;
-                }
-            }
-        if (best == nullptr)
+        std::vector<Candidate> usable;
+        for (const auto &c : candidates(worst))
+          if (c.rise > 1e-3 && std::isfinite(stiffness[c.side][c.node]) &&
+              stiffness[c.side][c.node] > 0)
+            usable.push_back(c);
+        if (usable.empty())
           {
             unopenable[worst] = true;
             continue;
           }
-        const double amount = depth / best->rise;
-        opening[best->side][best->node] += amount;
-        for (unsigned int q = 0; q < points.size(); ++q)
-          for (const auto &c : candidates(q))
-            if (c.side == best->side && c.node == best->node)
-              gaps[q] += amount * c.rise;
+        std::vector<OpeningCost> costs;
+        for (const auto &c : usable)
+          costs.push_back({c.rise,
+                           stiffness[c.side][c.node],
+                           pressure_work[c.side][c.node],
+                           opening[c.side][c.node]});
+        const std::vector<double> amounts = least_cost_openings(costs, depth);
+        for (unsigned int k = 0; k < usable.size(); ++k)
+          if (amounts[k] > 0)
+            {
+              opening[usable[k].side][usable[k].node] += amounts[k];
+              for (unsigned int q = 0; q < points.size(); ++q)
+                for (const auto &c : candidates(q))
+                  if (c.side == usable[k].side && c.node == usable[k].node)
+                    gaps[q] += amounts[k] * c.rise;
+            }
       }
 
     // u^ = U_c + delta, delta given at the opened nodes and extended into
