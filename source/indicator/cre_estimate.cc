@@ -214,6 +214,8 @@ namespace coulomb_adapt
                 bodies[b]->triangulation().get_communicator());
             }
           estimate.epsilon_opening = opening / std::sqrt(normalisation_squared);
+          estimate.opening_work_relative =
+            2 * admissible.opening_work / normalisation_squared;
           return;
         }
       for (unsigned int b = 0; b < 2; ++b)
@@ -226,6 +228,8 @@ namespace coulomb_adapt
                                 bodies[b]->triangulation().get_communicator());
         }
       estimate.epsilon_opening = opening / std::sqrt(normalisation_squared);
+      estimate.opening_work_relative =
+        2 * admissible.opening_work / normalisation_squared;
     }
   } // namespace
 

@@ -417,6 +417,7 @@ namespace coulomb_adapt
         record["opened_nodes"] = {e.opened_nodes[0], e.opened_nodes[1]};
         record["penetration_after_opening"] = after;
         record["epsilon_opening"]           = e.epsilon_opening;
+        record["opening_work_relative"]     = e.opening_work_relative;
       }
     return record;
   }

@@ -85,16 +85,19 @@ namespace coulomb_adapt
      * nodes (mm; 0 if none) and where; for mu = 0, where the estimate is a
      * bound, whether the interface nodes were opened to remove it, how
      * many (slave, master), the penetration left (no free node could
-     * open it), and ||sigma(u^ - U_c)|| / D (kinematic_admissibility.h);
+     * open it), ||sigma(u^ - U_c)|| / D and 2 S / D^2, S the work of
+     * U_c's stress on the opening beyond the loads
+     * (kinematic_admissibility.h);
      * and the most negative pressure of sigma^ between the nodes relative
      * to the largest (P2/Q2 interpolants; the bound needs it >= 0). */
     double                      penetration = 0;
     Point<2>                    penetration_at;
-    bool                        opening_applied   = false;
-    std::array<unsigned int, 2> opened_nodes      = {{0, 0}};
-    double                      penetration_after = 0;
-    double                      epsilon_opening   = 0;
-    double                      negative_pressure = 0;
+    bool                        opening_applied       = false;
+    std::array<unsigned int, 2> opened_nodes          = {{0, 0}};
+    double                      penetration_after     = 0;
+    double                      epsilon_opening       = 0;
+    double                      opening_work_relative = 0;
+    double                      negative_pressure     = 0;
     /** The corrected solution (for scenes with contact). */
     CorrectedContactSolution correction;
     bool                     has_contact = false;
