@@ -1,6 +1,7 @@
 #include <deal.II/base/quadrature_lib.h>
 
 #include <coulomb_adapt/indicator/contact_error.h>
+#include <coulomb_adapt/indicator/pointwise_gap.h>
 
 #include <algorithm>
 #include <array>
@@ -161,5 +162,68 @@ namespace coulomb_adapt
       term.nodal_density[j] /=
         degree == 1 ? D[j] : (share_weight[j] > 0 ? share_weight[j] : 1.);
     return term;
+  }
+
+
+
+  ContactErrorTerm
+  pressure_gap_term(
+    const MortarInterface                                      &mortar,
+    const std::vector<ContactNodeFields>                       &fields,
+    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements)
+  {
+    // p g is of degree 2p on each overlap (straight segments): Gauss
+    // points enough for it. (The nodal densities are the seed's contact
+    // term's, which the output shows; this term has none.)
+    const unsigned int degree   = mortar.slave_element_degree();
+    const auto         points   = mortar.overlap_quadrature(degree + 2);
+    const auto         gaps     = pointwise_gaps(mortar, points, displacements);
+    const auto        &segments = mortar.slave_segment_list();
+    const auto        &masters  = mortar.master_segment_list();
+
+    ContactErrorTerm term;
+    for (unsigned int q = 0; q < points.size(); ++q)
+      {
+        const auto &overlap = mortar.overlaps()[points[q].overlap];
+        const auto &segment = segments[overlap.slave_segment];
+        const auto  phi     = mortar.slave_shape_values(points[q].xi);
+        double      p       = 0;
+        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+          p += phi[k] * fields[segment.nodes[k]].pressure;
+        // Quadratic interpolants overshoot below 0 where the zone opens
+        // (integrate_contact_error()): the pressure of sigma^ is projected as
+        // there.
+        const double c = std::max(p, 0.) * std::max(gaps[q], 0.);
+        const double w = points[q].weight;
+        term.integral += c * w;
+        term.slave_cells[segment.cell] += c * w;
+        term.master_cells[masters[overlap.master_segment].cell] += c * w;
+      }
+    return term;
+  }
+
+
+
+  double
+  pressure_gap_negative_pressure(const MortarInterface                &mortar,
+                                 const std::vector<ContactNodeFields> &fields)
+  {
+    double largest = 0, most_negative = 0;
+    for (const auto &f : fields)
+      largest = std::max(largest, f.pressure);
+    const auto points =
+      mortar.overlap_quadrature(gap_sample_rule(mortar.slave_element_degree()));
+    for (const auto &point : points)
+      {
+        const auto &segment =
+          mortar.slave_segment_list()[mortar.overlaps()[point.overlap]
+                                        .slave_segment];
+        const auto phi = mortar.slave_shape_values(point.xi);
+        double     p   = 0;
+        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+          p += phi[k] * fields[segment.nodes[k]].pressure;
+        most_negative = std::min(most_negative, p);
+      }
+    return largest > 0 && most_negative < 0 ? -most_negative / largest : 0.;
   }
 } // namespace coulomb_adapt

@@ -8,6 +8,7 @@
 #include <deal.II/lac/solver_control.h>
 
 #include <coulomb_adapt/indicator/kinematic_admissibility.h>
+#include <coulomb_adapt/indicator/pointwise_gap.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
 
 #include <algorithm>
@@ -18,56 +19,6 @@ namespace coulomb_adapt
 {
   namespace
   {
-    // Where the gap is sampled on each overlap: the ends (the gap of linear
-    // segments is linear there, so its smallest value is at an end) and,
-    // for quadratic segments, enough points between them to see a
-    // parabola's minimum to a fraction of its depth.
-    QGaussLobatto<1>
-    gap_samples(const unsigned int degree)
-    {
-      return QGaussLobatto<1>(degree == 1 ? 2 : 9);
-    }
-
-
-
-    // The normal gap between the bodies at every sample point:
-    // g = (y - x) . n - n . (u^1(x) - u^2(y)), with n the slave segment's
-    // normal (curved segments: the interpolated nodal normal), as the
-    // mortar measures the initial gap and the weighted jumps.
-    std::vector<double>
-    pointwise_gaps(const MortarInterface                            &mortar,
-                   const std::vector<MortarInterface::OverlapPoint> &points,
-                   const std::vector<Tensor<1, 2>> &slave_values,
-                   const std::vector<Tensor<1, 2>> &master_values)
-    {
-      const auto         &slave_nodes     = mortar.slave_nodes();
-      const auto         &slave_segments  = mortar.slave_segment_list();
-      const auto         &master_segments = mortar.master_segment_list();
-      std::vector<double> gaps(points.size());
-      for (unsigned int q = 0; q < points.size(); ++q)
-        {
-          const auto  &overlap = mortar.overlaps()[points[q].overlap];
-          const auto  &s_seg   = slave_segments[overlap.slave_segment];
-          const auto  &m_seg   = master_segments[overlap.master_segment];
-          const auto   phi_s   = mortar.slave_shape_values(points[q].xi);
-          const auto   phi_m   = mortar.master_shape_values(points[q].eta);
-          Tensor<1, 2> jump, n;
-          for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
-            {
-              jump += phi_s[k] * slave_values[s_seg.nodes[k]];
-              n += phi_s[k] * slave_nodes[s_seg.nodes[k]].normal;
-            }
-          for (unsigned int k = 0; k < m_seg.nodes.size(); ++k)
-            jump -= phi_m[k] * master_values[m_seg.nodes[k]];
-          n = s_seg.curved ? n / n.norm() : s_seg.normal;
-          gaps[q] =
-            (points[q].master_point - points[q].slave_point) * n - n * jump;
-        }
-      return gaps;
-    }
-
-
-
     // Penetration below this is round-off of the displacements.
     double
     negligible_penetration(const std::vector<Tensor<1, 2>> &slave_values,
@@ -370,7 +321,7 @@ namespace coulomb_adapt
     const std::array<const std::vector<MortarInterface::Node> *, 2> nodes = {
       {&mortar.slave_nodes(), &mortar.master_nodes()}};
     const auto points =
-      mortar.overlap_quadrature(gap_samples(mortar.slave_element_degree()));
+      mortar.overlap_quadrature(gap_sample_rule(mortar.slave_element_degree()));
     std::array<std::vector<Tensor<1, 2>>, 2> values;
     for (unsigned int s = 0; s < 2; ++s)
       values[s] =
@@ -406,22 +357,31 @@ namespace coulomb_adapt
     std::array<std::vector<double>, 2> stiffness;
     for (unsigned int s = 0; s < 2; ++s)
       stiffness[s] = opening_stiffness(*nodes[s], normals[s], *bodies[s]);
-    const auto candidates = [&](const unsigned int q) {
-      const auto &overlap = mortar.overlaps()[points[q].overlap];
-      const auto &s_seg   = mortar.slave_segment_list()[overlap.slave_segment];
-      const auto &m_seg = mortar.master_segment_list()[overlap.master_segment];
-      const auto  phi_s = mortar.slave_shape_values(points[q].xi);
-      const auto  phi_m = mortar.master_shape_values(points[q].eta);
-      const Tensor<1, 2>     n = s_seg.normal;
-      std::vector<Candidate> list;
-      for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
-        list.push_back(
-          {0, s_seg.nodes[k], phi_s[k] * (normals[0][s_seg.nodes[k]] * n)});
-      for (unsigned int k = 0; k < m_seg.nodes.size(); ++k)
-        list.push_back(
-          {1, m_seg.nodes[k], -phi_m[k] * (normals[1][m_seg.nodes[k]] * n)});
-      return list;
-    };
+    // The nodes that lift each point, and the points each node lifts.
+    std::vector<std::vector<Candidate>> lifters(points.size());
+    std::array<std::vector<std::vector<std::pair<unsigned int, double>>>, 2>
+      lifted = {{std::vector<std::vector<std::pair<unsigned int, double>>>(
+                   nodes[0]->size()),
+                 std::vector<std::vector<std::pair<unsigned int, double>>>(
+                   nodes[1]->size())}};
+    for (unsigned int q = 0; q < points.size(); ++q)
+      {
+        const auto &overlap = mortar.overlaps()[points[q].overlap];
+        const auto &s_seg = mortar.slave_segment_list()[overlap.slave_segment];
+        const auto &m_seg =
+          mortar.master_segment_list()[overlap.master_segment];
+        const auto         phi_s = mortar.slave_shape_values(points[q].xi);
+        const auto         phi_m = mortar.master_shape_values(points[q].eta);
+        const Tensor<1, 2> n     = s_seg.normal;
+        for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
+          lifters[q].push_back(
+            {0, s_seg.nodes[k], phi_s[k] * (normals[0][s_seg.nodes[k]] * n)});
+        for (unsigned int k = 0; k < m_seg.nodes.size(); ++k)
+          lifters[q].push_back(
+            {1, m_seg.nodes[k], -phi_m[k] * (normals[1][m_seg.nodes[k]] * n)});
+        for (const auto &c : lifters[q])
+          lifted[c.side][c.node].emplace_back(q, c.rise);
+      }
 
     // Worst penetration first, each by its cheapest openings of the nodes
     // that can lift it; the gaps move linearly with the openings, so they
@@ -440,7 +400,7 @@ namespace coulomb_adapt
           double     p   = 0;
           for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
             p += phi[k] * pressure[s_seg.nodes[k]];
-          for (const auto &c : candidates(q))
+          for (const auto &c : lifters[q])
             if (c.rise > 0)
               pressure_work[c.side][c.node] +=
                 std::max(p, 0.) * c.rise * points[q].weight;
@@ -462,7 +422,7 @@ namespace coulomb_adapt
         if (worst == points.size())
           break;
         std::vector<Candidate> usable;
-        for (const auto &c : candidates(worst))
+        for (const auto &c : lifters[worst])
           if (c.rise > 1e-3 && std::isfinite(stiffness[c.side][c.node]) &&
               stiffness[c.side][c.node] > 0)
             usable.push_back(c);
@@ -482,10 +442,9 @@ namespace coulomb_adapt
           if (amounts[k] > 0)
             {
               opening[usable[k].side][usable[k].node] += amounts[k];
-              for (unsigned int q = 0; q < points.size(); ++q)
-                for (const auto &c : candidates(q))
-                  if (c.side == usable[k].side && c.node == usable[k].node)
-                    gaps[q] += amounts[k] * c.rise;
+              for (const auto &[q, rise] :
+                   lifted[usable[k].side][usable[k].node])
+                gaps[q] += amounts[k] * rise;
             }
       }
 
@@ -552,69 +511,4 @@ namespace coulomb_adapt
 
 
 
-  ContactErrorTerm
-  pressure_gap_term(
-    const MortarInterface                                      &mortar,
-    const std::vector<ContactNodeFields>                       &fields,
-    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements)
-  {
-    // p g is of degree 2p on each overlap (straight segments): Gauss
-    // points enough for it. (The nodal densities are the seed's contact
-    // term's, which the output shows; this term has none.)
-    const unsigned int degree = mortar.slave_element_degree();
-    const auto         points = mortar.overlap_quadrature(degree + 2);
-    const auto         gaps   = pointwise_gaps(
-      mortar,
-      points,
-      MortarInterface::gather_nodal_displacements(mortar.slave_nodes(),
-                                                  *displacements[0]),
-      MortarInterface::gather_nodal_displacements(mortar.master_nodes(),
-                                                  *displacements[1]));
-    const auto &segments = mortar.slave_segment_list();
-    const auto &masters  = mortar.master_segment_list();
-
-    ContactErrorTerm term;
-    for (unsigned int q = 0; q < points.size(); ++q)
-      {
-        const auto &overlap = mortar.overlaps()[points[q].overlap];
-        const auto &segment = segments[overlap.slave_segment];
-        const auto  phi     = mortar.slave_shape_values(points[q].xi);
-        double      p       = 0;
-        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
-          p += phi[k] * fields[segment.nodes[k]].pressure;
-        // Quadratic interpolants overshoot below 0 where the zone opens
-        // (contact_error.cc): the pressure of sigma^ is projected as there.
-        const double c = std::max(p, 0.) * std::max(gaps[q], 0.);
-        const double w = points[q].weight;
-        term.integral += c * w;
-        term.slave_cells[segment.cell] += c * w;
-        term.master_cells[masters[overlap.master_segment].cell] += c * w;
-      }
-    return term;
-  }
-
-
-
-  double
-  pressure_gap_negative_pressure(const MortarInterface                &mortar,
-                                 const std::vector<ContactNodeFields> &fields)
-  {
-    double largest = 0, most_negative = 0;
-    for (const auto &f : fields)
-      largest = std::max(largest, f.pressure);
-    const auto points =
-      mortar.overlap_quadrature(gap_samples(mortar.slave_element_degree()));
-    for (const auto &point : points)
-      {
-        const auto &segment =
-          mortar.slave_segment_list()[mortar.overlaps()[point.overlap]
-                                        .slave_segment];
-        const auto phi = mortar.slave_shape_values(point.xi);
-        double     p   = 0;
-        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
-          p += phi[k] * fields[segment.nodes[k]].pressure;
-        most_negative = std::min(most_negative, p);
-      }
-    return largest > 0 && most_negative < 0 ? -most_negative / largest : 0.;
-  }
 } // namespace coulomb_adapt

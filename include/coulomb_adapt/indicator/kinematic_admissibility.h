@@ -9,7 +9,6 @@
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/mortar_interface.h>
 #include <coulomb_adapt/core/parameters.h>
-#include <coulomb_adapt/indicator/contact_error.h>
 
 #include <array>
 #include <vector>
@@ -93,32 +92,6 @@ namespace coulomb_adapt
     const std::vector<double>                                  &pressure,
     const parameters::LinearSolver &solver_parameters,
     const bool                      open = true);
-
-  /**
-   * The contact term of the bound for mu = 0: c = lambda_n g, with the
-   * pressure lambda_n of @p fields (the equilibrated stress's, its nodal
-   * values interpolated with the standard slave basis) and the pointwise
-   * gap g of the displacements (>= 0 where they are admissible; a
-   * penetration left is counted as 0, and reported by the caller), on
-   * every overlap, per slave and master cell as integrate_contact_error()
-   * gives it (without its nodal densities).
-   */
-  ContactErrorTerm
-  pressure_gap_term(
-    const MortarInterface                                      &mortar,
-    const std::vector<ContactNodeFields>                       &fields,
-    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements);
-
-  /**
-   * The most negative pressure of @p fields between the slave nodes (their
-   * interpolant, sampled as the gaps are), relative to the largest nodal
-   * pressure; 0 if none. The bound needs sigma^'s pressure >= 0 (R in the
-   * cone): linear interpolants of admissible nodal values are, quadratic
-   * ones (P2/Q2) overshoot below 0 where the zone opens.
-   */
-  double
-  pressure_gap_negative_pressure(const MortarInterface                &mortar,
-                                 const std::vector<ContactNodeFields> &fields);
 } // namespace coulomb_adapt
 
 #endif

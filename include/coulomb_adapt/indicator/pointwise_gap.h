@@ -1,0 +1,58 @@
+#ifndef coulomb_adapt_indicator_pointwise_gap_h
+#define coulomb_adapt_indicator_pointwise_gap_h
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <coulomb_adapt/contact/mortar_interface.h>
+
+#include <array>
+#include <vector>
+
+namespace coulomb_adapt
+{
+  /**
+   * The gap between the bodies between the mortar's nodes. The mortar
+   * keeps one weighted gap per slave node >= 0; between the nodes the
+   * gap has kinks at the master nodes and at the ends of the master's
+   * contact zone, so a displacement the mortar accepts can penetrate
+   * there. The CRE's contact terms and its kinematic side
+   * (kinematic_admissibility.h) need the gap pointwise.
+   */
+
+  /**
+   * Where to sample the gap on each overlap of segments of @p degree: the
+   * ends (the gap of linear segments is linear in between, so its
+   * smallest value is at an end) and, for quadratic segments, enough
+   * points between them to see a parabola's minimum to a fraction of its
+   * depth.
+   */
+  QGaussLobatto<1>
+  gap_sample_rule(const unsigned int degree);
+
+  /**
+   * The normal gap g = (y - x) . n - n . (u^1(x) - u^2(y)) at each of
+   * @p points, from the nodal displacements of the slave and master
+   * nodes (@p slave_values, @p master_values, as
+   * MortarInterface::gather_nodal_displacements() gives them), with n the
+   * slave segment's normal (curved segments: the interpolated nodal
+   * normal), as the mortar measures the initial gap and the weighted
+   * jumps.
+   */
+  std::vector<double>
+  pointwise_gaps(const MortarInterface                            &mortar,
+                 const std::vector<MortarInterface::OverlapPoint> &points,
+                 const std::vector<Tensor<1, 2>>                  &slave_values,
+                 const std::vector<Tensor<1, 2>> &master_values);
+
+  /** The same from the bodies' displacements (with ghost entries). */
+  std::vector<double>
+  pointwise_gaps(
+    const MortarInterface                                      &mortar,
+    const std::vector<MortarInterface::OverlapPoint>           &points,
+    const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements);
+} // namespace coulomb_adapt
+
+#endif
