@@ -366,8 +366,8 @@ namespace coulomb_adapt
     // normal, the master node against the master's normal. Opening node i
     // by delta costs about K_ii delta^2 in energy and 2 P_i delta in the
     // contact term (P_i = int p^ times the gap's rise per unit opening of
-    // i), so each penetration is removed by the node for which that is
-    // least.
+    // i); least_cost_openings() shares each lift among the nodes by that
+    // cost.
     const std::array<std::vector<Tensor<1, 2>>, 2> normals = {
       {[&] {
          std::vector<Tensor<1, 2>> n;
@@ -394,7 +394,7 @@ namespace coulomb_adapt
           mortar.master_segment_list()[overlap.master_segment];
         const auto         phi_s = mortar.slave_shape_values(points[q].xi);
         const auto         phi_m = mortar.master_shape_values(points[q].eta);
-        const Tensor<1, 2> n     = s_seg.normal;
+        const Tensor<1, 2> n     = gap_normal(mortar, points[q]);
         for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
           lifters[q].push_back(
             {0, s_seg.nodes[k], phi_s[k] * (normals[0][s_seg.nodes[k]] * n)});
@@ -407,7 +407,9 @@ namespace coulomb_adapt
 
     // Worst penetration first, each by its cheapest openings of the nodes
     // that can lift it; the gaps move linearly with the openings, so they
-    // are updated exactly.
+    // are updated exactly (but for hanging interface nodes, which follow
+    // their masters when the constraints are distributed: the gaps of u^
+    // are measured again below).
     std::array<std::vector<double>, 2> opening = {
       {std::vector<double>(nodes[0]->size(), 0.),
        std::vector<double>(nodes[1]->size(), 0.)}};

@@ -10,13 +10,29 @@ namespace coulomb_adapt
 
 
 
+  Tensor<1, 2>
+  gap_normal(const MortarInterface               &mortar,
+             const MortarInterface::OverlapPoint &point)
+  {
+    const auto &overlap = mortar.overlaps()[point.overlap];
+    const auto &segment = mortar.slave_segment_list()[overlap.slave_segment];
+    if (!segment.curved)
+      return segment.normal;
+    const auto   phi = mortar.slave_shape_values(point.xi);
+    Tensor<1, 2> n;
+    for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+      n += phi[k] * mortar.slave_nodes()[segment.nodes[k]].normal;
+    return n / n.norm();
+  }
+
+
+
   std::vector<double>
   pointwise_gaps(const MortarInterface                            &mortar,
                  const std::vector<MortarInterface::OverlapPoint> &points,
                  const std::vector<Tensor<1, 2>>                  &slave_values,
                  const std::vector<Tensor<1, 2>> &master_values)
   {
-    const auto         &slave_nodes     = mortar.slave_nodes();
     const auto         &slave_segments  = mortar.slave_segment_list();
     const auto         &master_segments = mortar.master_segment_list();
     std::vector<double> gaps(points.size());
@@ -27,15 +43,12 @@ namespace coulomb_adapt
         const auto  &m_seg   = master_segments[overlap.master_segment];
         const auto   phi_s   = mortar.slave_shape_values(points[q].xi);
         const auto   phi_m   = mortar.master_shape_values(points[q].eta);
-        Tensor<1, 2> jump, n;
+        Tensor<1, 2> jump;
         for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
-          {
-            jump += phi_s[k] * slave_values[s_seg.nodes[k]];
-            n += phi_s[k] * slave_nodes[s_seg.nodes[k]].normal;
-          }
+          jump += phi_s[k] * slave_values[s_seg.nodes[k]];
         for (unsigned int k = 0; k < m_seg.nodes.size(); ++k)
           jump -= phi_m[k] * master_values[m_seg.nodes[k]];
-        n = s_seg.curved ? n / n.norm() : s_seg.normal;
+        const Tensor<1, 2> n = gap_normal(mortar, points[q]);
         gaps[q] =
           (points[q].master_point - points[q].slave_point) * n - n * jump;
       }

@@ -30,8 +30,9 @@ namespace coulomb_adapt
    * So interface nodes are opened (moved into their own body, along the
    * normal) just enough to remove every penetration, and the opening is
    * extended into the bodies by least energy: u^ = U_c + delta.
-   * Each penetration is removed by the node that does it at least cost
-   * (in energy and in the contact term it adds), greedily, worst first.
+   * Each penetration is removed, worst first, by the nodes that can lift
+   * it, the lift shared among them at least cost (in energy and in the
+   * contact term it adds).
    * u^ does not penetrate (g(U_c) + rise(delta) >= 0), so the term the
    * hypercircle misses, -int p g(U_c) with p >= 0 the exact pressure, is
    * at most the exact contact traction's work on delta, int p rise(delta)
@@ -52,8 +53,10 @@ namespace coulomb_adapt
     bool opening_applied = false;
     /** Interface nodes opened in each body (0: slave, 1: master). */
     std::array<unsigned int, 2> n_opened_nodes = {{0, 0}};
-    /** Largest penetration of u^ (0 unless a constraint held an opened
-     * node back). */
+    /** Largest penetration of u^: 0, unless no free node could lift a
+     * point, the step limit (4 per sample point) was reached, or a
+     * hanging interface node, which follows its constraint's masters and
+     * not the greedy's model of the gaps, was moved down. */
     double penetration_after = 0;
     /** ||sigma(delta)||^2 on each active cell of each body (0 on the cells
      * this rank does not own), and its sum over both bodies and all ranks

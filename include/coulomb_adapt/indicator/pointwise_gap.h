@@ -33,13 +33,20 @@ namespace coulomb_adapt
   gap_sample_rule(const unsigned int degree);
 
   /**
+   * The normal in which the gap is measured at @p point: the slave
+   * segment's normal, on curved segments the interpolated nodal normal,
+   * as the mortar measures the initial gap and the weighted jumps.
+   */
+  Tensor<1, 2>
+  gap_normal(const MortarInterface               &mortar,
+             const MortarInterface::OverlapPoint &point);
+
+  /**
    * The normal gap g = (y - x) . n - n . (u^1(x) - u^2(y)) at each of
    * @p points, from the nodal displacements of the slave and master
    * nodes (@p slave_values, @p master_values, as
-   * MortarInterface::gather_nodal_displacements() gives them), with n the
-   * slave segment's normal (curved segments: the interpolated nodal
-   * normal), as the mortar measures the initial gap and the weighted
-   * jumps.
+   * MortarInterface::gather_nodal_displacements() gives them), with n =
+   * gap_normal().
    */
   std::vector<double>
   pointwise_gaps(const MortarInterface                            &mortar,
