@@ -166,6 +166,17 @@ namespace coulomb_adapt
 
 
 
+  std::vector<double>
+  nodal_pressures(const std::vector<ContactNodeFields> &fields)
+  {
+    std::vector<double> pressure;
+    for (const auto &f : fields)
+      pressure.push_back(f.pressure);
+    return pressure;
+  }
+
+
+
   ContactErrorTerm
   pressure_gap_term(
     const MortarInterface                                      &mortar,
@@ -180,16 +191,14 @@ namespace coulomb_adapt
     const auto         gaps     = pointwise_gaps(mortar, points, displacements);
     const auto        &segments = mortar.slave_segment_list();
     const auto        &masters  = mortar.master_segment_list();
+    const auto         pressure = nodal_pressures(fields);
 
     ContactErrorTerm term;
     for (unsigned int q = 0; q < points.size(); ++q)
       {
-        const auto &overlap = mortar.overlaps()[points[q].overlap];
-        const auto &segment = segments[overlap.slave_segment];
-        const auto  phi     = mortar.slave_shape_values(points[q].xi);
-        double      p       = 0;
-        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
-          p += phi[k] * fields[segment.nodes[k]].pressure;
+        const auto  &overlap = mortar.overlaps()[points[q].overlap];
+        const auto  &segment = segments[overlap.slave_segment];
+        const double p       = slave_interpolant(mortar, points[q], pressure);
         // Quadratic interpolants overshoot below 0 where the zone opens
         // (integrate_contact_error()): the pressure of sigma^ is projected as
         // there.
@@ -208,22 +217,14 @@ namespace coulomb_adapt
   pressure_gap_negative_pressure(const MortarInterface                &mortar,
                                  const std::vector<ContactNodeFields> &fields)
   {
-    double largest = 0, most_negative = 0;
-    for (const auto &f : fields)
-      largest = std::max(largest, f.pressure);
-    const auto points =
-      mortar.overlap_quadrature(gap_sample_rule(mortar.slave_element_degree()));
-    for (const auto &point : points)
-      {
-        const auto &segment =
-          mortar.slave_segment_list()[mortar.overlaps()[point.overlap]
-                                        .slave_segment];
-        const auto phi = mortar.slave_shape_values(point.xi);
-        double     p   = 0;
-        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
-          p += phi[k] * fields[segment.nodes[k]].pressure;
-        most_negative = std::min(most_negative, p);
-      }
+    const auto pressure = nodal_pressures(fields);
+    double     largest = 0, most_negative = 0;
+    for (const double p : pressure)
+      largest = std::max(largest, p);
+    for (const auto &point : mortar.overlap_quadrature(
+           gap_sample_rule(mortar.slave_element_degree())))
+      most_negative =
+        std::min(most_negative, slave_interpolant(mortar, point, pressure));
     return largest > 0 && most_negative < 0 ? -most_negative / largest : 0.;
   }
 } // namespace coulomb_adapt

@@ -1,4 +1,5 @@
 #include <coulomb_adapt/core/optional_timer_section.h>
+#include <coulomb_adapt/indicator/contact_error.h>
 #include <coulomb_adapt/indicator/equilibrated_stress.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 #include <coulomb_adapt/indicator/kinematic_admissibility.h>
@@ -156,11 +157,13 @@ namespace coulomb_adapt
       const std::array<const TrilinosWrappers::MPI::Vector *, 2> judged = {
         {&estimate.correction.displacement(0),
          &estimate.correction.displacement(1)}};
-      std::vector<double> pressure;
-      for (const auto &f : equilibrium.fields)
-        pressure.push_back(f.pressure);
-      const KinematicAdmissibility admissible = make_kinematically_admissible(
-        mortar, bodies, judged, pressure, solver_parameters, mu == 0);
+      const KinematicAdmissibility admissible =
+        make_kinematically_admissible(mortar,
+                                      bodies,
+                                      judged,
+                                      nodal_pressures(equilibrium.fields),
+                                      solver_parameters,
+                                      mu == 0);
       estimate.penetration    = admissible.penetration;
       estimate.penetration_at = admissible.where;
       if (mu > 0)
@@ -168,8 +171,10 @@ namespace coulomb_adapt
       estimate.opening_applied   = admissible.opening_applied;
       estimate.opened_nodes      = admissible.n_opened_nodes;
       estimate.penetration_after = admissible.penetration_after;
-      estimate.negative_pressure =
-        pressure_gap_negative_pressure(mortar, equilibrium.fields);
+      // Linear interpolants of the nodal pressures (>= 0) are >= 0.
+      if (mortar.slave_element_degree() > 1)
+        estimate.negative_pressure =
+          pressure_gap_negative_pressure(mortar, equilibrium.fields);
       const ContactErrorTerm pressure_gap =
         pressure_gap_term(mortar, equilibrium.fields, judged);
       const double opening = std::sqrt(admissible.opening_norm_squared);

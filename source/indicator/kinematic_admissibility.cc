@@ -165,12 +165,8 @@ namespace coulomb_adapt
     {
       const MPI_Comm  comm  = body.triangulation().get_communicator();
       const IndexSet &owned = body.locally_owned_dof_set();
-      TrilinosWrappers::MPI::Vector judged_owned(owned, comm);
-      for (const auto i : owned)
-        judged_owned(i) = judged(i);
-      judged_owned.compress(VectorOperation::insert);
       TrilinosWrappers::MPI::Vector residual(owned, comm);
-      body.system_matrix().vmult(residual, judged_owned);
+      body.system_matrix().vmult(residual, judged);
       residual -= body.system_rhs();
       double work = 0;
       for (const auto i : owned)
@@ -381,11 +377,11 @@ namespace coulomb_adapt
       stiffness[s] = opening_stiffness(*nodes[s], normals[s], *bodies[s]);
     // The nodes that lift each point, and the points each node lifts.
     std::vector<std::vector<Candidate>> lifters(points.size());
-    std::array<std::vector<std::vector<std::pair<unsigned int, double>>>, 2>
-      lifted = {{std::vector<std::vector<std::pair<unsigned int, double>>>(
-                   nodes[0]->size()),
-                 std::vector<std::vector<std::pair<unsigned int, double>>>(
-                   nodes[1]->size())}};
+    // Per node: (point, rise) of every point it lifts.
+    using LiftedPoints =
+      std::vector<std::vector<std::pair<unsigned int, double>>>;
+    std::array<LiftedPoints, 2> lifted = {
+      {LiftedPoints(nodes[0]->size()), LiftedPoints(nodes[1]->size())}};
     for (unsigned int q = 0; q < points.size(); ++q)
       {
         const auto &overlap = mortar.overlaps()[points[q].overlap];
@@ -417,13 +413,7 @@ namespace coulomb_adapt
     {
       for (unsigned int q = 0; q < points.size(); ++q)
         {
-          const auto &overlap = mortar.overlaps()[points[q].overlap];
-          const auto &s_seg =
-            mortar.slave_segment_list()[overlap.slave_segment];
-          const auto phi = mortar.slave_shape_values(points[q].xi);
-          double     p   = 0;
-          for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
-            p += phi[k] * pressure[s_seg.nodes[k]];
+          const double p = slave_interpolant(mortar, points[q], pressure);
           for (const auto &c : lifters[q])
             if (c.rise > 0)
               pressure_work[c.side][c.node] +=
@@ -501,28 +491,26 @@ namespace coulomb_adapt
                                    *nodes[s],
                                    solver_parameters,
                                    opening_at_nodes);
-        // Entry by entry: U_c has ghost entries, u^ and delta do not.
-        TrilinosWrappers::MPI::Vector opened(owned, comm);
-        for (const auto i : owned)
-          opened(i) = (*displacements[s])(i) + opening_at_nodes(i);
-        opened.compress(VectorOperation::insert);
+        // U_c without its ghost entries: u^ and delta have none.
+        TrilinosWrappers::MPI::Vector judged(owned, comm);
+        judged = *displacements[s];
+        TrilinosWrappers::MPI::Vector opened(judged);
+        opened += opening_at_nodes;
         body.constraints().distribute(opened);
         TrilinosWrappers::MPI::Vector opened_ghosted;
         opened_ghosted.reinit(body.locally_owned_dof_set(),
                               body.locally_relevant_dof_set(),
                               comm);
         opened_ghosted = opened;
-        TrilinosWrappers::MPI::Vector delta(owned, comm);
-        for (const auto i : owned)
-          delta(i) = opened(i) - (*displacements[s])(i);
-        delta.compress(VectorOperation::insert);
+        TrilinosWrappers::MPI::Vector delta(opened);
+        delta -= judged;
         TrilinosWrappers::MPI::Vector delta_ghosted(
           body.locally_owned_dof_set(), body.locally_relevant_dof_set(), comm);
         delta_ghosted             = delta;
         result.opening_squared[s] = cell_energies(body, delta_ghosted);
         result.opening_norm_squared +=
           Utilities::MPI::sum(result.opening_squared[s].l1_norm(), comm);
-        result.opening_work += opening_work(body, *displacements[s], delta);
+        result.opening_work += opening_work(body, judged, delta);
         values[s] = MortarInterface::gather_nodal_displacements(*nodes[s],
                                                                 opened_ghosted);
       }

@@ -27,6 +27,23 @@ namespace coulomb_adapt
 
 
 
+  double
+  slave_interpolant(const MortarInterface               &mortar,
+                    const MortarInterface::OverlapPoint &point,
+                    const std::vector<double>           &nodal_values)
+  {
+    const auto &segment =
+      mortar
+        .slave_segment_list()[mortar.overlaps()[point.overlap].slave_segment];
+    const auto phi   = mortar.slave_shape_values(point.xi);
+    double     value = 0;
+    for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+      value += phi[k] * nodal_values[segment.nodes[k]];
+    return value;
+  }
+
+
+
   std::vector<double>
   pointwise_gaps(const MortarInterface                            &mortar,
                  const std::vector<MortarInterface::OverlapPoint> &points,

@@ -67,6 +67,10 @@ namespace coulomb_adapt
                           const std::vector<ContactNodeFields> &fields,
                           const double friction_coefficient);
 
+  /** lambda_n of each of @p fields. */
+  std::vector<double>
+  nodal_pressures(const std::vector<ContactNodeFields> &fields);
+
   /**
    * The contact term of the bound for mu = 0: c = lambda_n g, with the
    * pressure lambda_n of @p fields (the equilibrated stress's, its nodal

@@ -42,6 +42,15 @@ namespace coulomb_adapt
              const MortarInterface::OverlapPoint &point);
 
   /**
+   * The interpolant of @p nodal_values (one per slave node) at @p point,
+   * with the standard slave basis (non-negative on linear segments).
+   */
+  double
+  slave_interpolant(const MortarInterface               &mortar,
+                    const MortarInterface::OverlapPoint &point,
+                    const std::vector<double>           &nodal_values);
+
+  /**
    * The normal gap g = (y - x) . n - n . (u^1(x) - u^2(y)) at each of
    * @p points, from the nodal displacements of the slave and master
    * nodes (@p slave_values, @p master_values, as
