@@ -335,6 +335,12 @@ namespace coulomb_adapt
     // The bodies' fields first, their indexes last: if any file fails, no
     // index lists a cycle whose files are missing (contact.pvd did, and
     // body 1's .pvd when body 2's file failed; found by walkthroughs).
+    // The earlier cycle's fields, if written in the background, are
+    // completed and indexed first: one cycle at a time, and indexed
+    // whatever happens to this cycle's.
+    if (complete_background_writes())
+      for (const auto &body_output : body_outputs)
+        body_output->write_index(mpi_communicator);
     if (write_fields)
       for (unsigned int b = 0; b < 2; ++b)
         {
@@ -343,7 +349,11 @@ namespace coulomb_adapt
             fields = {&error_estimate->indicator[b],
                       &error_estimate->density[b],
                       error_estimate->recovered[b].get()};
-          body_outputs[b]->write(*bodies[b], cycle, fields);
+          body_outputs[b]->write(*bodies[b],
+                                 cycle,
+                                 fields,
+                                 parameters.output.write_in_background &&
+                                   !last_cycle);
         }
     if (contact_solver)
       {
@@ -382,6 +392,19 @@ namespace coulomb_adapt
     if (write_fields)
       for (unsigned int b = 0; b < 2; ++b)
         body_outputs[b]->write_index(mpi_communicator);
+  }
+
+
+
+  bool
+  TwoBodyProblem::complete_background_writes()
+  {
+    bool completed = false;
+    for (const auto &body_output : body_outputs)
+      if (body_output)
+        completed =
+          body_output->complete_background_write(mpi_communicator) || completed;
+    return completed;
   }
 
 
@@ -560,6 +583,20 @@ namespace coulomb_adapt
       }
     catch (const std::exception &e)
       {
+        // The finished cycles' fields stay: the one still being written
+        // in the background is completed and indexed (errors are
+        // collective, every rank is here).
+        try
+          {
+            if (complete_background_writes())
+              for (const auto &body_output : body_outputs)
+                body_output->write_index(mpi_communicator);
+          }
+        catch (const std::exception &output_error)
+          {
+            pcout << "  the fields of the cycle before were not completed: "
+                  << user_message(output_error) << std::endl;
+          }
         const std::string not_written =
           cycle_report->record_failure(current_cycle, user_message(e));
         if (!not_written.empty())

@@ -86,8 +86,11 @@ namespace coulomb_adapt
   void
   BodyOutput::write(const ElasticBody     &body,
                     const unsigned int     cycle,
-                    const BodyErrorFields &error_fields)
+                    const BodyErrorFields &error_fields,
+                    const bool             in_background)
   {
+    // One cycle at a time in the background: the earlier one first.
+    complete_background_write(body.triangulation().get_communicator());
     const Triangulation<2> &tria = body.triangulation();
     DataOutInPieces         data_out;
     data_out.attach_dof_handler(body.dof_handler());
@@ -108,7 +111,21 @@ namespace coulomb_adapt
                        body.dof_handler().get_fe().reference_cell(),
                        cycle);
     else
-      write_vtu_cycle(data_out, tria.get_communicator(), cycle);
+      write_vtu_cycle(data_out, tria.get_communicator(), cycle, in_background);
+  }
+
+
+
+  bool
+  BodyOutput::complete_background_write(const MPI_Comm comm)
+  {
+    if (!background_write)
+      return false;
+    // Gone whether it succeeds or throws: its temporary files are
+    // removed on failure, and the error ends the run.
+    const std::unique_ptr<VtuRecordWrite> write = std::move(background_write);
+    pvd_records.emplace_back(background_cycle, write->finish(comm));
+    return true;
   }
 
 
@@ -154,18 +171,22 @@ namespace coulomb_adapt
   void
   BodyOutput::write_vtu_cycle(DataOutInPieces   &data_out,
                               const MPI_Comm     comm,
-                              const unsigned int cycle)
+                              const unsigned int cycle,
+                              const bool         in_background)
   {
     DataOutBase::VtkFlags vtk_flags;
     vtk_flags.compression_level   = DataOutBase::VtkFlags::best_speed;
     vtk_flags.print_date_and_time = false;
-    const std::string pvtu =
-      write_vtu_with_pvtu_record(comm,
-                                 data_out.take_pieces(cells_per_vtu_piece),
-                                 vtk_flags,
-                                 directory,
-                                 base_name,
-                                 cycle);
-    pvd_records.emplace_back(cycle, pvtu);
+    background_write              = std::make_unique<VtuRecordWrite>(comm,
+                                                        data_out.take_pieces(
+                                                          cells_per_vtu_piece),
+                                                        vtk_flags,
+                                                        directory,
+                                                        base_name,
+                                                        cycle,
+                                                        in_background);
+    background_cycle              = cycle;
+    if (!in_background)
+      complete_background_write(comm);
   }
 } // namespace coulomb_adapt

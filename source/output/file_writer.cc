@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <limits>
 #include <regex>
 
@@ -142,15 +143,54 @@ namespace coulomb_adapt
 
 
 
-  std::string
-  write_vtu_with_pvtu_record(const MPI_Comm               comm,
-                             const VtuPieces             &pieces,
-                             const DataOutBase::VtkFlags &flags,
-                             const std::string           &directory,
-                             const std::string           &base_name,
-                             const unsigned int           cycle)
+  namespace
   {
-    const unsigned int n_own_pieces = pieces.patches.size();
+    // This rank's pieces, each to its own NAME.tmp, on concurrent tasks
+    // (deal.II's writer encodes and compresses one file on one thread):
+    // the first failure's message, or "".
+    std::string
+    write_own_pieces(const VtuPieces                &pieces,
+                     const std::vector<std::string> &paths,
+                     const DataOutBase::VtkFlags    &flags)
+    {
+      std::vector<std::string> errors(paths.size());
+      {
+        Threads::TaskGroup<> tasks;
+        for (unsigned int p = 0; p < paths.size(); ++p)
+          tasks += Threads::new_task([&, p]() {
+            errors[p] = write_temporary(paths[p], [&](std::ostream &out) {
+              DataOutBase::write_vtu(pieces.patches[p],
+                                     pieces.names,
+                                     pieces.nonscalar_ranges,
+                                     flags,
+                                     out);
+            });
+          });
+        tasks.join_all();
+      }
+      for (const std::string &e : errors)
+        if (!e.empty())
+          return e;
+      return "";
+    }
+  } // namespace
+
+
+
+  VtuRecordWrite::VtuRecordWrite(const MPI_Comm               comm,
+                                 VtuPieces                  &&pieces_to_write,
+                                 const DataOutBase::VtkFlags &flags,
+                                 const std::string           &directory,
+                                 const std::string           &base_name,
+                                 const unsigned int           cycle,
+                                 const bool                   in_background)
+    : pieces(std::make_shared<const VtuPieces>(std::move(pieces_to_write)))
+    , flags(flags)
+    , directory(directory)
+    , record_name(base_name + "_" + Utilities::int_to_string(cycle, 3) +
+                  ".pvtu")
+  {
+    const unsigned int n_own_pieces = pieces->patches.size();
     AssertThrow(n_own_pieces > 0, ExcInternalError());
     // The pieces are numbered over all ranks, rank by rank: with one piece
     // per rank these are deal.II's names (DataOutInterface::
@@ -168,46 +208,68 @@ namespace coulomb_adapt
       Utilities::needed_digits(n_pieces > 1 ? n_pieces - 1 : 0);
     const std::string stem =
       base_name + "_" + Utilities::int_to_string(cycle, 3);
-    std::vector<std::string> piece_names;
     for (unsigned int p = 0; p < n_pieces; ++p)
       piece_names.push_back(stem + "." + Utilities::int_to_string(p, n_digits) +
                             ".vtu");
-    std::vector<std::string> own_paths;
     for (unsigned int p = 0; p < n_own_pieces; ++p)
       own_paths.push_back(directory + "/" + piece_names[first_own_piece + p]);
 
-    // Every rank writes its pieces to temporary files, on concurrent tasks
-    // (deal.II's writer encodes and compresses one file on one thread);
-    // only when all ranks have succeeded are they renamed, and only then
-    // the record that lists them is written. Every rank learns of any
-    // rank's failure.
-    std::vector<std::string> errors(n_own_pieces);
-    {
-      Threads::TaskGroup<> tasks;
-      for (unsigned int p = 0; p < n_own_pieces; ++p)
-        tasks += Threads::new_task([&, p]() {
-          errors[p] = write_temporary(own_paths[p], [&](std::ostream &out) {
-            DataOutBase::write_vtu(pieces.patches[p],
-                                   pieces.names,
-                                   pieces.nonscalar_ranges,
-                                   flags,
-                                   out);
-          });
-        });
-      tasks.join_all();
-    }
-    std::string own_error;
-    for (const std::string &e : errors)
-      if (own_error.empty())
-        own_error = e;
-    std::string error = first_error(comm, own_error);
+    // The thread gets its own copies and the shared pieces: nothing of
+    // this object, which may be gone before the thread has ended.
+    own_pieces_written =
+      std::async(in_background ? std::launch::async : std::launch::deferred,
+                 [pieces = pieces, paths = own_paths, flags = flags]() {
+                   return write_own_pieces(*pieces, paths, flags);
+                 });
+  }
+
+
+
+  std::string
+  VtuRecordWrite::wait_for_own_pieces()
+  {
+    if (!own_pieces_written.valid())
+      return "";
+    try
+      {
+        return own_pieces_written.get();
+      }
+    catch (const std::exception &e)
+      {
+        return "output file '" + own_paths.front() +
+               "': writing it failed: " + user_message(e);
+      }
+  }
+
+
+
+  VtuRecordWrite::~VtuRecordWrite()
+  {
+    if (finished)
+      return;
+    wait_for_own_pieces();
+    for (const std::string &path : own_paths)
+      std::remove((path + ".tmp").c_str());
+  }
+
+
+
+  // Every rank learns of any rank's failure; the pieces are renamed only
+  // when all ranks have written theirs, and only then the record that
+  // lists them is written.
+  std::string
+  VtuRecordWrite::finish(const MPI_Comm comm)
+  {
+    Assert(!finished, ExcInternalError());
+    std::string error = first_error(comm, wait_for_own_pieces());
+    finished          = true;
     if (!error.empty())
       {
         for (const std::string &path : own_paths)
           std::remove((path + ".tmp").c_str());
         AssertThrow(false, ExcMessage(error));
       }
-    own_error.clear();
+    std::string own_error;
     for (const std::string &path : own_paths)
       if (own_error.empty())
         own_error = rename_temporary(path);
@@ -216,11 +278,26 @@ namespace coulomb_adapt
     error = first_error(comm, own_error);
     AssertThrow(error.empty(), ExcMessage(error));
 
-    write_file(comm, directory + "/" + stem + ".pvtu", [&](std::ostream &out) {
+    write_file(comm, directory + "/" + record_name, [&](std::ostream &out) {
       DataOutBase::write_pvtu_record(
-        out, piece_names, pieces.names, pieces.nonscalar_ranges, flags);
+        out, piece_names, pieces->names, pieces->nonscalar_ranges, flags);
     });
-    return stem + ".pvtu";
+    return record_name;
+  }
+
+
+
+  std::string
+  write_vtu_with_pvtu_record(const MPI_Comm               comm,
+                             VtuPieces                  &&pieces,
+                             const DataOutBase::VtkFlags &flags,
+                             const std::string           &directory,
+                             const std::string           &base_name,
+                             const unsigned int           cycle)
+  {
+    return VtuRecordWrite(
+             comm, std::move(pieces), flags, directory, base_name, cycle, false)
+      .finish(comm);
   }
 
 

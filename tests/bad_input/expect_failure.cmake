@@ -11,6 +11,8 @@
 # afterwards (nothing half-written left behind).
 # NOT_IN_FILE (optional): FILE;REGEX, a file whose contents REGEX must not
 # match afterwards (an index that must not list a cycle).
+# IN_FILE (optional): FILE;REGEX;FILE;REGEX..., files whose contents
+# each REGEX must match afterwards (an index that must list a cycle).
 # SUMMARY (optional): the run's summary.json, which must say so:
 # status "failed", an error matching EXPECTED, failed_in_cycle equal to
 # FAILED_IN_CYCLE, and the FAILED_IN_CYCLE cycles before it kept.
@@ -55,6 +57,22 @@ if(DEFINED NOT_IN_FILE)
   if(checked_contents MATCHES "${checked_regex}")
     message(FATAL_ERROR "exit code ${result}, but ${checked_file} matches '${checked_regex}':\n${checked_contents}")
   endif()
+endif()
+if(DEFINED IN_FILE)
+  list(LENGTH IN_FILE n_in_file)
+  math(EXPR last_pair "${n_in_file} - 2")
+  foreach(i RANGE 0 ${last_pair} 2)
+    math(EXPR j "${i} + 1")
+    list(GET IN_FILE ${i} checked_file)
+    list(GET IN_FILE ${j} checked_regex)
+    if(NOT EXISTS ${checked_file})
+      message(FATAL_ERROR "exit code ${result}, but ${checked_file} is missing")
+    endif()
+    file(READ ${checked_file} checked_contents)
+    if(NOT checked_contents MATCHES "${checked_regex}")
+      message(FATAL_ERROR "exit code ${result}, but ${checked_file} does not match '${checked_regex}':\n${checked_contents}")
+    endif()
+  endforeach()
 endif()
 if(DEFINED SUMMARY)
   file(READ ${SUMMARY} summary)

@@ -113,6 +113,10 @@ namespace coulomb_adapt
     compare_with_exact_displacements();
     void
     output_results(const unsigned int cycle, const bool last_cycle);
+    /** Completes the fields of a cycle written in the background
+     * (Output/Write in background); whether there was one. Collective. */
+    bool
+    complete_background_writes();
     /** Adapt both meshes for the next cycle (Adaptation/Strategy). */
     void
     refine_grid();

@@ -27,6 +27,7 @@ namespace coulomb_adapt
       OutputFormat format;
       WriteCycles  write_cycles;
       unsigned int cells_per_vtu_piece;
+      bool         write_in_background;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -10,8 +10,10 @@
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/core/options.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
+#include <coulomb_adapt/output/file_writer.h>
 #include <coulomb_adapt/output/vtu_pieces.h>
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,12 +67,24 @@ namespace coulomb_adapt
     void
     write(const ElasticBody     &body,
           const unsigned int     cycle,
-          const BodyErrorFields &error_fields = BodyErrorFields());
+          const BodyErrorFields &error_fields  = BodyErrorFields(),
+          const bool             in_background = false);
+
+    /** With Format = vtu and @p in_background, write() returns once the
+     * fields are in the patches, and the pieces are encoded, compressed
+     * and written on a thread of their own (file_writer.h,
+     * VtuRecordWrite) until this call, the next write() or the object's
+     * end (which removes them). Collective: completes that cycle (its
+     * .pvtu) and adds it to the index; returns whether there was one. */
+    bool
+    complete_background_write(const MPI_Comm comm);
 
     /** The index of every cycle written (`<base>.pvd` or `<base>.xdmf`).
      * Apart from write(), so that a run indexes a cycle only once all of
      * its files are written: with body 2's file failing, body 1's index
-     * listed a cycle that the others did not. */
+     * listed a cycle that the others did not. A cycle written in the
+     * background is indexed once complete_background_write() has
+     * completed it. */
     void
     write_index(const MPI_Comm comm) const;
 
@@ -86,14 +100,18 @@ namespace coulomb_adapt
     void
     write_vtu_cycle(DataOutInPieces   &data_out,
                     const MPI_Comm     comm,
-                    const unsigned int cycle);
+                    const unsigned int cycle,
+                    const bool         in_background);
 
     const std::string                           directory;
     const std::string                           base_name;
     const OutputFormat                          format;
     const unsigned int                          cells_per_vtu_piece;
     std::vector<std::pair<double, std::string>> pvd_records;
-    std::vector<XDMFEntry>                      xdmf_entries;
+    /** The cycle being written in the background, if any. */
+    std::unique_ptr<VtuRecordWrite> background_write;
+    unsigned int                    background_cycle = 0;
+    std::vector<XDMFEntry>          xdmf_entries;
     /** The reference cell of the meshes written (for the XDMF index). */
     ReferenceCell reference_cell;
   };

@@ -8,6 +8,8 @@
 #include <coulomb_adapt/output/vtu_pieces.h>
 
 #include <functional>
+#include <future>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -56,11 +58,67 @@ namespace coulomb_adapt
    */
   std::string
   write_vtu_with_pvtu_record(const MPI_Comm                       comm,
-                             const VtuPieces                     &pieces,
+                             VtuPieces                          &&pieces,
                              const dealii::DataOutBase::VtkFlags &flags,
                              const std::string                   &directory,
                              const std::string                   &base_name,
                              const unsigned int                   cycle);
+
+  /**
+   * write_vtu_with_pvtu_record in two halves, so that the pieces can be
+   * encoded, compressed and written on a thread of their own while the
+   * run goes on: an adaptive run's next cycle (remeshing, contact solve)
+   * leaves one of two cores idle for much of its time, and encoding and
+   * compressing the fields was most of the output's time
+   * (benchmarks/adaptive_run).
+   *
+   * The constructor (collective) names the pieces over all ranks and
+   * starts writing this rank's to NAME.tmp: on a background thread, which
+   * makes no MPI call, when @p in_background, otherwise when finish() is
+   * called. finish() (collective) waits for them; when every rank has
+   * written its own, it renames them and writes the record, whose name it
+   * returns; otherwise it removes them and throws the first rank's error
+   * on every rank. An object destroyed without finish() (an error has
+   * ended the run) waits for its thread and removes its temporary files:
+   * no piece is left under its final name without its record.
+   */
+  class VtuRecordWrite
+  {
+  public:
+    VtuRecordWrite(const MPI_Comm                       comm,
+                   VtuPieces                          &&pieces,
+                   const dealii::DataOutBase::VtkFlags &flags,
+                   const std::string                   &directory,
+                   const std::string                   &base_name,
+                   const unsigned int                   cycle,
+                   const bool                           in_background);
+
+    ~VtuRecordWrite();
+
+    VtuRecordWrite(const VtuRecordWrite &) = delete;
+    VtuRecordWrite &
+    operator=(const VtuRecordWrite &) = delete;
+
+    /** The record's name (relative to the directory, for a .pvd). */
+    std::string
+    finish(const MPI_Comm comm);
+
+  private:
+    /** Waits for this rank's pieces: the first failure's message, or "". */
+    std::string
+    wait_for_own_pieces();
+
+    // On the heap, where the writing thread reads it, whatever happens
+    // to this object.
+    const std::shared_ptr<const VtuPieces> pieces;
+    const dealii::DataOutBase::VtkFlags    flags;
+    const std::string                      directory;
+    const std::string                      record_name;
+    std::vector<std::string>               piece_names;
+    std::vector<std::string>               own_paths;
+    std::future<std::string>               own_pieces_written;
+    bool                                   finished = false;
+  };
 
   /**
    * Write the HDF5 file @p path through @p write, which every rank of
