@@ -39,6 +39,7 @@
 #include <hdf5.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -455,6 +456,53 @@ namespace
           }
       }
   }
+
+  // The fields a .pvtu lists, in order.
+  std::vector<std::string>
+  pvtu_field_names(const std::string &path)
+  {
+    const std::string        text = read_text(path);
+    const std::regex         name("<PDataArray[^>]*Name=\"([^\"]+)\"");
+    std::vector<std::string> names;
+    for (std::sregex_iterator m(text.begin(), text.end(), name), end; m != end;
+         ++m)
+      names.push_back((*m)[1]);
+    return names;
+  }
+
+  // Output/Write smoothed stress: zz's recovered stress is written only
+  // when asked; the other fields are the same either way.
+  void
+  check_smoothed_stress(ConditionalOStream &out)
+  {
+    for (const std::string write : {"false", "true"})
+      {
+        Settings settings =
+          blocks("vtu", "last", "output-smoothed-stress-" + write);
+        settings.push_back({"Output/Write smoothed stress", write});
+        settings.push_back({"Adaptation/Number of cycles", "1"});
+        const ProgramRun run(settings);
+        if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) > 0)
+          continue;
+        const std::vector<std::string> names = pvtu_field_names(
+          run.parameters.output.directory + "/body-1_000.pvtu");
+        out << "Write smoothed stress = " << write << ": fields";
+        for (const auto &n : names)
+          out << ' ' << n;
+        out << std::endl;
+        const bool smoothed =
+          std::count(names.begin(), names.end(), "smoothed_stress_xx") +
+            std::count(names.begin(), names.end(), "smoothed_stress_yy") +
+            std::count(names.begin(), names.end(), "smoothed_stress_xy") ==
+          3;
+        AssertThrow(smoothed == (write == "true") &&
+                      std::count(names.begin(),
+                                 names.end(),
+                                 "error_indicator") == 1,
+                    ExcMessage("Write smoothed stress = " + write +
+                               " wrote the wrong fields"));
+      }
+  }
 } // namespace
 
 
@@ -474,4 +522,5 @@ main(int argc, char **argv)
   check_hdf5_quadratic_triangles(out);
   check_hdf5_scaled_problem(out);
   check_fields_beyond_float_range(out);
+  check_smoothed_stress(out);
 }

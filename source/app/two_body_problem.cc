@@ -348,7 +348,9 @@ namespace coulomb_adapt
           if (error_estimate)
             fields = {&error_estimate->indicator[b],
                       &error_estimate->density[b],
-                      error_estimate->recovered[b].get()};
+                      parameters.output.write_smoothed_stress ?
+                        error_estimate->recovered[b].get() :
+                        nullptr};
           body_outputs[b]->write(*bodies[b],
                                  cycle,
                                  fields,
@@ -630,6 +632,12 @@ namespace coulomb_adapt
             << " triangles' fields at their vertices only (deal.II 9.4's "
                "HDF5 writer has no curved or quadratic triangles); "
                "'Output/Format = vtu' writes the quadratic cells"
+            << std::endl;
+    if (parameters.error_indicator.estimator != ErrorEstimator::cre &&
+        parameters.output.write_cycles != WriteCycles::none &&
+        !parameters.output.write_smoothed_stress)
+      pcout << "  output: the estimator's smoothed stress is not written "
+               "('Output/Write smoothed stress = true' adds it)"
             << std::endl;
     if (parameters.error_indicator.estimator == ErrorEstimator::zz &&
         parameters.finite_elements.degree >= 2)

@@ -28,6 +28,7 @@ namespace coulomb_adapt
       WriteCycles  write_cycles;
       unsigned int cells_per_vtu_piece;
       bool         write_in_background;
+      bool         write_smoothed_stress;
 
       static void
       declare_parameters(ParameterHandler &prm);
