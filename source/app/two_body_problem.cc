@@ -339,8 +339,9 @@ namespace coulomb_adapt
     // completed and indexed first: one cycle at a time, and indexed
     // whatever happens to this cycle's.
     if (complete_background_writes())
-      for (const auto &body_output : body_outputs)
-        body_output->write_index(mpi_communicator);
+      write_field_indexes();
+    const bool in_background =
+      parameters.output.write_in_background && !last_cycle;
     if (write_fields)
       for (unsigned int b = 0; b < 2; ++b)
         {
@@ -351,11 +352,9 @@ namespace coulomb_adapt
                       parameters.output.write_smoothed_stress ?
                         error_estimate->recovered[b].get() :
                         nullptr};
-          body_outputs[b]->write(*bodies[b],
-                                 cycle,
-                                 fields,
-                                 parameters.output.write_in_background &&
-                                   !last_cycle);
+          body_outputs[b]->write(*bodies[b], cycle, fields, in_background);
+          if (!in_background && b == 1)
+            fields_complete_through = cycle;
         }
     if (contact_solver)
       {
@@ -392,21 +391,55 @@ namespace coulomb_adapt
                               scaled_fields ? &scaled_density : nullptr);
       }
     if (write_fields)
-      for (unsigned int b = 0; b < 2; ++b)
-        body_outputs[b]->write_index(mpi_communicator);
+      write_field_indexes();
   }
 
 
 
+  // Both bodies' or neither's: a body whose pieces are complete is not
+  // indexed when the other's failed (finish() throws on every rank
+  // together, so this stays collective).
   bool
   TwoBodyProblem::complete_background_writes()
   {
+    std::array<std::optional<std::pair<unsigned int, std::string>>, 2> records;
+    std::string                                                        error;
+    for (unsigned int b = 0; b < 2; ++b)
+      if (body_outputs[b])
+        try
+          {
+            records[b] =
+              body_outputs[b]->finish_background_write(mpi_communicator);
+          }
+        catch (const std::exception &e)
+          {
+            if (error.empty())
+              error = user_message(e);
+          }
+    AssertThrow(error.empty(), ExcMessage(error));
     bool completed = false;
+    for (unsigned int b = 0; b < 2; ++b)
+      if (records[b])
+        {
+          body_outputs[b]->add_to_index(*records[b]);
+          fields_complete_through = records[b]->first;
+          completed               = true;
+        }
+    return completed;
+  }
+
+
+
+  // The bodies' .pvd (or .xdmf) and contact.pvd, the latter up to the
+  // last cycle whose bodies' fields are complete.
+  void
+  TwoBodyProblem::write_field_indexes()
+  {
     for (const auto &body_output : body_outputs)
       if (body_output)
-        completed =
-          body_output->complete_background_write(mpi_communicator) || completed;
-    return completed;
+        body_output->write_index(mpi_communicator);
+    if (contact_output && fields_complete_through)
+      contact_output->write_index(*fields_complete_through);
   }
 
 
@@ -585,25 +618,27 @@ namespace coulomb_adapt
       }
     catch (const std::exception &e)
       {
+        // summary.json first: it is written without communication, in
+        // case another rank is failing elsewhere.
+        const std::string not_written =
+          cycle_report->record_failure(current_cycle, user_message(e));
+        if (!not_written.empty())
+          pcout << "  summary.json not updated with the error: " << not_written
+                << std::endl;
         // The finished cycles' fields stay: the one still being written
-        // in the background is completed and indexed (errors are
-        // collective, every rank is here).
+        // in the background is completed and indexed. Collective: the
+        // program's errors reach every rank (an error on one rank alone
+        // would leave the others waiting in any case).
         try
           {
             if (complete_background_writes())
-              for (const auto &body_output : body_outputs)
-                body_output->write_index(mpi_communicator);
+              write_field_indexes();
           }
         catch (const std::exception &output_error)
           {
             pcout << "  the fields of the cycle before were not completed: "
                   << user_message(output_error) << std::endl;
           }
-        const std::string not_written =
-          cycle_report->record_failure(current_cycle, user_message(e));
-        if (!not_written.empty())
-          pcout << "  summary.json not updated with the error: " << not_written
-                << std::endl;
         throw;
       }
   }

@@ -89,8 +89,9 @@ namespace coulomb_adapt
                     const BodyErrorFields &error_fields,
                     const bool             in_background)
   {
-    // One cycle at a time in the background: the earlier one first.
-    complete_background_write(body.triangulation().get_communicator());
+    // One cycle at a time in the background: the caller completes the
+    // earlier one first (TwoBodyProblem::complete_background_writes).
+    Assert(!background_write, ExcInternalError());
     const Triangulation<2> &tria = body.triangulation();
     DataOutInPieces         data_out;
     data_out.attach_dof_handler(body.dof_handler());
@@ -116,16 +117,23 @@ namespace coulomb_adapt
 
 
 
-  bool
-  BodyOutput::complete_background_write(const MPI_Comm comm)
+  std::optional<std::pair<unsigned int, std::string>>
+  BodyOutput::finish_background_write(const MPI_Comm comm)
   {
     if (!background_write)
-      return false;
+      return std::nullopt;
     // Gone whether it succeeds or throws: its temporary files are
     // removed on failure, and the error ends the run.
     const std::unique_ptr<VtuRecordWrite> write = std::move(background_write);
-    pvd_records.emplace_back(background_cycle, write->finish(comm));
-    return true;
+    return std::make_pair(background_cycle, write->finish(comm));
+  }
+
+
+
+  void
+  BodyOutput::add_to_index(const std::pair<unsigned int, std::string> &record)
+  {
+    pvd_records.emplace_back(record.first, record.second);
   }
 
 
@@ -187,6 +195,6 @@ namespace coulomb_adapt
                                                         in_background);
     background_cycle              = cycle;
     if (!in_background)
-      complete_background_write(comm);
+      add_to_index(*finish_background_write(comm));
   }
 } // namespace coulomb_adapt

@@ -200,9 +200,9 @@ namespace coulomb_adapt
 
 
 
-  // The polyline's VTU file (rank 0), then the .pvd index of all cycles.
-  // No date in the header, as for the bodies' pieces: two identical runs
-  // write identical files.
+  // The polyline's VTU file (rank 0); write_index() lists it. No date in
+  // the header, as for the bodies' pieces: two identical runs write
+  // identical files.
   void
   ContactOutput::write_vtu_polyline(
     const std::vector<DataOutBase::Patch<1, 2>> &patches,
@@ -221,10 +221,23 @@ namespace coulomb_adapt
                    patches, names, NoVectorFields(), vtk_flags, vtu);
                });
     pvd_records.emplace_back(cycle, stem + ".vtu");
+  }
+
+
+
+  void
+  ContactOutput::write_index(const unsigned int last_cycle) const
+  {
+    if (format != OutputFormat::vtu || pvd_records.empty())
+      return;
+    std::vector<std::pair<double, std::string>> listed;
+    for (const auto &record : pvd_records)
+      if (record.first <= last_cycle)
+        listed.push_back(record);
     write_file(mpi_communicator,
                directory + "/contact.pvd",
                [&](std::ostream &pvd) {
-                 DataOutBase::write_pvd_record(pvd, pvd_records);
+                 DataOutBase::write_pvd_record(pvd, listed);
                });
   }
 } // namespace coulomb_adapt

@@ -9,6 +9,7 @@
 #include <coulomb_adapt/output/file_writer.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include <future>
 #include <limits>
 #include <regex>
+#include <system_error>
 
 namespace coulomb_adapt
 {
@@ -216,11 +218,22 @@ namespace coulomb_adapt
 
     // The thread gets its own copies and the shared pieces: nothing of
     // this object, which may be gone before the thread has ended.
-    own_pieces_written =
-      std::async(in_background ? std::launch::async : std::launch::deferred,
-                 [pieces = pieces, paths = own_paths, flags = flags]() {
-                   return write_own_pieces(*pieces, paths, flags);
-                 });
+    // A thread that cannot be started (std::system_error, perhaps on one
+    // rank only) must not end this rank's run: the pieces are then
+    // written by finish(), in the foreground.
+    const auto write = [pieces = pieces, paths = own_paths, flags = flags]() {
+      return write_own_pieces(*pieces, paths, flags);
+    };
+    try
+      {
+        own_pieces_written =
+          std::async(in_background ? std::launch::async : std::launch::deferred,
+                     write);
+      }
+    catch (const std::system_error &)
+      {
+        own_pieces_written = std::async(std::launch::deferred, write);
+      }
   }
 
 
@@ -247,7 +260,11 @@ namespace coulomb_adapt
   {
     if (finished)
       return;
-    wait_for_own_pieces();
+    // A write not started (deferred) is not started now.
+    if (own_pieces_written.valid() &&
+        own_pieces_written.wait_for(std::chrono::seconds(0)) !=
+          std::future_status::deferred)
+      wait_for_own_pieces();
     for (const std::string &path : own_paths)
       std::remove((path + ".tmp").c_str());
   }

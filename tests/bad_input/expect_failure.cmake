@@ -9,8 +9,9 @@
 # MAKE_FIFO (optional): a named pipe created first (removed if there).
 # ABSENT (optional): a ;-list of glob patterns that must match no file
 # afterwards (nothing half-written left behind).
-# NOT_IN_FILE (optional): FILE;REGEX, a file whose contents REGEX must not
-# match afterwards (an index that must not list a cycle).
+# NOT_IN_FILE (optional): FILE;REGEX;FILE;REGEX..., files whose contents
+# each REGEX must not match afterwards (an index that must not list a
+# cycle; a missing file lists nothing).
 # IN_FILE (optional): FILE;REGEX;FILE;REGEX..., files whose contents
 # each REGEX must match afterwards (an index that must list a cycle).
 # SUMMARY (optional): the run's summary.json, which must say so:
@@ -51,12 +52,19 @@ foreach(pattern ${ABSENT})
   endif()
 endforeach()
 if(DEFINED NOT_IN_FILE)
-  list(GET NOT_IN_FILE 0 checked_file)
-  list(GET NOT_IN_FILE 1 checked_regex)
-  file(READ ${checked_file} checked_contents)
-  if(checked_contents MATCHES "${checked_regex}")
-    message(FATAL_ERROR "exit code ${result}, but ${checked_file} matches '${checked_regex}':\n${checked_contents}")
-  endif()
+  list(LENGTH NOT_IN_FILE n_not_in_file)
+  math(EXPR last_pair "${n_not_in_file} - 2")
+  foreach(i RANGE 0 ${last_pair} 2)
+    math(EXPR j "${i} + 1")
+    list(GET NOT_IN_FILE ${i} checked_file)
+    list(GET NOT_IN_FILE ${j} checked_regex)
+    if(EXISTS ${checked_file})
+      file(READ ${checked_file} checked_contents)
+      if(checked_contents MATCHES "${checked_regex}")
+        message(FATAL_ERROR "exit code ${result}, but ${checked_file} matches '${checked_regex}':\n${checked_contents}")
+      endif()
+    endif()
+  endforeach()
 endif()
 if(DEFINED IN_FILE)
   list(LENGTH IN_FILE n_in_file)

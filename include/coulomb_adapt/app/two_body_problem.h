@@ -117,6 +117,9 @@ namespace coulomb_adapt
      * (Output/Write in background); whether there was one. Collective. */
     bool
     complete_background_writes();
+    /** The fields' indexes (.pvd, .xdmf) of the cycles complete so far. */
+    void
+    write_field_indexes();
     /** Adapt both meshes for the next cycle (Adaptation/Strategy). */
     void
     refine_grid();
@@ -138,6 +141,9 @@ namespace coulomb_adapt
     std::unique_ptr<ScaledScene>               scene;
     ElasticBodies                              bodies;
     std::array<std::unique_ptr<BodyOutput>, 2> body_outputs;
+    /** The last cycle whose bodies' fields are all written (Output/Write
+     * in background), none before the first. */
+    std::optional<unsigned int> fields_complete_through;
     /** The log lines and summary.json record of each cycle. */
     std::unique_ptr<CycleReport>        cycle_report;
     std::unique_ptr<ContactSolveDriver> contact_solve_driver;

@@ -14,6 +14,7 @@
 #include <coulomb_adapt/output/vtu_pieces.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,11 +74,15 @@ namespace coulomb_adapt
     /** With Format = vtu and @p in_background, write() returns once the
      * fields are in the patches, and the pieces are encoded, compressed
      * and written on a thread of their own (file_writer.h,
-     * VtuRecordWrite) until this call, the next write() or the object's
-     * end (which removes them). Collective: completes that cycle (its
-     * .pvtu) and adds it to the index; returns whether there was one. */
-    bool
-    complete_background_write(const MPI_Comm comm);
+     * VtuRecordWrite) until this call or the object's end (which removes
+     * them). Collective: completes that cycle (its .pvtu) and returns its
+     * index record (cycle, .pvtu), which add_to_index() adds once the
+     * other body's is complete too; none if nothing was pending. */
+    std::optional<std::pair<unsigned int, std::string>>
+    finish_background_write(const MPI_Comm comm);
+
+    void
+    add_to_index(const std::pair<unsigned int, std::string> &record);
 
     /** The index of every cycle written (`<base>.pvd` or `<base>.xdmf`).
      * Apart from write(), so that a run indexes a cycle only once all of

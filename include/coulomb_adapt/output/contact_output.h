@@ -42,6 +42,13 @@ namespace coulomb_adapt
           const std::vector<ContactNodeState> *field_states  = nullptr,
           const std::vector<double>           *field_density = nullptr);
 
+    /** With Format = vtu: contact.pvd, listing the polylines of the
+     * cycles up to @p last_cycle, those whose bodies' fields are complete
+     * (Output/Write in background): no index lists a cycle whose body
+     * files are missing. Collective. */
+    void
+    write_index(const unsigned int last_cycle) const;
+
   private:
     /** One row per slave node into @p path (rank 0). */
     void
@@ -54,7 +61,7 @@ namespace coulomb_adapt
                         const std::vector<std::string>              &names,
                         const std::string                           &stem,
                         const unsigned int                           cycle);
-    /** The polyline @p patches as `STEM.vtu` and the index contact.pvd. */
+    /** The polyline @p patches as `STEM.vtu` (indexed by write_index()). */
     void
     write_vtu_polyline(const std::vector<DataOutBase::Patch<1, 2>> &patches,
                        const std::vector<std::string>              &names,
