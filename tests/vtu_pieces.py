@@ -119,19 +119,31 @@ NOISE = 1e-14
 
 def same_rows(rows_a, rows_b, exact):
     """Whether two lists of point rows hold the same points with the same
-    fields: bit for bit if @p exact, otherwise to round-off (above)."""
+    fields: bit for bit if @p exact, otherwise to round-off (above). The
+    points' coordinates (the first three columns) come from the mesh and
+    agree bit for bit; the rows at one point (one per cell around it) are
+    matched to round-off, whatever their order."""
     if exact or len(rows_a) != len(rows_b):
         return sorted(rows_a) == sorted(rows_b)
-    rows_a, rows_b = sorted(rows_a), sorted(rows_b)
     n_columns = len(rows_a[0]) if rows_a else 0
     scales = [max(abs(r[c]) for r in rows_a + rows_b)
               for c in range(n_columns)]
     largest = max(scales, default=0)
-    for c in range(n_columns):
-        tolerance = ROUND_OFF * scales[c] + NOISE * largest
-        if any(abs(a[c] - b[c]) > tolerance
-               for a, b in zip(rows_a, rows_b)):
+    tolerances = [ROUND_OFF * scale + NOISE * largest for scale in scales]
+
+    def close(a, b):
+        return all(abs(x - y) <= t for x, y, t in zip(a, b, tolerances))
+
+    at_point = {}
+    for row in rows_b:
+        at_point.setdefault(row[:3], []).append(row)
+    for row in rows_a:
+        candidates = at_point.get(row[:3], [])
+        match = next((i for i, b in enumerate(candidates) if close(row, b)),
+                     None)
+        if match is None:
             return False
+        candidates.pop(match)
     return True
 
 
