@@ -304,21 +304,6 @@ namespace coulomb_adapt
 
 
 
-  std::string
-  write_vtu_with_pvtu_record(const MPI_Comm               comm,
-                             VtuPieces                  &&pieces,
-                             const DataOutBase::VtkFlags &flags,
-                             const std::string           &directory,
-                             const std::string           &base_name,
-                             const unsigned int           cycle)
-  {
-    return VtuRecordWrite(
-             comm, std::move(pieces), flags, directory, base_name, cycle, false)
-      .finish(comm);
-  }
-
-
-
   void
   write_hdf5_file(const MPI_Comm                                  comm,
                   const std::string                              &path,

@@ -45,42 +45,30 @@ namespace coulomb_adapt
                              const std::function<void(std::ostream &)> &write);
 
   /**
-   * DataOutInterface::write_vtu_with_pvtu_record for this rank's
-   * @p pieces (each written by DataOutBase::write_vtu with @p flags to its
-   * own file, by concurrent tasks), made atomic and collective: the pieces are
-   * numbered over all ranks, rank by rank (`BASE_CCC.N.vtu`; with one piece per
-   * rank, N is the rank as in deal.II's names), and `BASE_CCC.pvtu` lists them.
-   * Each piece is written to NAME.tmp and renamed only when every rank has
-   * written its own, then the record through write_file. A failure on any
-   * rank throws the same error, naming the file and the system's reason,
-   * on every rank. Every rank needs at least one piece (perhaps empty).
-   * Returns the record's name (relative to @p directory, for a .pvd).
-   */
-  std::string
-  write_vtu_with_pvtu_record(const MPI_Comm                       comm,
-                             VtuPieces                          &&pieces,
-                             const dealii::DataOutBase::VtkFlags &flags,
-                             const std::string                   &directory,
-                             const std::string                   &base_name,
-                             const unsigned int                   cycle);
-
-  /**
-   * write_vtu_with_pvtu_record in two halves, so that the pieces can be
-   * encoded, compressed and written on a thread of their own while the
-   * run goes on: an adaptive run's next cycle (remeshing, contact solve)
-   * leaves one of two cores idle for much of its time, and encoding and
-   * compressing the fields was most of the output's time
-   * (benchmarks/adaptive_run).
+   * DataOutInterface::write_vtu_with_pvtu_record for this rank's pieces
+   * (each written by DataOutBase::write_vtu to its own file, by
+   * concurrent tasks), made atomic and collective, in two halves, so that
+   * the pieces can be encoded, compressed and written on a thread of
+   * their own while the run goes on: an adaptive run's next cycle
+   * (remeshing, contact solve) leaves one of two cores idle for much of
+   * its time, and encoding and compressing the fields was most of the
+   * output's time (benchmarks/adaptive_run).
    *
-   * The constructor (collective) names the pieces over all ranks and
-   * starts writing this rank's to NAME.tmp: on a background thread, which
-   * makes no MPI call, when @p in_background, otherwise when finish() is
-   * called. finish() (collective) waits for them; when every rank has
-   * written its own, it renames them and writes the record, whose name it
-   * returns; otherwise it removes them and throws the first rank's error
-   * on every rank. An object destroyed without finish() (an error has
-   * ended the run) waits for its thread and removes its temporary files:
-   * no piece is left under its final name without its record.
+   * The pieces are numbered over all ranks, rank by rank (`BASE_CCC.N.vtu`;
+   * with one piece per rank, N is the rank as in deal.II's names), and
+   * `BASE_CCC.pvtu` lists them. Every rank needs at least one piece
+   * (perhaps empty). The constructor (collective) names them and starts
+   * writing this rank's to NAME.tmp: on a background thread, which makes
+   * no MPI call, when @p in_background (and the thread can be started),
+   * otherwise when finish() is called. finish() (collective) waits for
+   * them; when every rank has written its own, it renames them and
+   * writes the record through write_file, and returns the record's name
+   * (relative to the directory, for a .pvd); otherwise it removes them
+   * and throws the first rank's error, naming the file and the system's
+   * reason, on every rank. An object destroyed without finish() (an
+   * error has ended the run) waits for its thread and removes its
+   * temporary files: no piece is left under its final name without its
+   * record.
    */
   class VtuRecordWrite
   {
