@@ -557,4 +557,9 @@ namespace coulomb_adapt
   {
     return segment_shape_values(slave_degree, xi);
   }
+  std::vector<double>
+  MortarInterface::slave_bernstein_values(const double xi) const
+  {
+    return segment_bernstein_values(slave_degree, xi);
+  }
 } // namespace coulomb_adapt

@@ -17,6 +17,16 @@ namespace coulomb_adapt
 
 
     std::vector<double>
+    segment_bernstein_values(const unsigned int degree, const double xi)
+    {
+      if (degree == 1)
+        return segment_shape_values(degree, xi);
+      return {(1 - xi) * (1 - xi), xi * xi, 2 * xi * (1 - xi)};
+    }
+
+
+
+    std::vector<double>
     segment_shape_derivatives(const unsigned int degree, const double xi)
     {
       if (degree == 1)

@@ -2,6 +2,7 @@
 
 #include <deal.II/lac/solver_control.h>
 
+#include <coulomb_adapt/indicator/bernstein_contact_traction.h>
 #include <coulomb_adapt/indicator/contact_correction.h>
 #include <coulomb_adapt/solvers/linear_solver.h>
 
@@ -321,7 +322,11 @@ namespace coulomb_adapt
       {
         const auto &segment =
           segments[mortar.overlaps()[points[q].overlap].slave_segment];
-        const auto phi = mortar.slave_shape_values(points[q].xi);
+        // Bernstein's basis keeps R in the cone between the nodes, on
+        // quadratic segments too (their Lagrange interpolant overshoots
+        // where the zone opens: a negative pressure, which the CRE bound
+        // cannot take).
+        const auto phi = mortar.slave_bernstein_values(points[q].xi);
         for (unsigned int k = 0; k < segment.nodes.size(); ++k)
           {
             const auto &node = nodes[segment.nodes[k]];
@@ -596,6 +601,10 @@ namespace coulomb_adapt
       {
         corrected.skipped               = (largest == 0);
         corrected.within_solve_accuracy = false;
+        // From here on the tractions are coefficients in the Bernstein
+        // basis (contact_traction_at()), in the cone between the nodes.
+        corrected.fields =
+          bernstein_contact_traction(mortar, corrected.fields, mu);
       }
 
     if (!corrected.skipped)

@@ -140,15 +140,11 @@ namespace coulomb_adapt
               // The nodal density with weights that are >= 0 (quadratic
               // Lagrange functions are not: a node's share of c >= 0 could
               // be negative); Bernstein's for quadratic segments.
-              const std::array<double, 3> bernstein = {
-                {(1 - xi) * (1 - xi), xi * xi, 2 * xi * (1 - xi)}};
-              const auto share = [&](const unsigned int i) {
-                return n == 3 ? bernstein[i] : phi[i];
-              };
+              const auto share = mortar.slave_bernstein_values(xi);
               for (unsigned int i = 0; i < n; ++i)
                 {
-                  term.nodal_density[segment.nodes[i]] += share(i) * c * w;
-                  share_weight[segment.nodes[i]] += share(i) * w;
+                  term.nodal_density[segment.nodes[i]] += share[i] * c * w;
+                  share_weight[segment.nodes[i]] += share[i] * w;
                 }
             }
         term.integral += piece_sum;
@@ -198,10 +194,9 @@ namespace coulomb_adapt
       {
         const auto  &overlap = mortar.overlaps()[points[q].overlap];
         const auto  &segment = segments[overlap.slave_segment];
-        const double p       = slave_interpolant(mortar, points[q], pressure);
-        // Quadratic interpolants overshoot below 0 where the zone opens
-        // (integrate_contact_error()): the pressure of sigma^ is projected as
-        // there.
+        const double p =
+          slave_bernstein_interpolant(mortar, points[q], pressure);
+        // sigma^'s pressure, >= 0 with its nodal values (Bernstein form).
         const double c = std::max(p, 0.) * std::max(gaps[q], 0.);
         const double w = points[q].weight;
         term.integral += c * w;
@@ -224,7 +219,8 @@ namespace coulomb_adapt
     for (const auto &point : mortar.overlap_quadrature(
            gap_sample_rule(mortar.slave_element_degree())))
       most_negative =
-        std::min(most_negative, slave_interpolant(mortar, point, pressure));
+        std::min(most_negative,
+                 slave_bernstein_interpolant(mortar, point, pressure));
     return largest > 0 && most_negative < 0 ? -most_negative / largest : 0.;
   }
 } // namespace coulomb_adapt

@@ -171,7 +171,9 @@ namespace coulomb_adapt
       estimate.opening_applied   = admissible.opening_applied;
       estimate.opened_nodes      = admissible.n_opened_nodes;
       estimate.penetration_after = admissible.penetration_after;
-      // Linear interpolants of the nodal pressures (>= 0) are >= 0.
+      // sigma^'s pressure is >= 0 wherever its nodal values are (their
+      // Bernstein form, on linear segments their interpolant); checked on
+      // quadratic segments.
       if (mortar.slave_element_degree() > 1)
         estimate.negative_pressure =
           pressure_gap_negative_pressure(mortar, equilibrium.fields);

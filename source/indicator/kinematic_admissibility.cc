@@ -413,7 +413,8 @@ namespace coulomb_adapt
     {
       for (unsigned int q = 0; q < points.size(); ++q)
         {
-          const double p = slave_interpolant(mortar, points[q], pressure);
+          const double p =
+            slave_bernstein_interpolant(mortar, points[q], pressure);
           for (const auto &c : lifters[q])
             if (c.rise > 0)
               pressure_work[c.side][c.node] +=

@@ -28,14 +28,14 @@ namespace coulomb_adapt
 
 
   double
-  slave_interpolant(const MortarInterface               &mortar,
-                    const MortarInterface::OverlapPoint &point,
-                    const std::vector<double>           &nodal_values)
+  slave_bernstein_interpolant(const MortarInterface               &mortar,
+                              const MortarInterface::OverlapPoint &point,
+                              const std::vector<double>           &nodal_values)
   {
     const auto &segment =
       mortar
         .slave_segment_list()[mortar.overlaps()[point.overlap].slave_segment];
-    const auto phi   = mortar.slave_shape_values(point.xi);
+    const auto phi   = mortar.slave_bernstein_values(point.xi);
     double     value = 0;
     for (unsigned int k = 0; k < segment.nodes.size(); ++k)
       value += phi[k] * nodal_values[segment.nodes[k]];

@@ -146,6 +146,11 @@ namespace coulomb_adapt
     std::vector<double>
     slave_shape_values(const double xi) const;
 
+    /** Values of the slave segment's Bernstein polynomials (same order)
+     * at @p xi: mortar::segment_bernstein_values(). */
+    std::vector<double>
+    slave_bernstein_values(const double xi) const;
+
     /** Values of the master segment's shape functions (ends, then middle
      * node) at parameter @p eta in [0, 1] of its chord. */
     std::vector<double>

@@ -24,6 +24,14 @@ namespace coulomb_adapt
     std::vector<double>
     segment_shape_values(const unsigned int degree, const double xi);
 
+    /** The Bernstein polynomials of the same degree, in the same order
+     * (for degree 2: (1 - xi)^2, xi^2, 2 xi (1 - xi)). They are >= 0, so
+     * a polynomial with coefficients >= 0 in this basis is >= 0 on the
+     * whole segment, which the Lagrange interpolant of nodal values >= 0
+     * is not for degree 2. For degree 1 they are segment_shape_values. */
+    std::vector<double>
+    segment_bernstein_values(const unsigned int degree, const double xi);
+
     /** Derivatives of segment_shape_values in xi. */
     std::vector<double>
     segment_shape_derivatives(const unsigned int degree, const double xi);

@@ -19,10 +19,11 @@ namespace coulomb_adapt
      * the master nodes (R_c with Wohlmuth's dual basis). The recovery
      * estimators (zz, spr) use it: with R_c = R_h it returns U_h. */
     mortar,
-    /** int R_c phi_i with R_c interpolated by the standard slave basis,
-     * the same field on both sides (body 2 at the projected points). The
-     * CRE estimator uses it: this R_c lies in the Coulomb cone between the
-     * nodes, so the equilibrated stress can carry it as Neumann data. */
+    /** int R_c phi_i with R_c the nodal values in the slave basis's
+     * Bernstein form (contact_traction_at()), the same field on both sides
+     * (body 2 at the projected points). The CRE estimator uses it: this
+     * R_c lies in the Coulomb cone between the nodes, so the equilibrated
+     * stress can carry it as Neumann data. */
     consistent
   };
 
@@ -61,7 +62,9 @@ namespace coulomb_adapt
     /** U_c of both bodies when the corrected problem was solved, with
      * ghost entries; empty otherwise. */
     std::array<TrilinosWrappers::MPI::Vector, 2> corrected_displacement;
-    /** R_c (as lambda_c = -R_c) and W_c at the slave nodes. */
+    /** R_c (as lambda_c = -R_c) and W_c at the slave nodes; with the
+     * consistent load form R_c's coefficients in the Bernstein basis of
+     * quadratic segments (bernstein_contact_traction.h). */
     std::vector<ContactNodeFields> fields;
   };
 
@@ -111,9 +114,11 @@ namespace coulomb_adapt
     const double                         negligible_change = 0);
 
   /** The contact traction on body 1, R = -lambda, at the points of
-   * MortarInterface::overlap_quadrature(): the nodal values of @p fields
-   * interpolated with the standard slave basis (body 2 carries -R at the
-   * projected points). */
+   * MortarInterface::overlap_quadrature(): the polynomial with the nodal
+   * values of @p fields as its coefficients in the slave segments'
+   * Bernstein basis (on linear segments the standard basis), which lies
+   * in the Coulomb cone wherever the nodal values do (body 2 carries -R
+   * at the projected points). */
   std::vector<Tensor<1, 2>>
   contact_traction_at(const MortarInterface                            &mortar,
                       const std::vector<ContactNodeFields>             &fields,

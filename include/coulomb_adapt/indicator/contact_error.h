@@ -74,7 +74,8 @@ namespace coulomb_adapt
   /**
    * The contact term of the bound for mu = 0: c = lambda_n g, with the
    * pressure lambda_n of @p fields (the equilibrated stress's, its nodal
-   * values interpolated with the standard slave basis) and the pointwise
+   * values as the coefficients of the slave basis's Bernstein polynomials,
+   * so >= 0 between the nodes, slave_bernstein_interpolant()) and the pointwise
    * gap g of the displacements (>= 0 where they are admissible; a
    * penetration left is counted as 0, and reported by the caller), on
    * every overlap, per slave and master cell as integrate_contact_error()
@@ -87,11 +88,13 @@ namespace coulomb_adapt
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements);
 
   /**
-   * The most negative pressure of @p fields between the slave nodes (their
-   * interpolant, sampled as the gaps are), relative to the largest nodal
-   * pressure; 0 if none. The bound needs sigma^'s pressure >= 0 (R in the
-   * cone): linear interpolants of admissible nodal values are, quadratic
-   * ones (P2/Q2) overshoot below 0 where the zone opens.
+   * The most negative pressure of @p fields between the slave nodes (the
+   * equilibrated stress's, slave_bernstein_interpolant(), sampled as the
+   * gaps are), relative to the largest nodal pressure; 0 if none. The
+   * bound needs sigma^'s pressure >= 0: it is wherever the nodal values
+   * are, on quadratic segments too (their Lagrange interpolant overshot
+   * below 0 where the zone opens, hertz P2 by 2.2 % of the largest
+   * pressure, until 2026-12-01), so this is a check.
    */
   double
   pressure_gap_negative_pressure(const MortarInterface                &mortar,

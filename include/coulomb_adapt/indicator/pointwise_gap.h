@@ -42,13 +42,16 @@ namespace coulomb_adapt
              const MortarInterface::OverlapPoint &point);
 
   /**
-   * The interpolant of @p nodal_values (one per slave node) at @p point,
-   * with the standard slave basis (non-negative on linear segments).
+   * The polynomial at @p point whose coefficients in the slave segment's
+   * Bernstein basis are @p nodal_values (one per slave node): >= 0
+   * wherever they are, on quadratic segments too. On linear segments it
+   * is the interpolant with the standard basis. The contact traction of
+   * the equilibrated stress has this form (contact_traction_at()).
    */
   double
-  slave_interpolant(const MortarInterface               &mortar,
-                    const MortarInterface::OverlapPoint &point,
-                    const std::vector<double>           &nodal_values);
+  slave_bernstein_interpolant(const MortarInterface               &mortar,
+                              const MortarInterface::OverlapPoint &point,
+                              const std::vector<double> &nodal_values);
 
   /**
    * The normal gap g = (y - x) . n - n . (u^1(x) - u^2(y)) at each of

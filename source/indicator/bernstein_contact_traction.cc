@@ -1,0 +1,205 @@
+#include <deal.II/lac/lapack_full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <coulomb_adapt/indicator/bernstein_contact_traction.h>
+#include <coulomb_adapt/indicator/contact_correction.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace coulomb_adapt
+{
+  namespace
+  {
+    // The smallest middle coefficient c for which the quadratic with
+    // Bernstein coefficients (a, c, b), a, b >= 0, is >= 0 on the whole
+    // segment: its minimum, a b - c^2 over a + b - 2 c for c < 0, is >= 0
+    // exactly when c >= -sqrt(a b).
+    double
+    lowest_middle_coefficient(const double a, const double b)
+    {
+      return -std::sqrt(std::max(a, 0.) * std::max(b, 0.));
+    }
+
+    // The middle coefficients of every segment moved as little as needed
+    // for the segment's traction to lie in the Coulomb cone everywhere
+    // (the ends are nodal values, in the cone): mu p + t >= 0 and
+    // mu p - t >= 0, each a quadratic in Bernstein form; for mu = 0,
+    // p >= 0 and t = 0.
+    void
+    project_middle_coefficients(
+      const std::vector<MortarInterface::Segment> &segments,
+      const double                                 mu,
+      std::vector<ContactNodeFields>              &c)
+    {
+      for (const auto &segment : segments)
+        {
+          const auto &a = c[segment.nodes[0]];
+          const auto &b = c[segment.nodes[1]];
+          auto       &m = c[segment.nodes[2]];
+          if (mu == 0)
+            {
+              m.pressure =
+                std::max(m.pressure,
+                         lowest_middle_coefficient(a.pressure, b.pressure));
+              m.tangential_traction = 0;
+              continue;
+            }
+          const auto side = [&](const ContactNodeFields &f, const double s) {
+            return mu * f.pressure + s * f.tangential_traction;
+          };
+          const double plus =
+            std::max(side(m, 1),
+                     lowest_middle_coefficient(side(a, 1), side(b, 1)));
+          const double minus =
+            std::max(side(m, -1),
+                     lowest_middle_coefficient(side(a, -1), side(b, -1)));
+          m.pressure            = (plus + minus) / (2 * mu);
+          m.tangential_traction = (plus - minus) / 2;
+        }
+    }
+
+    // Force (x, y) and moment about @p centre, divided by @p length, of a
+    // traction t applied at @p x: the three numbers that the equilibrium
+    // of a body held by contact alone sees.
+    std::array<double, 3>
+    resultant_of(const Tensor<1, 2> &t,
+                 const Point<2>     &x,
+                 const Point<2>     &centre,
+                 const double        length)
+    {
+      const Tensor<1, 2> r = x - centre;
+      return {{t[0], t[1], (r[0] * t[1] - r[1] * t[0]) / length}};
+    }
+
+    // R = -lambda of one node's coefficients.
+    Tensor<1, 2>
+    traction_of(const MortarInterface::Node &node, const ContactNodeFields &f)
+    {
+      return -(f.pressure * node.normal + f.tangential_traction * node.tangent);
+    }
+  } // namespace
+
+
+
+  std::vector<ContactNodeFields>
+  bernstein_contact_traction(const MortarInterface                &mortar,
+                             const std::vector<ContactNodeFields> &fields,
+                             const double                          mu)
+  {
+    std::vector<ContactNodeFields> coefficients = fields;
+    if (mortar.slave_element_degree() == 1)
+      return coefficients;
+
+    // The Lagrange interpolant's Bernstein coefficients.
+    const auto &nodes    = mortar.slave_nodes();
+    const auto &segments = mortar.slave_segment_list();
+    for (const auto &segment : segments)
+      {
+        const auto &a = fields[segment.nodes[0]];
+        const auto &b = fields[segment.nodes[1]];
+        auto       &m = coefficients[segment.nodes[2]];
+        m.pressure    = 2 * m.pressure - (a.pressure + b.pressure) / 2;
+        m.tangential_traction =
+          2 * m.tangential_traction -
+          (a.tangential_traction + b.tangential_traction) / 2;
+      }
+    const std::vector<ContactNodeFields> lagrange = coefficients;
+
+    // The Lagrange interpolant's resultant, with the consistent load's
+    // quadrature (the load the bodies balance), and the place where each
+    // coefficient acts.
+    const auto points = mortar.overlap_quadrature(
+      contact_traction_points_per_overlap(mortar.slave_element_degree()));
+    Point<2> centre;
+    double   length = 0;
+    for (const auto &q : points)
+      {
+        centre += q.weight * (q.slave_point - Point<2>());
+        length += q.weight;
+      }
+    if (length == 0)
+      return coefficients;
+    centre /= length;
+    std::array<double, 3> lagrange_resultant = {{0, 0, 0}};
+    for (const auto &q : points)
+      {
+        const auto &segment =
+          segments[mortar.overlaps()[q.overlap].slave_segment];
+        const auto phi = mortar.slave_shape_values(q.xi);
+        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+          {
+            const unsigned int j = segment.nodes[k];
+            const auto         l =
+              resultant_of(phi[k] * q.weight * traction_of(nodes[j], fields[j]),
+                           q.slave_point,
+                           centre,
+                           length);
+            for (unsigned int c = 0; c < 3; ++c)
+              lagrange_resultant[c] += l[c];
+          }
+      }
+    const double scale =
+      std::sqrt(lagrange_resultant[0] * lagrange_resultant[0] +
+                lagrange_resultant[1] * lagrange_resultant[1] +
+                lagrange_resultant[2] * lagrange_resultant[2]);
+
+    // Project, restore the resultant by factors 1 + a . v_j, and again:
+    // a factor != 1 can move a tight middle coefficient out of the cone
+    // again, by a fraction of the factors' spread (0.4 % on hertz P2), so
+    // each round's projection is that much smaller.
+    for (unsigned int round = 0;; ++round)
+      {
+        project_middle_coefficients(segments, mu, coefficients);
+        std::vector<std::array<double, 3>> share(nodes.size(), {{0, 0, 0}});
+        for (const auto &q : points)
+          {
+            const auto &segment =
+              segments[mortar.overlaps()[q.overlap].slave_segment];
+            const auto B = mortar.slave_bernstein_values(q.xi);
+            for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+              {
+                const unsigned int j = segment.nodes[k];
+                const auto         f =
+                  resultant_of(B[k] * q.weight *
+                                 traction_of(nodes[j], coefficients[j]),
+                               q.slave_point,
+                               centre,
+                               length);
+                for (unsigned int c = 0; c < 3; ++c)
+                  share[j][c] += f[c];
+              }
+          }
+        // G a = V_L - V, G = sum_j v_j v_j^T, by the pseudo-inverse (a
+        // straight frictionless zone has no tangential force to adjust).
+        LAPACKFullMatrix<double> G(3, 3);
+        Vector<double>           difference(3);
+        for (unsigned int c = 0; c < 3; ++c)
+          difference(c) = lagrange_resultant[c];
+        for (const auto &v : share)
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              difference(c) -= v[c];
+              for (unsigned int d = 0; d < 3; ++d)
+                G(c, d) += v[c] * v[d];
+            }
+        if (difference.l2_norm() <= 1e-14 * scale || round == 8)
+          return coefficients;
+        G.compute_inverse_svd(1e-12);
+        Vector<double> a(3);
+        G.vmult(a, difference);
+        for (unsigned int j = 0; j < nodes.size(); ++j)
+          {
+            const double factor =
+              1 + a(0) * share[j][0] + a(1) * share[j][1] + a(2) * share[j][2];
+            // Not possible within the cone: the Lagrange interpolant, whose
+            // negative pressure the caller reports.
+            if (factor < 0)
+              return lagrange;
+            coefficients[j].pressure *= factor;
+            coefficients[j].tangential_traction *= factor;
+          }
+      }
+  }
+} // namespace coulomb_adapt
