@@ -38,7 +38,7 @@ namespace coulomb_adapt
     else if (friction_coefficient == 0 && negative_pressure)
       claim.kind_of_estimate =
         "not a proven bound here: the equilibrated pressure is negative "
-        "between the nodes (quadratic interpolation), so sigma^ is not "
+        "between the nodes (Lagrange interpolation), so sigma^ is not "
         "statically admissible";
     else if (friction_coefficient == 0 && relaxed_equilibration &&
              evaluation_degree_increase == 0)

@@ -107,9 +107,8 @@ namespace coulomb_adapt
       }
     const std::vector<ContactNodeFields> lagrange = coefficients;
 
-    // The Lagrange interpolant's resultant, with the consistent load's
-    // quadrature (the load the bodies balance), and the place where each
-    // coefficient acts.
+    // Resultants with the consistent load's quadrature (the load the
+    // bodies balance), moments about the centroid of the overlaps.
     const auto points = mortar.overlap_quadrature(
       contact_traction_points_per_overlap(mortar.slave_element_degree()));
     Point<2> centre;
@@ -122,55 +121,48 @@ namespace coulomb_adapt
     if (length == 0)
       return coefficients;
     centre /= length;
+    // Each node's share of the resultant of @p values interpolated with
+    // the Bernstein basis (or the Lagrange one).
+    const auto shares_of = [&](const std::vector<ContactNodeFields> &values,
+                               const bool bernstein) {
+      std::vector<std::array<double, 3>> share(nodes.size(), {{0, 0, 0}});
+      for (const auto &q : points)
+        {
+          const auto &segment =
+            segments[mortar.overlaps()[q.overlap].slave_segment];
+          const auto basis = bernstein ? mortar.slave_bernstein_values(q.xi) :
+                                         mortar.slave_shape_values(q.xi);
+          for (unsigned int k = 0; k < segment.nodes.size(); ++k)
+            {
+              const unsigned int j = segment.nodes[k];
+              const auto         f = resultant_of(basis[k] * q.weight *
+                                            traction_of(nodes[j], values[j]),
+                                          q.slave_point,
+                                          centre,
+                                          length);
+              for (unsigned int c = 0; c < 3; ++c)
+                share[j][c] += f[c];
+            }
+        }
+      return share;
+    };
     std::array<double, 3> lagrange_resultant = {{0, 0, 0}};
-    for (const auto &q : points)
-      {
-        const auto &segment =
-          segments[mortar.overlaps()[q.overlap].slave_segment];
-        const auto phi = mortar.slave_shape_values(q.xi);
-        for (unsigned int k = 0; k < segment.nodes.size(); ++k)
-          {
-            const unsigned int j = segment.nodes[k];
-            const auto         l =
-              resultant_of(phi[k] * q.weight * traction_of(nodes[j], fields[j]),
-                           q.slave_point,
-                           centre,
-                           length);
-            for (unsigned int c = 0; c < 3; ++c)
-              lagrange_resultant[c] += l[c];
-          }
-      }
+    for (const auto &v : shares_of(fields, false))
+      for (unsigned int c = 0; c < 3; ++c)
+        lagrange_resultant[c] += v[c];
     const double scale =
       std::sqrt(lagrange_resultant[0] * lagrange_resultant[0] +
                 lagrange_resultant[1] * lagrange_resultant[1] +
                 lagrange_resultant[2] * lagrange_resultant[2]);
 
-    // Project, restore the resultant by factors 1 + a . v_j, and again:
-    // a factor != 1 can move a tight middle coefficient out of the cone
+    // Raise, restore the resultant by factors 1 + a . v_j, and again: a
+    // factor != 1 can move a tight middle coefficient out of the cone
     // again, by a fraction of the factors' spread (0.4 % on hertz P2), so
-    // each round's projection is that much smaller.
+    // each round's raise is that much smaller.
     for (unsigned int round = 0;; ++round)
       {
         project_middle_coefficients(segments, mu, coefficients);
-        std::vector<std::array<double, 3>> share(nodes.size(), {{0, 0, 0}});
-        for (const auto &q : points)
-          {
-            const auto &segment =
-              segments[mortar.overlaps()[q.overlap].slave_segment];
-            const auto B = mortar.slave_bernstein_values(q.xi);
-            for (unsigned int k = 0; k < segment.nodes.size(); ++k)
-              {
-                const unsigned int j = segment.nodes[k];
-                const auto         f =
-                  resultant_of(B[k] * q.weight *
-                                 traction_of(nodes[j], coefficients[j]),
-                               q.slave_point,
-                               centre,
-                               length);
-                for (unsigned int c = 0; c < 3; ++c)
-                  share[j][c] += f[c];
-              }
-          }
+        const auto share = shares_of(coefficients, true);
         // G a = V_L - V, G = sum_j v_j v_j^T, by the pseudo-inverse (a
         // straight frictionless zone has no tangential force to adjust).
         LAPACKFullMatrix<double> G(3, 3);

@@ -406,7 +406,8 @@ namespace coulomb_adapt
       pcout << "  cre: the equilibrated pressure is negative between the "
                "nodes (down to "
             << std::setprecision(3) << e.negative_pressure
-            << " of the largest, quadratic interpolation): sigma^ is not "
+            << " of the largest, Lagrange interpolation: its Bernstein form "
+               "would not balance the bodies): sigma^ is not "
                "admissible there, the estimate is no bound"
             << std::endl;
     nlohmann::json record = {{"penetration", penetration},

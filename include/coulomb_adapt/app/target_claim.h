@@ -53,9 +53,10 @@ namespace coulomb_adapt
    * no bound is claimed then. @p penetration_left: cre's kinematic side
    * still penetrates after the opening (ErrorEstimate::penetration_after),
    * so it is not admissible and no bound is claimed. @p negative_pressure:
-   * sigma^'s pressure is negative between the nodes (quadratic
-   * interpolants; ErrorEstimate::negative_pressure), so sigma^ is not
-   * admissible either. */
+   * sigma^'s pressure is negative between the nodes (quadratic segments
+   * whose Bernstein form fell back to the Lagrange interpolant,
+   * bernstein_contact_traction.h; ErrorEstimate::negative_pressure), so sigma^
+   * is not admissible either. */
   TargetClaim
   make_target_claim(const ErrorEstimator         estimator,
                     const double                 friction_coefficient,

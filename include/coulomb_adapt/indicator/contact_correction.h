@@ -19,11 +19,11 @@ namespace coulomb_adapt
      * the master nodes (R_c with Wohlmuth's dual basis). The recovery
      * estimators (zz, spr) use it: with R_c = R_h it returns U_h. */
     mortar,
-    /** int R_c phi_i with R_c the nodal values in the slave basis's
-     * Bernstein form (contact_traction_at()), the same field on both sides
-     * (body 2 at the projected points). The CRE estimator uses it: this
-     * R_c lies in the Coulomb cone between the nodes, so the equilibrated
-     * stress can carry it as Neumann data. */
+    /** int R_c phi_i with R_c in the slave basis's Bernstein form
+     * (contact_traction_at()), the same field on both sides (body 2 at the
+     * projected points). The CRE estimator uses it: this R_c lies in the
+     * Coulomb cone between the nodes, so the equilibrated stress can carry it
+     * as Neumann data. */
     consistent
   };
 

@@ -80,7 +80,8 @@ namespace coulomb_adapt
    * Measure U_c's pointwise penetration (@p displacements of the slave
    * and the master body, with ghost entries) on every overlap of
    * @p mortar, and open interface nodes where it penetrates. @p pressure:
-   * the equilibrated stress's pressure lambda_n at each slave node, which
+   * the coefficients of the equilibrated stress's pressure lambda_n, one
+   * per slave node (Bernstein form, bernstein_contact_traction.h), which
    * the contact term multiplies with the opened gap. The opening is
    * extended into each body by least energy (a linear solve with
    * @p solver_parameters, on the body's stiffness with the interface
