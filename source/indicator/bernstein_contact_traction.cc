@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 namespace coulomb_adapt
 {
@@ -27,12 +28,18 @@ namespace coulomb_adapt
     // (the ends are nodal values, in the cone): mu p + t >= 0 and
     // mu p - t >= 0, each a quadratic in Bernstein form; for mu = 0,
     // p >= 0 and t = 0.
-    void
+    // Returns how many segments' middle coefficients moved at all, and by
+    // more than @p significant (raises below it are round-off of the
+    // open zone's pressures, 1e-10 of the peak on hertz, and differ
+    // between rank counts).
+    std::pair<unsigned int, unsigned int>
     project_middle_coefficients(
       const std::vector<MortarInterface::Segment> &segments,
       const double                                 mu,
+      const double                                 significant,
       std::vector<ContactNodeFields>              &c)
     {
+      unsigned int n_moved = 0, n_raised = 0;
       for (const auto &segment : segments)
         {
           const auto &a = c[segment.nodes[0]];
@@ -40,24 +47,30 @@ namespace coulomb_adapt
           auto       &m = c[segment.nodes[2]];
           if (mu == 0)
             {
-              m.pressure =
-                std::max(m.pressure,
-                         lowest_middle_coefficient(a.pressure, b.pressure));
+              const double lowest =
+                lowest_middle_coefficient(a.pressure, b.pressure);
+              n_moved += (m.pressure < lowest);
+              n_raised += (m.pressure < lowest - significant);
+              m.pressure            = std::max(m.pressure, lowest);
               m.tangential_traction = 0;
               continue;
             }
           const auto side = [&](const ContactNodeFields &f, const double s) {
             return mu * f.pressure + s * f.tangential_traction;
           };
-          const double plus =
-            std::max(side(m, 1),
-                     lowest_middle_coefficient(side(a, 1), side(b, 1)));
-          const double minus =
-            std::max(side(m, -1),
-                     lowest_middle_coefficient(side(a, -1), side(b, -1)));
+          const double lowest_plus =
+            lowest_middle_coefficient(side(a, 1), side(b, 1));
+          const double lowest_minus =
+            lowest_middle_coefficient(side(a, -1), side(b, -1));
+          n_moved += (side(m, 1) < lowest_plus) || (side(m, -1) < lowest_minus);
+          n_raised += (side(m, 1) < lowest_plus - significant) ||
+                      (side(m, -1) < lowest_minus - significant);
+          const double plus     = std::max(side(m, 1), lowest_plus);
+          const double minus    = std::max(side(m, -1), lowest_minus);
           m.pressure            = (plus + minus) / (2 * mu);
           m.tangential_traction = (plus - minus) / 2;
         }
+      return {n_moved, n_raised};
     }
 
     // Force (x, y) and moment about @p centre, divided by @p length, of a
@@ -83,14 +96,18 @@ namespace coulomb_adapt
 
 
 
-  std::vector<ContactNodeFields>
+  BernsteinContactTraction
   bernstein_contact_traction(const MortarInterface                &mortar,
                              const std::vector<ContactNodeFields> &fields,
                              const double                          mu)
   {
-    std::vector<ContactNodeFields> coefficients = fields;
+    using Report = BernsteinContactTraction::Report;
+    BernsteinContactTraction        result;
+    std::vector<ContactNodeFields> &coefficients = result.coefficients;
+    Report                         &report       = result.report;
+    coefficients                                 = fields;
     if (mortar.slave_element_degree() == 1)
-      return coefficients;
+      return result;
 
     // The Lagrange interpolant's Bernstein coefficients.
     const auto &nodes    = mortar.slave_nodes();
@@ -106,6 +123,7 @@ namespace coulomb_adapt
           (a.tangential_traction + b.tangential_traction) / 2;
       }
     const std::vector<ContactNodeFields> lagrange = coefficients;
+    report.n_segments                             = segments.size();
 
     // Resultants with the consistent load's quadrature (the load the
     // bodies balance), moments about the centroid of the overlaps.
@@ -119,7 +137,7 @@ namespace coulomb_adapt
         length += q.weight;
       }
     if (length == 0)
-      return coefficients;
+      return result;
     centre /= length;
     // Each node's share of the resultant of @p values interpolated with
     // the Bernstein basis (or the Lagrange one).
@@ -146,22 +164,47 @@ namespace coulomb_adapt
         }
       return share;
     };
+    // The scale of the defect is the sum of the nodes' shares, not the
+    // resultant, which a self-balanced contact (a press fit) has near 0.
     std::array<double, 3> lagrange_resultant = {{0, 0, 0}};
+    double                scale              = 0;
     for (const auto &v : shares_of(fields, false))
-      for (unsigned int c = 0; c < 3; ++c)
-        lagrange_resultant[c] += v[c];
-    const double scale =
-      std::sqrt(lagrange_resultant[0] * lagrange_resultant[0] +
-                lagrange_resultant[1] * lagrange_resultant[1] +
-                lagrange_resultant[2] * lagrange_resultant[2]);
+      {
+        for (unsigned int c = 0; c < 3; ++c)
+          lagrange_resultant[c] += v[c];
+        scale += std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      }
+    if (scale == 0)
+      return result;
+    // A raise counts in the report where it exceeds 1e-8 of the largest
+    // nodal traction, the threshold of the negative-pressure check.
+    double largest_traction = 0;
+    for (const auto &f : fields)
+      largest_traction =
+        std::max(largest_traction,
+                 std::abs(f.pressure) + std::abs(f.tangential_traction));
+    const double significant = 1e-8 * largest_traction;
 
     // Raise, restore the resultant by factors 1 + a . v_j, and again: a
     // factor != 1 can move a tight middle coefficient out of the cone
     // again, by a fraction of the factors' spread (0.4 % on hertz P2), so
-    // each round's raise is that much smaller.
+    // each round's raise is that much smaller. One rescaling restores the
+    // resultant as far as the shares can (a is the least-squares
+    // solution), so the loop ends when a round raises nothing, or raises
+    // so little that the resultant is still restored to round-off (with
+    // friction the two cone sides keep nudging each other at 1e-17).
     for (unsigned int round = 0;; ++round)
       {
-        project_middle_coefficients(segments, mu, coefficients);
+        const auto [n_moved, n_raised] =
+          project_middle_coefficients(segments, mu, significant, coefficients);
+        if (round == 0)
+          {
+            report.n_raised = n_raised;
+            // Nothing moved: the Lagrange interpolant itself, whose
+            // resultant is the one to keep (defect 0).
+            if (n_moved == 0)
+              return result;
+          }
         const auto share = shares_of(coefficients, true);
         // G a = V_L - V, G = sum_j v_j v_j^T, by the pseudo-inverse (a
         // straight frictionless zone has no tangential force to adjust).
@@ -176,8 +219,11 @@ namespace coulomb_adapt
               for (unsigned int d = 0; d < 3; ++d)
                 G(c, d) += v[c] * v[d];
             }
-        if (difference.l2_norm() <= 1e-14 * scale || round == 8)
-          return coefficients;
+        report.resultant_defect = difference.l2_norm() / scale;
+        report.n_rounds         = round;
+        if ((round > 0 && (n_moved == 0 || report.resultant_restored())) ||
+            round == Report::max_rounds)
+          return result;
         G.compute_inverse_svd(1e-12);
         Vector<double> a(3);
         G.vmult(a, difference);
@@ -188,7 +234,12 @@ namespace coulomb_adapt
             // Not possible within the cone: the Lagrange interpolant, whose
             // negative pressure the caller reports.
             if (factor < 0)
-              return lagrange;
+              {
+                coefficients             = lagrange;
+                report.lagrange_fallback = true;
+                report.resultant_defect  = 0;
+                return result;
+              }
             coefficients[j].pressure *= factor;
             coefficients[j].tangential_traction *= factor;
           }

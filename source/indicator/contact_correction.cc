@@ -603,8 +603,11 @@ namespace coulomb_adapt
         corrected.within_solve_accuracy = false;
         // From here on the tractions are coefficients in the Bernstein
         // basis (contact_traction_at()), in the cone between the nodes.
-        corrected.fields =
+        auto traction =
           bernstein_contact_traction(mortar, corrected.fields, mu);
+        corrected.fields = std::move(traction.coefficients);
+        if (mortar.slave_element_degree() > 1)
+          corrected.bernstein = traction.report;
       }
 
     if (!corrected.skipped)

@@ -66,12 +66,13 @@ namespace coulomb_adapt
                                                "error indicator: correction");
             estimate.correction = corrected_contact_fields(
               bodies, *contact_solver, mu, solver_parameters, options);
-            equilibrium = correct_contact_solution(*bodies[0],
+            equilibrium                 = correct_contact_solution(*bodies[0],
                                                    *bodies[1],
                                                    *contact_solver,
                                                    mu,
                                                    solver_parameters,
                                                    ContactLoadForm::consistent);
+            estimate.bernstein_traction = equilibrium.bernstein;
           }
           const OptionalTimerSection section(options.timer,
                                              "error indicator: contributions");

@@ -290,6 +290,51 @@ namespace coulomb_adapt
 
 
 
+  // How the cre estimator's R_c on quadratic segments was put in the
+  // Coulomb cone between the nodes (doc/indicator.md 4c): a line when
+  // coefficients were raised, a warning when the force and moment were
+  // not restored or the Lagrange coefficients had to be kept.
+  nlohmann::json
+  CycleReport::log_bernstein_traction(
+    const BernsteinContactTraction::Report &b) const
+  {
+    if (b.lagrange_fallback)
+      pcout << "  cre: warning: sigma^'s contact traction in Bernstein form: "
+            << b.n_raised << " of " << b.n_segments
+            << " quadratic segments needed their middle coefficient raised "
+               "into the Coulomb cone, and no rescaling factor >= 0 "
+               "restores the FE's contact force and moment: the Lagrange "
+               "interpolant's coefficients are used, which leave the cone "
+               "between the nodes"
+            << std::endl;
+    else if (!b.resultant_restored())
+      pcout << "  cre: warning: sigma^'s contact traction in Bernstein form: "
+            << b.n_raised << " of " << b.n_segments
+            << " middle coefficients raised into the Coulomb cone; contact "
+               "force and moment restored only to "
+            << std::scientific << std::setprecision(2) << b.resultant_defect
+            << std::defaultfloat << " (relative) after " << b.n_rounds
+            << " rounds, so sigma^ balances the bodies' loads only to that "
+               "accuracy (see the equilibration's defect)"
+            << std::endl;
+    else if (b.n_raised > 0)
+      pcout << "  cre: sigma^'s contact traction in Bernstein form: "
+            << b.n_raised << " of " << b.n_segments
+            << " quadratic segments' middle coefficients raised into the "
+               "Coulomb cone, contact force and moment restored in "
+            << b.n_rounds << " rounds (to " << std::scientific
+            << std::setprecision(1) << b.resultant_defect << std::defaultfloat
+            << ")" << std::endl;
+    return {{"segments", b.n_segments},
+            {"raised", b.n_raised},
+            {"rounds", b.n_rounds},
+            {"resultant_defect", b.resultant_defect},
+            {"resultant_restored", b.resultant_restored()},
+            {"lagrange_fallback", b.lagrange_fallback}};
+  }
+
+
+
   // The cre estimator's equilibration in the log: the degree, the
   // defects, and what the optimisation of the edge tractions gained.
   void
@@ -434,9 +479,12 @@ namespace coulomb_adapt
     if (e.has_contact)
       record_correction(e.correction);
     nlohmann::json admissibility;
+    nlohmann::json bernstein_traction;
     if (e.estimator == ErrorEstimator::cre)
       {
         log_equilibration(e, cre_degree_increase);
+        if (e.bernstein_traction)
+          bernstein_traction = log_bernstein_traction(*e.bernstein_traction);
         if (e.has_contact)
           admissibility = log_kinematic_admissibility(e);
       }
@@ -475,6 +523,8 @@ namespace coulomb_adapt
         {"classical_tractions_kept",
          {e.classical_tractions_kept[0], e.classical_tractions_kept[1]}},
         {"kinematic_admissibility", admissibility}};
+    if (e.bernstein_traction)
+      record["cre"]["bernstein_traction"] = bernstein_traction;
     if (compared.empty())
       return;
     auto record_of = [this](const ErrorEstimate &estimate) {

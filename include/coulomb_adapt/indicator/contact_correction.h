@@ -5,9 +5,11 @@
 
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/contact_state.h>
+#include <coulomb_adapt/indicator/bernstein_contact_traction.h>
 #include <coulomb_adapt/indicator/contact_error.h>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace coulomb_adapt
@@ -66,6 +68,9 @@ namespace coulomb_adapt
      * consistent load form R_c's coefficients in the Bernstein basis of
      * quadratic segments (bernstein_contact_traction.h). */
     std::vector<ContactNodeFields> fields;
+    /** With the consistent load form on quadratic segments: how R_c's
+     * Bernstein coefficients were made (bernstein_contact_traction.h). */
+    std::optional<BernsteinContactTraction::Report> bernstein;
   };
 
   /**

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 
 namespace coulomb_adapt
 {
@@ -98,6 +99,9 @@ namespace coulomb_adapt
     double                      epsilon_opening       = 0;
     double                      opening_work_relative = 0;
     double                      negative_pressure     = 0;
+    /** cre on quadratic contact segments: how sigma^'s contact traction
+     * was put in the Coulomb cone (bernstein_contact_traction.h). */
+    std::optional<BernsteinContactTraction::Report> bernstein_traction;
     /** The corrected solution (for scenes with contact). */
     CorrectedContactSolution correction;
     bool                     has_contact = false;

@@ -184,6 +184,11 @@ namespace coulomb_adapt
   private:
     void
     record_correction(const CorrectedContactSolution &correction);
+    /** The log line (if any) on how the cre estimator's R_c on quadratic
+     * segments was put in the cone; returns the summary's record. */
+    nlohmann::json
+    log_bernstein_traction(
+      const BernsteinContactTraction::Report &report) const;
     /** The log lines of the cre estimator's equilibration and edge
      * traction optimisation (@p e is a cre estimate). */
     void
