@@ -1,5 +1,6 @@
 #include <coulomb_adapt/core/optional_timer_section.h>
 #include <coulomb_adapt/indicator/contact_error.h>
+#include <coulomb_adapt/indicator/dirichlet_data_lift.h>
 #include <coulomb_adapt/indicator/equilibrated_stress.h>
 #include <coulomb_adapt/indicator/error_estimate.h>
 #include <coulomb_adapt/indicator/kinematic_admissibility.h>
@@ -243,6 +244,56 @@ namespace coulomb_adapt
 
 
 
+  namespace
+  {
+    // The bound where u_c misses the displacement data between the nodes
+    // (dirichlet_data_lift.h): e <= A + 2 b, A^2 the sum of the cells'
+    // contributions so far, b = ||sigma(r)||. Split into the cells as the
+    // opening is: (A + 2 b)^2 = (1 + gamma) A^2 + (1 + 1 / gamma) 4 b^2
+    // with gamma = 2 b / A, each cell's A and b parts in those ratios.
+    void
+    add_dirichlet_data_lift(const std::array<const ElasticBody *, 2> &bodies,
+                            const double           normalisation_squared,
+                            std::array<double, 2> &volume_squared,
+                            ErrorEstimate         &estimate)
+    {
+      std::array<DirichletDataLift, 2> lift;
+      double                           lift_squared = 0;
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          lift[b] = dirichlet_data_lift(*bodies[b],
+                                        estimate.correction.displacement(b));
+          lift_squared += lift[b].norm_squared;
+        }
+      if (lift_squared == 0)
+        return;
+      estimate.epsilon_dirichlet_lift =
+        std::sqrt(lift_squared /
+                  (normalisation_squared > 0 ? normalisation_squared : 1.));
+      const double a = std::sqrt(volume_squared[0] + volume_squared[1]);
+      const double c = 2 * std::sqrt(lift_squared);
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          Vector<double> &e2 = estimate.contribution_squared[b];
+          if (a > 0)
+            {
+              e2 *= 1 + c / a;
+              e2.add(4 * (1 + a / c), lift[b].squared);
+            }
+          else
+            {
+              e2 = lift[b].squared;
+              e2 *= 4;
+            }
+          volume_squared[b] =
+            Utilities::MPI::sum(e2.l1_norm(),
+                                bodies[b]->triangulation().get_communicator());
+        }
+    }
+  } // namespace
+
+
+
   ErrorEstimate
   estimate_error_cre(const std::array<const ElasticBody *, 2> &bodies,
                      const ContactSolution                    *contact_solver,
@@ -302,6 +353,11 @@ namespace coulomb_adapt
                                   solver_parameters,
                                   volume_squared,
                                   estimate);
+    if (minimisation.lift_displacement_data)
+      add_dirichlet_data_lift(bodies,
+                              normalisation_squared,
+                              volume_squared,
+                              estimate);
     finish_error_estimate(bodies,
                           volume_squared,
                           normalisation_squared,

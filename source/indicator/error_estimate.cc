@@ -172,7 +172,8 @@ namespace coulomb_adapt
         indicator_parameters.cre_relaxed_equilibration,
         {indicator_parameters.cre_minimisation_tolerance,
          indicator_parameters.cre_exact_minimisation_up_to,
-         indicator_parameters.cre_evaluation_degree_increase},
+         indicator_parameters.cre_evaluation_degree_increase,
+         indicator_parameters.cre_lift_displacement_data},
         solver_parameters,
         options);
     }

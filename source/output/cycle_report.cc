@@ -374,7 +374,7 @@ namespace coulomb_adapt
                   "kept: 'CRE relaxed equilibration = false'" :
                   "kept: the relaxed modes need 'CRE degree increase' >= 3 "
                   "and displacement data that the FE space interpolates "
-                  "exactly")
+                  "exactly or 'CRE lift of displacement data = true'")
             << (e.optimisation_steps > 0 ?
                   "; " + std::to_string(e.optimisation_steps) +
                     " truncated CG steps" +
@@ -487,6 +487,14 @@ namespace coulomb_adapt
           bernstein_traction = log_bernstein_traction(*e.bernstein_traction);
         if (e.has_contact)
           admissibility = log_kinematic_admissibility(e);
+        if (e.epsilon_dirichlet_lift > 0)
+          pcout << "  cre: the displacement data are not interpolated "
+                   "exactly; their interpolation error's lift r has "
+                   "||sigma(r)|| / D = "
+                << std::fixed << std::setprecision(3)
+                << 100 * e.epsilon_dirichlet_lift
+                << " %, which the bound adds twice (doc/indicator.md 4b)"
+                << std::defaultfloat << std::endl;
       }
     auto log_epsilon = [&](const ErrorEstimate &estimate) {
       pcout << "  error indicator (" << to_string(estimate.estimator)
@@ -525,6 +533,8 @@ namespace coulomb_adapt
         {"kinematic_admissibility", admissibility}};
     if (e.bernstein_traction)
       record["cre"]["bernstein_traction"] = bernstein_traction;
+    if (e.estimator == ErrorEstimator::cre)
+      record["cre"]["epsilon_dirichlet_lift"] = e.epsilon_dirichlet_lift;
     if (compared.empty())
       return;
     auto record_of = [this](const ErrorEstimate &estimate) {

@@ -117,6 +117,10 @@ namespace coulomb_adapt
        * estimate (else: closest to the averaged traction). */
       bool cre_traction_optimisation;
       bool cre_relaxed_equilibration;
+      /** Where the displacement data are not interpolated exactly: relax
+       * the equilibration there too, and add the lift of the data's
+       * interpolation error to the bound (dirichlet_data_lift.h). */
+      bool cre_lift_displacement_data;
       /** With the relaxed equilibration: 0 minimises the estimate exactly
        * (sparse direct solve); > 0 stops the truncated CG when the
        * estimate's last steps gain less than this fraction of it. */

@@ -95,6 +95,11 @@ namespace coulomb_adapt
      * this much higher in degree than the minimisation's (see
      * optimise_free_parameters()). */
     unsigned int evaluation_degree_increase = 0;
+    /** Where the body's displacement data are not interpolated exactly:
+     * true relaxes the equilibration there too (the estimate then adds
+     * the lift of the data's interpolation error, dirichlet_data_lift.h);
+     * false keeps the prolongation conditions. */
+    bool lift_displacement_data = false;
   };
 
   /**
@@ -122,7 +127,8 @@ namespace coulomb_adapt
    *    the bubbles) the optimisation also moves the edge tractions that
    *    keep every cell in equilibrium without the prolongation conditions,
    *    where the body's displacement data are interpolated exactly
-   *    (BodyDescription::displacement_data_interpolated_exactly); that
+   *    (BodyDescription::displacement_data_interpolated_exactly) or
+   *    @p minimisation lifts them; that
    *    system is minimised as @p minimisation says (exactly, or by the
    *    truncated CG: 'CRE minimisation tolerance', 'CRE exact minimisation
    *    up to').
