@@ -68,7 +68,7 @@ namespace coulomb_adapt
     std::vector<double> nodes(p + 1);
     for (unsigned int k = 0; k <= p; ++k)
       nodes[k] = (k + 1.) / (p + 2.);
-    // r has degree p + 2 on triangles (p + 3 per direction on
+    // r has degree p + 2 on triangles (p + 2 per direction on
     // quadrilaterals, through N_a N_b); the energy integrand twice that
     // less 2. QGaussSimplex offers at most 4 points (degree 7) in deal.II
     // 9.4: enough for p <= 2.
