@@ -12,39 +12,14 @@ namespace coulomb_adapt
 {
   namespace
   {
-    // The polynomial of degree nodes.size() - 1 through (nodes[k],
-    // values[k]), and its derivative, at t (Lagrange form: a handful of
-    // nodes).
-    std::array<double, 2>
-    interpolant(const std::vector<double> &nodes,
-                const std::vector<double> &values,
-                const double               t)
-    {
-      double value = 0, derivative = 0;
-      for (unsigned int k = 0; k < nodes.size(); ++k)
-        {
-          double basis = 1, basis_derivative = 0;
-          for (unsigned int j = 0; j < nodes.size(); ++j)
-            if (j != k)
-              {
-                const double factor = 1. / (nodes[k] - nodes[j]);
-                basis_derivative =
-                  basis_derivative * (t - nodes[j]) * factor + basis * factor;
-                basis *= (t - nodes[j]) * factor;
-              }
-          value += values[k] * basis;
-          derivative += values[k] * basis_derivative;
-        }
-      return {{value, derivative}};
-    }
-
     // One Dirichlet face of a cell: its vertices (cell-local numbers), the
-    // constrained components and S's values at the interior nodes.
+    // constrained components, and at each of the cell's quadrature points
+    // g = d / (t (1 - t)) and dg/dt at t = N_b there.
     struct LiftedFace
     {
       unsigned int                       a, b;
       std::array<bool, 2>                components = {{false, false}};
-      std::array<std::vector<double>, 2> s_values;
+      std::array<std::vector<double>, 2> g, dg;
     };
   } // namespace
 
@@ -64,14 +39,10 @@ namespace coulomb_adapt
 
     const auto        &fe = body.dof_handler().get_fe();
     const unsigned int p  = fe.degree;
-    // S's nodes: p + 1 points inside the face, equally spaced.
-    std::vector<double> nodes(p + 1);
-    for (unsigned int k = 0; k <= p; ++k)
-      nodes[k] = (k + 1.) / (p + 2.);
-    // r has degree p + 2 on triangles (p + 2 per direction on
-    // quadrilaterals, through N_a N_b); the energy integrand twice that
-    // less 2. QGaussSimplex offers at most 4 points (degree 7) in deal.II
-    // 9.4: enough for p <= 2.
+    // r is not a polynomial (g is d's own quotient); the rules below
+    // integrate its polynomial part, degree p + 2 on triangles and per
+    // direction on quadrilaterals, exactly. QGaussSimplex offers at most 4
+    // points per direction (degree 7) in deal.II 9.4.
     const ReferenceCell reference = body.is_simplex_mesh() ?
                                       ReferenceCells::Triangle :
                                       ReferenceCells::Quadrilateral;
@@ -84,6 +55,7 @@ namespace coulomb_adapt
                             cell_rule,
                             update_inverse_jacobians | update_JxW_values);
     const ElasticMaterial &material = body.material();
+    const unsigned int     n_q      = cell_rule.size();
 
     for (const auto &cell : body.dof_handler().active_cell_iterators())
       {
@@ -94,42 +66,59 @@ namespace coulomb_adapt
           {
             if (!cell->face(f)->at_boundary())
               continue;
-            LiftedFace face;
+            LiftedFace                         face;
+            std::array<const Function<2> *, 2> data = {{nullptr, nullptr}};
             for (const auto &condition : description.dirichlet)
               if (condition.boundary_id == cell->face(f)->boundary_id())
                 for (unsigned int c = 0; c < 2; ++c)
                   if (condition.components[c])
-                    face.components[c] = true;
+                    {
+                      face.components[c] = true;
+                      data[c]            = condition.displacement.get();
+                    }
             if (!face.components[0] && !face.components[1])
               continue;
-            face.a = reference.face_to_cell_vertices(f, 0, 1);
-            face.b = reference.face_to_cell_vertices(f, 1, 1);
-            // d = u_D - u_c at the interior nodes, divided by t (1 - t).
-            std::vector<Point<2>> points(nodes.size());
-            for (unsigned int k = 0; k < nodes.size(); ++k)
-              points[k] =
-                Point<2>((1 - nodes[k]) * reference.vertex<2>(face.a) +
-                         nodes[k] * reference.vertex<2>(face.b));
+            face.a             = reference.face_to_cell_vertices(f, 0, 1);
+            face.b             = reference.face_to_cell_vertices(f, 1, 1);
+            const Point<2> V_a = reference.vertex<2>(face.a);
+            const Point<2> V_b = reference.vertex<2>(face.b);
+            // The face's point at t = N_b of each quadrature point, where
+            // d = u_D - u_c and its derivative along the face are taken.
+            std::vector<Point<2>> points(n_q);
+            std::vector<double>   t(n_q);
+            for (unsigned int q = 0; q < n_q; ++q)
+              {
+                t[q] =
+                  reference.d_linear_shape_function(cell_rule.point(q), face.b);
+                points[q] = Point<2>((1 - t[q]) * V_a + t[q] * V_b);
+              }
             FEValues<2> face_values(body.mapping(),
                                     fe,
                                     Quadrature<2>(points),
-                                    update_values | update_quadrature_points);
+                                    update_values | update_gradients |
+                                      update_quadrature_points |
+                                      update_jacobians);
             face_values.reinit(cell);
-            std::vector<Vector<double>> u_c(points.size(), Vector<double>(2));
+            std::vector<Vector<double>>            u_c(n_q, Vector<double>(2));
+            std::vector<std::vector<Tensor<1, 2>>> grad_u_c(
+              n_q, std::vector<Tensor<1, 2>>(2));
             face_values.get_function_values(u_kinematic, u_c);
+            face_values.get_function_gradients(u_kinematic, grad_u_c);
             for (unsigned int c = 0; c < 2; ++c)
               if (face.components[c])
-                for (unsigned int k = 0; k < nodes.size(); ++k)
+                for (unsigned int q = 0; q < n_q; ++q)
                   {
-                    double u_d = 0;
-                    for (const auto &condition : description.dirichlet)
-                      if (condition.boundary_id ==
-                            cell->face(f)->boundary_id() &&
-                          condition.components[c])
-                        u_d = condition.displacement->value(
-                          face_values.quadrature_point(k), c);
-                    face.s_values[c].push_back((u_d - u_c[k](c)) /
-                                               (nodes[k] * (1 - nodes[k])));
+                    const Point<2> &x = face_values.quadrature_point(q);
+                    // dx/dt = J (V_b - V_a).
+                    const Tensor<1, 2> tangent =
+                      apply_transformation(face_values.jacobian(q), V_b - V_a);
+                    const double d = data[c]->value(x, c) - u_c[q](c);
+                    const double d_prime =
+                      (data[c]->gradient(x, c) - grad_u_c[q][c]) * tangent;
+                    const double w = t[q] * (1 - t[q]);
+                    face.g[c].push_back(d / w);
+                    face.dg[c].push_back(d_prime / w -
+                                         d * (1 - 2 * t[q]) / (w * w));
                   }
             faces.push_back(face);
           }
@@ -155,12 +144,9 @@ namespace coulomb_adapt
                   reference.d_linear_shape_function_gradient(xi, face.b);
                 for (unsigned int c = 0; c < 2; ++c)
                   if (face.components[c])
-                    {
-                      const auto [S, dS] =
-                        interpolant(nodes, face.s_values[c], N_b);
-                      gradient[c] += S * (N_b * grad_a + N_a * grad_b) +
-                                     N_a * N_b * dS * grad_b;
-                    }
+                    gradient[c] +=
+                      face.g[c][q] * (N_b * grad_a + N_a * grad_b) +
+                      N_a * N_b * face.dg[c][q] * grad_b;
               }
             // To the physical cell: d r / d x_i = sum_k d r / d xi_k
             // d xi_k / d x_i.
