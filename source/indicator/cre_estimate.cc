@@ -247,10 +247,11 @@ namespace coulomb_adapt
   namespace
   {
     // The bound where u_c misses the displacement data between the nodes
-    // (dirichlet_data_lift.h): e <= A + 2 b, A^2 the sum of the cells'
-    // contributions so far, b = ||sigma(r)||. Split into the cells as the
-    // opening is: (A + 2 b)^2 = (1 + gamma) A^2 + (1 + 1 / gamma) 4 b^2
-    // with gamma = 2 b / A, each cell's A and b parts in those ratios.
+    // (dirichlet_data_lift.h): e <= A + b, A^2 the sum of the cells'
+    // contributions so far (the local problems measured sigma^ -
+    // sigma(u_c + r)), b = ||sigma(r)||. Split into the cells as the
+    // opening is: (A + b)^2 = (1 + gamma) A^2 + (1 + 1 / gamma) b^2 with
+    // gamma = b / A, each cell's A and b parts in those ratios.
     void
     add_dirichlet_data_lift(const std::array<const ElasticBody *, 2> &bodies,
                             const double           normalisation_squared,
@@ -271,19 +272,18 @@ namespace coulomb_adapt
         std::sqrt(lift_squared /
                   (normalisation_squared > 0 ? normalisation_squared : 1.));
       const double a = std::sqrt(volume_squared[0] + volume_squared[1]);
-      const double c = 2 * std::sqrt(lift_squared);
+      const double c = std::sqrt(lift_squared);
       for (unsigned int b = 0; b < 2; ++b)
         {
           Vector<double> &e2 = estimate.contribution_squared[b];
           if (a > 0)
             {
               e2 *= 1 + c / a;
-              e2.add(4 * (1 + a / c), lift[b].squared);
+              e2.add(1 + a / c, lift[b].squared);
             }
           else
             {
               e2 = lift[b].squared;
-              e2 *= 4;
             }
           volume_squared[b] =
             Utilities::MPI::sum(e2.l1_norm(),

@@ -25,6 +25,137 @@ namespace coulomb_adapt
 
 
 
+  DirichletDataLiftField::DirichletDataLiftField(
+    const ElasticBody                   &body,
+    const TrilinosWrappers::MPI::Vector &u_kinematic)
+    : body(body)
+    , u_kinematic(u_kinematic)
+  {}
+
+
+
+  bool
+  DirichletDataLiftField::active() const
+  {
+    return !body.description().displacement_data_interpolated_exactly &&
+           !body.description().dirichlet.empty();
+  }
+
+
+
+  std::vector<Tensor<2, 2>>
+  DirichletDataLiftField::gradients(
+    const DoFHandler<2>::active_cell_iterator &cell,
+    const std::vector<Point<2>>               &points) const
+  {
+    std::vector<Tensor<2, 2>> result;
+    if (!active() || !cell->at_boundary())
+      return result;
+    const BodyDescription &description = body.description();
+    const auto            &fe          = body.dof_handler().get_fe();
+    const ReferenceCell    reference   = cell->reference_cell();
+    const unsigned int     n_q         = points.size();
+
+    std::vector<LiftedFace> faces;
+    for (const unsigned int f : cell->face_indices())
+      {
+        if (!cell->face(f)->at_boundary())
+          continue;
+        LiftedFace                         face;
+        std::array<const Function<2> *, 2> data = {{nullptr, nullptr}};
+        for (const auto &condition : description.dirichlet)
+          if (condition.boundary_id == cell->face(f)->boundary_id())
+            for (unsigned int c = 0; c < 2; ++c)
+              if (condition.components[c])
+                {
+                  face.components[c] = true;
+                  data[c]            = condition.displacement.get();
+                }
+        if (!face.components[0] && !face.components[1])
+          continue;
+        face.a             = reference.face_to_cell_vertices(f, 0, 1);
+        face.b             = reference.face_to_cell_vertices(f, 1, 1);
+        const Point<2> V_a = reference.vertex<2>(face.a);
+        const Point<2> V_b = reference.vertex<2>(face.b);
+        // The face's point at t = N_b of each point, where d = u_D - u_c
+        // and its derivative along the face are taken.
+        std::vector<Point<2>> face_points(n_q);
+        std::vector<double>   t(n_q);
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            t[q] = reference.d_linear_shape_function(points[q], face.b);
+            face_points[q] = Point<2>((1 - t[q]) * V_a + t[q] * V_b);
+          }
+        FEValues<2> face_values(body.mapping(),
+                                fe,
+                                Quadrature<2>(face_points),
+                                update_values | update_gradients |
+                                  update_quadrature_points | update_jacobians);
+        face_values.reinit(cell);
+        std::vector<Vector<double>>            u_c(n_q, Vector<double>(2));
+        std::vector<std::vector<Tensor<1, 2>>> grad_u_c(
+          n_q, std::vector<Tensor<1, 2>>(2));
+        face_values.get_function_values(u_kinematic, u_c);
+        face_values.get_function_gradients(u_kinematic, grad_u_c);
+        for (unsigned int c = 0; c < 2; ++c)
+          if (face.components[c])
+            for (unsigned int q = 0; q < n_q; ++q)
+              {
+                const Point<2> &x = face_values.quadrature_point(q);
+                // dx/dt = J (V_b - V_a).
+                const Tensor<1, 2> tangent =
+                  apply_transformation(face_values.jacobian(q), V_b - V_a);
+                const double d = data[c]->value(x, c) - u_c[q](c);
+                const double d_prime =
+                  (data[c]->gradient(x, c) - grad_u_c[q][c]) * tangent;
+                const double w = t[q] * (1 - t[q]);
+                face.g[c].push_back(d / w);
+                face.dg[c].push_back(d_prime / w -
+                                     d * (1 - 2 * t[q]) / (w * w));
+              }
+        faces.push_back(face);
+      }
+    if (faces.empty())
+      return result;
+
+    FEValues<2> cell_values(body.mapping(),
+                            fe,
+                            Quadrature<2>(points),
+                            update_inverse_jacobians);
+    cell_values.reinit(cell);
+    result.resize(n_q);
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Point<2> &xi = points[q];
+        // The reference gradient of r's two components.
+        std::array<Tensor<1, 2>, 2> gradient;
+        for (const auto &face : faces)
+          {
+            const double N_a = reference.d_linear_shape_function(xi, face.a);
+            const double N_b = reference.d_linear_shape_function(xi, face.b);
+            const Tensor<1, 2> grad_a =
+              reference.d_linear_shape_function_gradient(xi, face.a);
+            const Tensor<1, 2> grad_b =
+              reference.d_linear_shape_function_gradient(xi, face.b);
+            for (unsigned int c = 0; c < 2; ++c)
+              if (face.components[c])
+                gradient[c] += face.g[c][q] * (N_b * grad_a + N_a * grad_b) +
+                               N_a * N_b * face.dg[c][q] * grad_b;
+          }
+        // To the physical cell: d r / d x_i = sum_k d r / d xi_k
+        // d xi_k / d x_i.
+        const DerivativeForm<1, 2, 2> &inverse =
+          cell_values.inverse_jacobian(q);
+        for (unsigned int c = 0; c < 2; ++c)
+          for (unsigned int i = 0; i < 2; ++i)
+            for (unsigned int k = 0; k < 2; ++k)
+              result[q][c][i] += gradient[c][k] * inverse[k][i];
+      }
+    return result;
+  }
+
+
+
   DirichletDataLift
   dirichlet_data_lift(const ElasticBody                   &body,
                       const TrilinosWrappers::MPI::Vector &u_kinematic)
@@ -32,9 +163,8 @@ namespace coulomb_adapt
     DirichletDataLift lift;
     const auto       &tria = body.triangulation();
     lift.squared.reinit(tria.n_active_cells());
-    const BodyDescription &description = body.description();
-    if (description.displacement_data_interpolated_exactly ||
-        description.dirichlet.empty())
+    const DirichletDataLiftField field(body, u_kinematic);
+    if (!field.active())
       return lift;
 
     const auto        &fe = body.dof_handler().get_fe();
@@ -43,122 +173,24 @@ namespace coulomb_adapt
     // integrate its polynomial part, degree p + 2 on triangles and per
     // direction on quadrilaterals, exactly. QGaussSimplex offers at most 4
     // points per direction (degree 7) in deal.II 9.4.
-    const ReferenceCell reference = body.is_simplex_mesh() ?
-                                      ReferenceCells::Triangle :
-                                      ReferenceCells::Quadrilateral;
     const Quadrature<2> cell_rule =
       body.is_simplex_mesh() ?
         Quadrature<2>(QGaussSimplex<2>(std::min(p + 2, 4u))) :
         Quadrature<2>(QGauss<2>(p + 4));
-    FEValues<2>            cell_values(body.mapping(),
-                            fe,
-                            cell_rule,
-                            update_inverse_jacobians | update_JxW_values);
+    FEValues<2> cell_values(body.mapping(), fe, cell_rule, update_JxW_values);
     const ElasticMaterial &material = body.material();
-    const unsigned int     n_q      = cell_rule.size();
-
     for (const auto &cell : body.dof_handler().active_cell_iterators())
       {
-        if (!cell->is_locally_owned() || !cell->at_boundary())
+        if (!cell->is_locally_owned())
           continue;
-        std::vector<LiftedFace> faces;
-        for (const unsigned int f : cell->face_indices())
-          {
-            if (!cell->face(f)->at_boundary())
-              continue;
-            LiftedFace                         face;
-            std::array<const Function<2> *, 2> data = {{nullptr, nullptr}};
-            for (const auto &condition : description.dirichlet)
-              if (condition.boundary_id == cell->face(f)->boundary_id())
-                for (unsigned int c = 0; c < 2; ++c)
-                  if (condition.components[c])
-                    {
-                      face.components[c] = true;
-                      data[c]            = condition.displacement.get();
-                    }
-            if (!face.components[0] && !face.components[1])
-              continue;
-            face.a             = reference.face_to_cell_vertices(f, 0, 1);
-            face.b             = reference.face_to_cell_vertices(f, 1, 1);
-            const Point<2> V_a = reference.vertex<2>(face.a);
-            const Point<2> V_b = reference.vertex<2>(face.b);
-            // The face's point at t = N_b of each quadrature point, where
-            // d = u_D - u_c and its derivative along the face are taken.
-            std::vector<Point<2>> points(n_q);
-            std::vector<double>   t(n_q);
-            for (unsigned int q = 0; q < n_q; ++q)
-              {
-                t[q] =
-                  reference.d_linear_shape_function(cell_rule.point(q), face.b);
-                points[q] = Point<2>((1 - t[q]) * V_a + t[q] * V_b);
-              }
-            FEValues<2> face_values(body.mapping(),
-                                    fe,
-                                    Quadrature<2>(points),
-                                    update_values | update_gradients |
-                                      update_quadrature_points |
-                                      update_jacobians);
-            face_values.reinit(cell);
-            std::vector<Vector<double>>            u_c(n_q, Vector<double>(2));
-            std::vector<std::vector<Tensor<1, 2>>> grad_u_c(
-              n_q, std::vector<Tensor<1, 2>>(2));
-            face_values.get_function_values(u_kinematic, u_c);
-            face_values.get_function_gradients(u_kinematic, grad_u_c);
-            for (unsigned int c = 0; c < 2; ++c)
-              if (face.components[c])
-                for (unsigned int q = 0; q < n_q; ++q)
-                  {
-                    const Point<2> &x = face_values.quadrature_point(q);
-                    // dx/dt = J (V_b - V_a).
-                    const Tensor<1, 2> tangent =
-                      apply_transformation(face_values.jacobian(q), V_b - V_a);
-                    const double d = data[c]->value(x, c) - u_c[q](c);
-                    const double d_prime =
-                      (data[c]->gradient(x, c) - grad_u_c[q][c]) * tangent;
-                    const double w = t[q] * (1 - t[q]);
-                    face.g[c].push_back(d / w);
-                    face.dg[c].push_back(d_prime / w -
-                                         d * (1 - 2 * t[q]) / (w * w));
-                  }
-            faces.push_back(face);
-          }
-        if (faces.empty())
+        const auto gradients = field.gradients(cell, cell_rule.get_points());
+        if (gradients.empty())
           continue;
-
         cell_values.reinit(cell);
         double energy = 0;
         for (const unsigned int q : cell_values.quadrature_point_indices())
           {
-            const Point<2> &xi = cell_rule.point(q);
-            // The reference gradient of r's two components.
-            std::array<Tensor<1, 2>, 2> gradient;
-            for (const auto &face : faces)
-              {
-                const double N_a =
-                  reference.d_linear_shape_function(xi, face.a);
-                const double N_b =
-                  reference.d_linear_shape_function(xi, face.b);
-                const Tensor<1, 2> grad_a =
-                  reference.d_linear_shape_function_gradient(xi, face.a);
-                const Tensor<1, 2> grad_b =
-                  reference.d_linear_shape_function_gradient(xi, face.b);
-                for (unsigned int c = 0; c < 2; ++c)
-                  if (face.components[c])
-                    gradient[c] +=
-                      face.g[c][q] * (N_b * grad_a + N_a * grad_b) +
-                      N_a * N_b * face.dg[c][q] * grad_b;
-              }
-            // To the physical cell: d r / d x_i = sum_k d r / d xi_k
-            // d xi_k / d x_i.
-            const DerivativeForm<1, 2, 2> &inverse =
-              cell_values.inverse_jacobian(q);
-            SymmetricTensor<2, 2> strain;
-            Tensor<2, 2>          grad_x;
-            for (unsigned int c = 0; c < 2; ++c)
-              for (unsigned int i = 0; i < 2; ++i)
-                for (unsigned int k = 0; k < 2; ++k)
-                  grad_x[c][i] += gradient[c][k] * inverse[k][i];
-            strain = symmetrize(grad_x);
+            const SymmetricTensor<2, 2> strain = symmetrize(gradients[q]);
             energy += material.stress(strain) * strain * cell_values.JxW(q);
           }
         lift.squared(cell->active_cell_index()) = energy;

@@ -528,6 +528,15 @@ namespace coulomb_adapt
       optimise_tractions && relax_equilibration && degree_increase >= 3 &&
       (body.description().displacement_data_interpolated_exactly ||
        minimisation.lift_displacement_data);
+    // With the lift, the local problems measure sigma^ - sigma(u_c + r):
+    // the minimisation then sees the kinematic side the bound uses.
+    std::optional<DirichletDataLiftField> lift;
+    if (minimisation.lift_displacement_data)
+      {
+        lift.emplace(body, u_kinematic);
+        if (lift->active())
+          local.set_kinematic_lift(&*lift);
+      }
     // The estimate at the minimum from local problems of a higher degree
     // (CreMinimisation::evaluation_degree_increase).
     const unsigned int evaluation_degree =
@@ -538,6 +547,8 @@ namespace coulomb_adapt
     if (minimisation.evaluation_degree_increase > 0)
       {
         evaluation_local.emplace(body, evaluation_degree);
+        if (lift && lift->active())
+          evaluation_local->set_kinematic_lift(&*lift);
         evaluation_loads.emplace(
           body.description(), cells, faces, contact, p, evaluation_degree);
         evaluation.emplace(LocalProblems{*evaluation_local, *evaluation_loads});

@@ -34,6 +34,7 @@ namespace coulomb_adapt
     gradients_at.assign(cell_rule->size(), std::vector<Tensor<1, 2>>(M));
     JxW.resize(cell_rule->size());
     sigma_c.resize(cell_rule->size());
+    sigma_fe.resize(cell_rule->size());
     strains.resize(cell_rule->size());
     moment.reinit(2 * degree - 1, 2 * degree - 1);
     stiffness.reinit(2 * M, 2 * M);
@@ -56,7 +57,17 @@ namespace coulomb_adapt
 
   LocalNeumannProblem::LocalNeumannProblem(const LocalNeumannProblem &other)
     : LocalNeumannProblem(other.body, other.degree)
-  {}
+  {
+    kinematic_lift = other.kinematic_lift;
+  }
+
+
+
+  void
+  LocalNeumannProblem::set_kinematic_lift(const DirichletDataLiftField *lift)
+  {
+    kinematic_lift = lift;
+  }
 
 
 
@@ -118,7 +129,16 @@ namespace coulomb_adapt
     const FEValuesExtractors::Vector displacement(0);
     (*fe_values)[displacement].get_function_symmetric_gradients(u_kinematic,
                                                                 strains);
-    const ElasticMaterial &material    = body.material();
+    const ElasticMaterial &material = body.material();
+    for (unsigned int q = 0; q < strains.size(); ++q)
+      sigma_fe[q] = material.stress(strains[q]);
+    if (kinematic_lift != nullptr)
+      {
+        const auto lift =
+          kinematic_lift->gradients(cell, cell_rule->get_points());
+        for (unsigned int q = 0; q < lift.size(); ++q)
+          strains[q] += symmetrize(lift[q]);
+      }
     const BodyDescription &description = body.description();
     const unsigned int     M           = exponents.size();
     const unsigned int     n_moments   = moment.size(0);
@@ -334,8 +354,8 @@ namespace coulomb_adapt
     const unsigned int N = n_coefficients();
     for (unsigned int i = 0; i < N; ++i)
       {
-        const double *const      row_i = &factor(i, 0);
-        double *const __restrict x_i   = loads + i * stride;
+        const double *const row_i    = &factor(i, 0);
+        double *const __restrict x_i = loads + i * stride;
         // Two columns of L at a time: one pass over x_i per two products.
         unsigned int k = 0;
         for (; k + 1 < i; k += 2)
@@ -376,7 +396,7 @@ namespace coulomb_adapt
         const double *const y = x + n_columns;
         for (unsigned int i = 0; i < n_columns; ++i)
           {
-            const double             x_i = x[i], y_i = y[i];
+            const double x_i = x[i], y_i = y[i];
             double *const __restrict row_i = gram + i * n_columns;
             for (unsigned int j = 0; j <= i; ++j)
               row_i[j] += x_i * x[j] + y_i * y[j];
@@ -387,7 +407,7 @@ namespace coulomb_adapt
         const double *const x = columns + a * n_columns;
         for (unsigned int i = 0; i < n_columns; ++i)
           {
-            const double             x_i   = x[i];
+            const double x_i               = x[i];
             double *const __restrict row_i = gram + i * n_columns;
             for (unsigned int j = 0; j <= i; ++j)
               row_i[j] += x_i * x[j];
@@ -428,7 +448,7 @@ namespace coulomb_adapt
         const SymmetricTensor<2, 2> sigma_hat =
           material.stress(symmetrize(grad_u));
         const SymmetricTensor<2, 2> minus = sigma_hat - sigma_c[q];
-        const SymmetricTensor<2, 2> plus  = sigma_hat + sigma_c[q];
+        const SymmetricTensor<2, 2> plus  = sigma_hat + sigma_fe[q];
         result[0] += minus * material.strain(minus) * JxW[q];
         result[1] += plus * material.strain(plus) * JxW[q];
       }

@@ -493,7 +493,8 @@ namespace coulomb_adapt
                    "||sigma(r)|| / D = "
                 << std::fixed << std::setprecision(3)
                 << 100 * e.epsilon_dirichlet_lift
-                << " %, which the bound adds twice (doc/indicator.md 4b)"
+                << " %, which the bound adds to ||sigma^ - sigma(u_c + r)|| "
+                   "(doc/indicator.md 4b)"
                 << std::defaultfloat << std::endl;
       }
     auto log_epsilon = [&](const ErrorEstimate &estimate) {

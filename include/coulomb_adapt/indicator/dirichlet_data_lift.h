@@ -30,8 +30,37 @@ namespace coulomb_adapt
    * (the data's Function must provide it) and u_c. Then
    *   ||sigma - sigma_c|| <= ||sigma - sigma(u^)|| + ||sigma(r)||
    *                       <= ||sigma^ - sigma_c|| + 2 ||sigma(r)||,
-   * the hypercircle of u^ and sigma^ in the middle (energy norms).
+   * the hypercircle of u^ and sigma^ in the middle (energy norms). The
+   * local problems measure sigma^ - sigma(u^) directly
+   * (LocalNeumannProblem::set_kinematic_lift()), so the bound is
+   *   ||sigma - sigma_c|| <= ||sigma^ - sigma(u^)|| + ||sigma(r)||,
+   * r's energy counted once beside the minimised estimate, not twice.
    */
+  class DirichletDataLiftField
+  {
+  public:
+    /** The lift of @p u_kinematic's (ghosted) misfit to @p body's
+     * displacement data; both must outlive this object. */
+    DirichletDataLiftField(const ElasticBody                   &body,
+                           const TrilinosWrappers::MPI::Vector &u_kinematic);
+
+    /** Whether the body's data need a lift (not interpolated exactly). */
+    bool
+    active() const;
+
+    /** grad r (row c: the gradient of component c, physical coordinates)
+     * at @p points, given in @p cell's reference coordinates; empty when
+     * the cell has no Dirichlet face or the field is not active. Safe to
+     * call from several threads. */
+    std::vector<Tensor<2, 2>>
+    gradients(const DoFHandler<2>::active_cell_iterator &cell,
+              const std::vector<Point<2>>               &points) const;
+
+  private:
+    const ElasticBody                   &body;
+    const TrilinosWrappers::MPI::Vector &u_kinematic;
+  };
+
   struct DirichletDataLift
   {
     /** ||sigma(r)||^2 on each active cell of the body (0 on cells this

@@ -101,7 +101,7 @@ namespace coulomb_adapt
     double                      negative_pressure     = 0;
     /** cre where the displacement data are not interpolated exactly:
      * ||sigma(r)|| / D of their lift r (dirichlet_data_lift.h), which the
-     * bound adds twice; 0 elsewhere. */
+     * bound adds to ||sigma^ - sigma(u_c + r)||; 0 elsewhere. */
     double epsilon_dirichlet_lift = 0;
     /** cre on quadratic contact segments: how sigma^'s contact traction
      * was put in the Coulomb cone (bernstein_contact_traction.h). */

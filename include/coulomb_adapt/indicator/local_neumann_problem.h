@@ -14,6 +14,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <coulomb_adapt/bodies/elastic_body.h>
+#include <coulomb_adapt/indicator/dirichlet_data_lift.h>
 
 #include <array>
 #include <memory>
@@ -51,6 +52,13 @@ namespace coulomb_adapt
     void
     reinit(const DoFHandler<2>::active_cell_iterator &cell,
            const TrilinosWrappers::MPI::Vector       &u_kinematic);
+
+    /** From the next reinit() on, the kinematic side is u_kinematic +
+     * @p lift (dirichlet_data_lift.h): sigma_c below is then the stress of
+     * that sum, except in the normalisation's ||sigma^ + sigma_c||, which
+     * keeps the FE stress. Copies share it; nullptr: none. */
+    void
+    set_kinematic_lift(const DirichletDataLiftField *lift);
 
     /** Number of coefficients of a solution (x block, then y block). */
     unsigned int
@@ -165,6 +173,9 @@ namespace coulomb_adapt
     std::vector<std::vector<Tensor<1, 2>>> gradients_at;
     std::vector<double>                    JxW;
     std::vector<SymmetricTensor<2, 2>>     sigma_c, strains;
+    // The FE stress, for the normalisation (sigma_c without the lift).
+    std::vector<SymmetricTensor<2, 2>> sigma_fe;
+    const DirichletDataLiftField      *kinematic_lift = nullptr;
     // moment(i, j) = int_cell xi^i eta^j dx in the scaled coordinates, up
     // to the total degree 2 (degree - 1) of the stiffness integrand.
     Table<2, double> moment;
