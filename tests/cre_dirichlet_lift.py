@@ -7,7 +7,7 @@ its nodes only. With the option, the equilibration is relaxed there too,
 the local problems measure sigma^ - sigma(u_c + r), r the lift of the
 data's interpolation error (dirichlet_data_lift.h), and the estimate adds
 ||sigma(r)|| (without it, the estimate falls below the exact error on
-Q1 and P1: theta 0.855 on the coarsest Q1 mesh). Checks, on P1/P2 triangles
+Q1 and P1: theta 0.871 on the coarsest Q1 mesh). Checks, on P1/P2 triangles
 and Q1/Q2 quadrilaterals, three uniform cycles each, against the exact
 solution:
   - epsilon >= epsilon_exact on every mesh (the bound) and <= 2

@@ -274,7 +274,7 @@ namespace coulomb_adapt
           "problems' discretisation, where the kept conditions are only "
           "measured above the error (manufactured, effectivity: P1 "
           "1.07-1.19 instead of 1.58-1.81, P2 1.61-2.00 instead of "
-          "1.69-2.03, Q1 1.13-1.25 instead of 1.19-1.22, Q2 1.18-1.33 "
+          "1.69-2.03, Q1 1.13-1.27 instead of 1.19-1.22, Q2 1.18-1.33 "
           "instead of 1.06-1.11; doc/indicator.md 4b). false: the prolongation conditions are kept there and no "
           "lift is added (the estimates measured above the error, but not "
           "a proof).");

@@ -42,6 +42,8 @@ namespace coulomb_adapt
     body_force.reinit(2 * M);
     sigma_c_work.reinit(2 * M);
     whitened_sigma_c_work.reinit(2 * M);
+    sigma_fe_work.reinit(2 * M);
+    whitened_sigma_fe_work.reinit(2 * M);
     forward_scratch.reinit(2 * M);
     // The rigid motions' coefficients: the translations and the rotation
     // (-xi_y, xi_x); exponents (0,0), (1,0), (0,1) are the first three.
@@ -150,6 +152,8 @@ namespace coulomb_adapt
     body_force     = 0;
     sigma_c_work   = 0;
     sigma_c_energy = 0;
+    sigma_fe_work  = 0;
+    fe_energy      = 0;
     for (const unsigned int q : fe_values->quadrature_point_indices())
       {
         const Point<2> &x = fe_values->quadrature_point(q);
@@ -172,6 +176,17 @@ namespace coulomb_adapt
             const Tensor<1, 2> work = sigma_c[q] * gradients[m];
             sigma_c_work(m) += work[0] * JxW[q];
             sigma_c_work(M + m) += work[1] * JxW[q];
+          }
+        if (kinematic_lift != nullptr)
+          {
+            fe_energy += sigma_fe[q] * material.strain(sigma_fe[q]) * JxW[q];
+            const SymmetricTensor<2, 2> mean = (sigma_c[q] + sigma_fe[q]) / 2;
+            for (unsigned int m = 0; m < M; ++m)
+              {
+                const Tensor<1, 2> work = mean * gradients[m];
+                sigma_fe_work(m) += work[0] * JxW[q];
+                sigma_fe_work(M + m) += work[1] * JxW[q];
+              }
           }
         if (description.body_force)
           {
@@ -199,6 +214,25 @@ namespace coulomb_adapt
             stiffness(a, b) += scale * mode[a] * mode[b];
     factor.cholesky(stiffness);
     whiten(sigma_c_work, whitened_sigma_c_work);
+    if (kinematic_lift != nullptr)
+      whiten(sigma_fe_work, whitened_sigma_fe_work);
+  }
+
+
+
+  const Vector<double> &
+  LocalNeumannProblem::whitened_normalisation_work() const
+  {
+    return kinematic_lift != nullptr ? whitened_sigma_fe_work :
+                                       whitened_sigma_c_work;
+  }
+
+
+
+  double
+  LocalNeumannProblem::normalisation_offset() const
+  {
+    return kinematic_lift != nullptr ? (fe_energy - sigma_c_energy) / 4 : 0.;
   }
 
 

@@ -296,11 +296,16 @@ namespace coulomb_adapt
       void
       quadratic_form(const unsigned int n, CellScratch &scratch, CellCopy &copy)
       {
-        const LocalNeumannProblem &local  = scratch.local;
-        const Vector<double>      &w_c    = local.whitened_kinematic_work();
-        const unsigned int         N      = local.n_coefficients();
-        const unsigned int         stride = n + 2;
-        std::vector<double>       &X      = scratch.columns;
+        const LocalNeumannProblem &local = scratch.local;
+        const Vector<double>      &w_c   = local.whitened_kinematic_work();
+        // With a lift of the displacement data, sigma_c is the lifted
+        // stress and the normalisation (with the FE stress) has products
+        // of its own, in a column of their own.
+        const bool            lifted = local.has_kinematic_lift();
+        const Vector<double> &w_fe   = local.whitened_normalisation_work();
+        const unsigned int    N      = local.n_coefficients();
+        const unsigned int    stride = n + 2 + (lifted ? 1 : 0);
+        std::vector<double>  &X      = scratch.columns;
         X.resize(N * stride);
         for (unsigned int a = 0; a < N; ++a)
           {
@@ -309,13 +314,15 @@ namespace coulomb_adapt
             X[a * stride + n] = scratch.load(a);
           }
         local.whiten_many(X.data(), n + 1, stride);
-        double t0 = 0;
+        double t0 = local.normalisation_offset();
         for (unsigned int a = 0; a < N; ++a)
           {
             double *const x = &X[a * stride];
-            t0 += x[n] * w_c(a);
+            t0 += x[n] * w_fe(a);
             x[n] -= w_c(a);
             x[n + 1] = w_c(a);
+            if (lifted)
+              x[n + 2] = w_fe(a);
           }
         std::vector<double> &G = scratch.gram;
         G.resize(stride * stride);
@@ -333,8 +340,9 @@ namespace coulomb_adapt
             *packed++ = G[i * stride + j];
         for (unsigned int i = 0; i < n; ++i)
           *packed++ = G[n * stride + i];
+        const unsigned int product_row = lifted ? n + 2 : n + 1;
         for (unsigned int i = 0; i < n; ++i)
-          *packed++ = G[(n + 1) * stride + i];
+          *packed++ = G[product_row * stride + i];
       }
 
 
@@ -530,11 +538,13 @@ namespace coulomb_adapt
       {
         local.whiten(load, w);
         const Vector<double> &w_c   = local.whitened_kinematic_work();
-        double                error = 0, product = 0, w_c_squared = 0;
+        const Vector<double> &w_fe  = local.whitened_normalisation_work();
+        double                error = 0, product = local.normalisation_offset(),
+               w_c_squared = 0;
         for (unsigned int a = 0; a < w.size(); ++a)
           {
             error += (w(a) - w_c(a)) * (w(a) - w_c(a));
-            product += w(a) * w_c(a);
+            product += w(a) * w_fe(a);
             w_c_squared += w_c(a) * w_c(a);
           }
         return {{error + std::max(local.kinematic_energy() - w_c_squared, 0.),

@@ -55,10 +55,28 @@ namespace coulomb_adapt
 
     /** From the next reinit() on, the kinematic side is u_kinematic +
      * @p lift (dirichlet_data_lift.h): sigma_c below is then the stress of
-     * that sum, except in the normalisation's ||sigma^ + sigma_c||, which
-     * keeps the FE stress. Copies share it; nullptr: none. */
+     * that sum, except in the normalisation ||sigma^ + sigma_c|| (errors(),
+     * whitened_normalisation_work()), which keeps the FE stress. Copies
+     * share it; nullptr: none. */
     void
     set_kinematic_lift(const DirichletDataLiftField *lift);
+
+    bool
+    has_kinematic_lift() const
+    {
+      return kinematic_lift != nullptr;
+    }
+
+    /** For the normalisation with the FE stress sigma_fe (u_kinematic's,
+     * without the lift): ||sigma^ + sigma_fe||^2 = ||sigma^ - sigma_c||^2 +
+     * 4 (w . this + normalisation_offset()) for a response with whitened
+     * load w. This is L^-1 of the work of (sigma_c + sigma_fe) / 2, the
+     * offset (||sigma_fe||^2 - ||sigma_c||^2) / 4; without a lift,
+     * whitened_kinematic_work() and 0. */
+    const Vector<double> &
+    whitened_normalisation_work() const;
+    double
+    normalisation_offset() const;
 
     /** Number of coefficients of a solution (x block, then y block). */
     unsigned int
@@ -176,6 +194,8 @@ namespace coulomb_adapt
     // The FE stress, for the normalisation (sigma_c without the lift).
     std::vector<SymmetricTensor<2, 2>> sigma_fe;
     const DirichletDataLiftField      *kinematic_lift = nullptr;
+    Vector<double>                     sigma_fe_work, whitened_sigma_fe_work;
+    double                             fe_energy = 0;
     // moment(i, j) = int_cell xi^i eta^j dx in the scaled coordinates, up
     // to the total degree 2 (degree - 1) of the stiffness integrand.
     Table<2, double> moment;
