@@ -263,7 +263,7 @@ namespace coulomb_adapt
           "false: the prolongation conditions are kept.");
         prm.declare_entry(
           "CRE lift of displacement data",
-          "false",
+          "true",
           Patterns::Bool(),
           "Only for displacement data that the FE space does not "
           "interpolate exactly (the manufactured scene's sinusoid). true: "
@@ -275,9 +275,11 @@ namespace coulomb_adapt
           "measured above the error (manufactured, effectivity: P1 "
           "1.07-1.19 instead of 1.58-1.81, P2 1.61-2.00 instead of "
           "1.69-2.03, Q1 1.13-1.27 instead of 1.19-1.22, Q2 1.18-1.33 "
-          "instead of 1.06-1.11; doc/indicator.md 4b). false: the prolongation conditions are kept there and no "
-          "lift is added (the estimates measured above the error, but not "
-          "a proof).");
+          "instead of 1.06-1.11; doc/indicator.md 4b). false: the "
+          "prolongation conditions are kept there and no lift is added "
+          "(the estimates measured above the error, but not a proof). "
+          "Data that the FE space interpolates exactly (every contact "
+          "scene) need no lift: nothing changes there.");
         prm.declare_entry(
           "CRE minimisation tolerance",
           "1e-3",

@@ -538,17 +538,23 @@ namespace coulomb_adapt
       record["cre"]["epsilon_dirichlet_lift"] = e.epsilon_dirichlet_lift;
     if (compared.empty())
       return;
+    // cre's part from the lift of the displacement data (0 where none is
+    // needed): a reader comparing the three needs it to split cre's
+    // epsilon as the driving record does.
     auto record_of = [this](const ErrorEstimate &estimate) {
-      return nlohmann::json{{"epsilon", estimate.epsilon},
-                            {"epsilon_volume",
-                             {estimate.epsilon_volume[0],
-                              estimate.epsilon_volume[1]}},
-                            {"epsilon_contact", estimate.epsilon_contact},
-                            {"normalisation_squared",
-                             physical(estimate.normalisation_squared,
-                                      units::Kind::energy,
-                                      "normalisation_squared")},
-                            {"wall_time_s", estimate.wall_time}};
+      nlohmann::json r{{"epsilon", estimate.epsilon},
+                       {"epsilon_volume",
+                        {estimate.epsilon_volume[0],
+                         estimate.epsilon_volume[1]}},
+                       {"epsilon_contact", estimate.epsilon_contact},
+                       {"normalisation_squared",
+                        physical(estimate.normalisation_squared,
+                                 units::Kind::energy,
+                                 "normalisation_squared")},
+                       {"wall_time_s", estimate.wall_time}};
+      if (estimate.estimator == ErrorEstimator::cre)
+        r["epsilon_dirichlet_lift"] = estimate.epsilon_dirichlet_lift;
+      return r;
     };
     nlohmann::json estimators;
     estimators[to_string(e.estimator)] = record_of(e);
