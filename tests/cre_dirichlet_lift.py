@@ -22,7 +22,10 @@ solution:
   - compare mode (zz driving) reports cre's lift in its estimators.cre
     record, and cre's epsilon and lift there are those of the cre-driven
     run on the same first mesh (to 1e-12);
-  - with the option false nothing is lifted and the conditions are kept.
+  - with the option false nothing is lifted and the conditions are kept;
+  - a contact scene (blocks, whose data are interpolated exactly) gets
+    no lift and the same estimate, to every digit, with the option true
+    or false.
 
 usage: cre_dirichlet_lift.py EXE PRM_DIR OUTPUT_DIR MPIEXEC
 """
@@ -36,10 +39,10 @@ import sys
 
 
 def run(exe, prm_dir, directory, cell_type, degree, lift=None, ranks=1,
-        mpiexec=None, extra=()):
+        mpiexec=None, extra=(), prm="two_body_demo.prm"):
     shutil.rmtree(directory, ignore_errors=True)
     command = ([mpiexec, "-np", str(ranks)] if ranks > 1 else []) + \
-        [exe, os.path.join(prm_dir, "two_body_demo.prm")]
+        [exe, os.path.join(prm_dir, prm)]
     for setting in ["Mesh/Cell type=" + cell_type,
                     "Finite elements/Polynomial degree=%d" % degree,
                     "Mesh/Global refinements=0",
@@ -85,6 +88,9 @@ def main():
                 failures.append("%s: prolongation conditions not relaxed" %
                                 name)
         lifts = [c["cre"]["epsilon_dirichlet_lift"] for c in cycles]
+        if min(lifts) <= 0:
+            failures.append("%s: no lift by default (%s)" % (name, lifts))
+            continue
         rate = math.log2(lifts[-2] / lifts[-1])
         print("%s: lift rate %.3f (h^(p + 1/2): %.1f)" %
               (name, rate, degree + 0.5))
@@ -118,11 +124,28 @@ def main():
     for key, value in (("epsilon", driving["epsilon"]),
                        ("epsilon_dirichlet_lift",
                         driving["cre"]["epsilon_dirichlet_lift"])):
-        if key not in cre or abs(cre[key] - value) > 1e-12 * value:
+        if key not in cre or not value > 0 or \
+                abs(cre[key] - value) > 1e-12 * value:
             failures.append("compare mode: estimators.cre.%s %s instead of "
                             "%.12g" % (key, cre.get(key), value))
-    if "epsilon_dirichlet_lift" in compared["estimators"]["zz"]:
-        failures.append("compare mode: zz has a lift")
+    for other in ("zz", "spr"):
+        if "epsilon_dirichlet_lift" in compared["estimators"][other]:
+            failures.append("compare mode: %s has a lift" % other)
+
+    blocks = [run(exe, prm_dir, os.path.join(output, "blocks_%s" % lift),
+                  "triangle", 1, lift, prm="blocks.prm",
+                  extra=["Adaptation/Number of cycles=1",
+                         "Adaptation/Minimum number of cycles=1",
+                         "Error indicator/Compute exact error=false"])[0]
+              for lift in (True, False)]
+    print("blocks: epsilon %.15g (lift true), %.15g (false), lifts %g, %g" %
+          (blocks[0]["epsilon"], blocks[1]["epsilon"],
+           blocks[0]["cre"]["epsilon_dirichlet_lift"],
+           blocks[1]["cre"]["epsilon_dirichlet_lift"]))
+    if blocks[0]["epsilon"] != blocks[1]["epsilon"] or \
+            blocks[0]["epsilon_contact"] != blocks[1]["epsilon_contact"] or \
+            blocks[0]["cre"]["epsilon_dirichlet_lift"] != 0:
+        failures.append("blocks: the lift option changed a contact scene")
 
     for c in run(exe, prm_dir, os.path.join(output, "without"), "triangle",
                  1, False):

@@ -345,7 +345,7 @@ namespace coulomb_adapt
           "meshes (manufactured, 4 uniform refinements: "
           "effectivity 0.45 to 0.09 with Q2, 0.69 to 0.54 "
           "with P2; spr 2.3 to 1.0 and 1.09 to 0.99, cre "
-          "1.11 to 1.06 and 1.69 to 2.03): use spr or cre "
+          "1.33 to 1.18 and 1.61 to 2.00): use spr or cre "
           "there.");
         prm.declare_entry("Recovery",
                           "",

@@ -98,8 +98,9 @@ namespace coulomb_adapt
     /** Where the body's displacement data are not interpolated exactly:
      * true relaxes the equilibration there too (the estimate then adds
      * the lift of the data's interpolation error, dirichlet_data_lift.h);
-     * false keeps the prolongation conditions. */
-    bool lift_displacement_data = false;
+     * false keeps the prolongation conditions. The default of the
+     * parameter 'CRE lift of displacement data'. */
+    bool lift_displacement_data = true;
   };
 
   /**
