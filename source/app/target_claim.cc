@@ -14,7 +14,8 @@ namespace coulomb_adapt
                     const bool                   relaxed_equilibration,
                     const unsigned int           evaluation_degree_increase,
                     const bool                   penetration_left,
-                    const bool                   negative_pressure)
+                    const bool                   negative_pressure,
+                    const bool                   displacement_data_unlifted)
   {
     TargetClaim claim;
     claim.epsilon_exact = epsilon_exact;
@@ -35,6 +36,15 @@ namespace coulomb_adapt
       claim.kind_of_estimate =
         "not a proven bound here: the kinematic side still penetrates "
         "between the mortar's nodes after the opening (the log says where)";
+    else if (friction_coefficient == 0 && displacement_data_unlifted)
+      // The hypercircle needs a kinematic side that meets the displacement
+      // data; u_c meets them only at its nodes, and without the lift
+      // (dirichlet_data_lift.h) nothing accounts for the difference.
+      claim.kind_of_estimate =
+        "not a proven bound here: the FE space does not interpolate the "
+        "displacement data exactly and 'CRE lift of displacement data' is "
+        "false (the kept prolongation conditions were measured above the "
+        "error, doc/indicator.md section 4b)";
     else if (friction_coefficient == 0 && negative_pressure)
       claim.kind_of_estimate =
         "not a proven bound here: the equilibrated pressure is negative "

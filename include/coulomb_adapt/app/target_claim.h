@@ -56,7 +56,10 @@ namespace coulomb_adapt
    * sigma^'s pressure is negative between the nodes (quadratic segments
    * whose Bernstein form fell back to the Lagrange interpolant,
    * bernstein_contact_traction.h; ErrorEstimate::negative_pressure), so sigma^
-   * is not admissible either. */
+   * is not admissible either. @p displacement_data_unlifted: a body's
+   * displacement data are not interpolated exactly by the FE space and
+   * 'CRE lift of displacement data' is false, so the kinematic side does
+   * not meet them and no bound is claimed. */
   TargetClaim
   make_target_claim(const ErrorEstimator         estimator,
                     const double                 friction_coefficient,
@@ -66,7 +69,8 @@ namespace coulomb_adapt
                     const bool                   relaxed_equilibration = false,
                     const unsigned int           evaluation_degree_increase = 1,
                     const bool                   penetration_left  = false,
-                    const bool                   negative_pressure = false);
+                    const bool                   negative_pressure = false,
+                    const bool displacement_data_unlifted          = false);
 
   /** Why zz does not estimate the error of elements of degree @p degree
    * (>= 2), with the measured effectivities; empty for degree 1. */
