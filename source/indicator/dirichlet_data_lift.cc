@@ -1,3 +1,4 @@
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/fe/fe_values.h>
@@ -6,6 +7,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
 #include <vector>
 
 namespace coulomb_adapt
@@ -25,12 +30,81 @@ namespace coulomb_adapt
 
 
 
+  std::string
+  data_gradient_mismatch(const Function<2>  &data,
+                         const unsigned int  c,
+                         const Point<2>     &x,
+                         const Tensor<1, 2> &tangent,
+                         const double        h)
+  {
+    const double step           = 1e-3 * h;
+    const double along_gradient = data.gradient(x, c) * tangent;
+    const double difference =
+      (data.value(x + step * tangent, c) - data.value(x - step * tangent, c)) /
+      (2 * step);
+    const double scale = std::max({std::abs(along_gradient),
+                                   std::abs(difference),
+                                   std::abs(data.value(x, c)) / h,
+                                   std::numeric_limits<double>::min()});
+    if (std::abs(along_gradient - difference) <= 1e-5 * scale)
+      return "";
+    std::ostringstream message;
+    message << "the displacement data's gradient() gives the derivative "
+            << along_gradient << " along the face at (" << x
+            << ") in component " << c << ", its values " << difference
+            << " (central difference)";
+    return message.str();
+  }
+
+
+
   DirichletDataLiftField::DirichletDataLiftField(
     const ElasticBody                   &body,
     const TrilinosWrappers::MPI::Vector &u_kinematic)
     : body(body)
     , u_kinematic(u_kinematic)
-  {}
+  {
+    if (!active())
+      return;
+    // One face per Dirichlet boundary part on this rank; the verdict is
+    // every rank's, so all stop together.
+    std::string                  mismatch;
+    std::set<types::boundary_id> checked;
+    for (const auto &cell : body.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned() && cell->at_boundary())
+        for (const unsigned int f : cell->face_indices())
+          {
+            const auto face = cell->face(f);
+            if (!face->at_boundary() || checked.count(face->boundary_id()))
+              continue;
+            for (const auto &condition : body.description().dirichlet)
+              if (condition.boundary_id == face->boundary_id())
+                for (unsigned int c = 0; c < 2; ++c)
+                  if (condition.components[c] && mismatch.empty())
+                    {
+                      const Tensor<1, 2> edge =
+                        face->vertex(1) - face->vertex(0);
+                      mismatch = data_gradient_mismatch(*condition.displacement,
+                                                        c,
+                                                        face->center(),
+                                                        edge / edge.norm(),
+                                                        edge.norm());
+                    }
+            checked.insert(face->boundary_id());
+          }
+    const MPI_Comm comm = body.triangulation().get_communicator();
+    for (const std::string &m : Utilities::MPI::all_gather(comm, mismatch))
+      AssertThrow(m.empty(),
+                  ExcMessage("body '" + body.name() +
+                             "': 'Error indicator/CRE lift of displacement "
+                             "data' lifts the displacement data's "
+                             "interpolation error and needs their gradient, "
+                             "but " +
+                             m +
+                             ". Implement the data Function's gradient() in "
+                             "the scene, or set 'CRE lift of displacement "
+                             "data = false'."));
+  }
 
 
 
