@@ -85,23 +85,23 @@ namespace coulomb_adapt
                       const TrilinosWrappers::MPI::Vector &u_kinematic);
 
   /**
-   * Why component @p c of @p data cannot serve the lift at @p x, a point
-   * of a Dirichlet face of length @p h and unit tangent @p tangent: its
+   * Why component @p c of @p data cannot serve the lift on the Dirichlet
+   * face from @p a to @p b: at a quarter and at three quarters of it, its
    * gradient()'s derivative along the face differs from the central
-   * difference of its values (relative 1e-5); empty when they agree. The
+   * difference of its values (relative 1e-5 of the larger of the two and
+   * of how much the data vary along the face); empty when they agree. The
    * lift reads the data's gradient (g' above), and deal.II's
    * Function::gradient() returns zero in release builds where a scene
    * does not implement it: without this check such a scene's lift would
-   * be silently wrong. DirichletDataLiftField's constructor checks one
-   * face per Dirichlet boundary part of each rank and stops the run, on
-   * every rank, with a message naming the body and the way out.
+   * be silently wrong. DirichletDataLiftField's constructor checks every
+   * Dirichlet face of each rank and stops the run, on every rank, with a
+   * message naming the body and the way out.
    */
   std::string
-  data_gradient_mismatch(const Function<2>  &data,
-                         const unsigned int  c,
-                         const Point<2>     &x,
-                         const Tensor<1, 2> &tangent,
-                         const double        h);
+  data_gradient_mismatch(const Function<2> &data,
+                         const unsigned int c,
+                         const Point<2>    &a,
+                         const Point<2>    &b);
 } // namespace coulomb_adapt
 
 #endif
