@@ -13,13 +13,18 @@
 //    reported; a cubic whose value and derivative vanish at the face's
 //    centre, with its true gradient: not reported; a large constant plus
 //    a small sinusoid with a zero gradient on a fine face: reported;
-//  - DirichletDataLiftField on a scene whose data have a zero gradient
-//    (the manufactured scene with its gradient() replaced) stops on every
-//    rank with the message that names the body (1 and 2 ranks).
+//  - the cre estimate on a scene whose data have a zero gradient (the
+//    manufactured scene with its gradient() replaced) stops on every rank
+//    with the message that names the body (1 and 2 ranks): the estimator
+//    calls check_displacement_data_gradient() before it lifts the data;
+//  - with 'CRE lift of displacement data = false' the same scene is
+//    estimated (nothing reads the gradient).
 
 #include <deal.II/base/function.h>
 
+#include <coulomb_adapt/bodies/elastic_bodies.h>
 #include <coulomb_adapt/indicator/dirichlet_data_lift.h>
+#include <coulomb_adapt/indicator/error_estimate.h>
 
 #include "contact_test_utilities.h"
 
@@ -229,21 +234,38 @@ main(int argc, char **argv)
   AssertThrow(constant.empty() && cubic_true.empty() && !fine.empty(),
               ExcMessage("data_gradient_mismatch: wrong verdict"));
 
-  // The field on a scene without the data's gradient stops on every rank.
-  ParameterHandler prm;
-  const Parameters parameters = testing::make_parameters(prm, manufactured);
-  const WithoutDataGradient scene(scenes::create_scene(parameters, prm));
-  ElasticBody               body(MPI_COMM_WORLD,
-                   scene,
-                   0,
-                   parameters.mesh.cell_type,
-                   parameters.mesh.global_refinements,
-                   parameters.finite_elements);
-  body.setup_system();
-  std::string message;
+  // The cre estimate on a scene without the data's gradient stops on every
+  // rank before it lifts the data; without the lift it does not read them.
+  const auto cre_on_zero_gradient = [&](const bool lift) {
+    ParameterHandler prm;
+    const Parameters parameters = testing::make_parameters(prm, manufactured);
+    const WithoutDataGradient scene(scenes::create_scene(parameters, prm));
+    const ElasticBodies       bodies = make_bodies(
+      MPI_COMM_WORLD, scene, parameters, parameters.mesh.global_refinements);
+    for (const auto &body : bodies)
+      {
+        body->setup_system();
+        body->assemble_system();
+        body->solve(parameters.linear_solver);
+      }
+    const ErrorEstimate estimate = estimate_error_cre(
+      body_pointers(bodies),
+      nullptr,
+      0.,
+      parameters.error_indicator.cre_degree_increase,
+      true,
+      true,
+      {parameters.error_indicator.cre_minimisation_tolerance,
+       parameters.error_indicator.cre_exact_minimisation_up_to,
+       parameters.error_indicator.cre_evaluation_degree_increase,
+       lift},
+      parameters.linear_solver);
+    return std::make_pair(bodies[0]->name(), estimate.epsilon);
+  };
+  std::string message, first_body;
   try
     {
-      const DirichletDataLiftField field(body, body.solution());
+      cre_on_zero_gradient(true);
     }
   catch (const std::exception &e)
     {
@@ -252,15 +274,21 @@ main(int argc, char **argv)
   const unsigned int n_stopped =
     Utilities::MPI::sum(static_cast<unsigned int>(!message.empty()),
                         MPI_COMM_WORLD);
-  out << "lift field without the data's gradient: stopped on " << n_stopped
-      << " of " << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
+  const auto [upper, epsilon_unlifted] = cre_on_zero_gradient(false);
+  out << "cre estimate with the lift, data without their gradient: stopped "
+      << "on " << n_stopped << " of "
+      << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD)
       << " ranks; the message names the body and the way out: "
-      << (message.find("body '" + body.name() + "'") != std::string::npos &&
+      << (message.find("body '" + upper + "'") != std::string::npos &&
               message.find("CRE lift of displacement data = false") !=
                 std::string::npos ?
             "yes" :
             "no")
       << std::endl;
+  out << "without the lift: estimated, epsilon > 0: "
+      << (epsilon_unlifted > 0 ? "yes" : "no") << std::endl;
   AssertThrow(n_stopped == Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD),
-              ExcMessage("the lift field did not stop on every rank"));
+              ExcMessage("the cre estimate did not stop on every rank"));
+  AssertThrow(epsilon_unlifted > 0,
+              ExcMessage("the cre estimate without the lift failed"));
 }

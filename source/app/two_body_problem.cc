@@ -54,8 +54,17 @@ namespace coulomb_adapt
                                                  parameter_file);
     if (!scene->reference_values().empty())
       cycle_report->set_run_entry("reference", scene->reference_values());
-    cycle_report->set_run_entry("friction_coefficient",
-                                parameters.contact.friction_coefficient);
+    // A scene without contact (manufactured) has no friction: no entry,
+    // rather than the parameter file's value, which nothing there uses
+    // (and not null, which summary.json keeps for numbers that failed).
+    const bool scene_has_contact =
+      scene->describe_body(0).contact_boundary_id !=
+        numbers::invalid_boundary_id &&
+      scene->describe_body(1).contact_boundary_id !=
+        numbers::invalid_boundary_id;
+    if (scene_has_contact)
+      cycle_report->set_run_entry("friction_coefficient",
+                                  parameters.contact.friction_coefficient);
   }
 
 

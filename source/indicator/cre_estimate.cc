@@ -321,6 +321,12 @@ namespace coulomb_adapt
                                 estimate,
                                 contact);
 
+    // The lift reads the displacement data's gradient: checked once per
+    // body, before the equilibration and the lift's energy use it.
+    if (minimisation.lift_displacement_data)
+      for (const ElasticBody *body : bodies)
+        check_displacement_data_gradient(*body);
+
     std::array<double, 2> volume_squared;
     double                normalisation_squared = 0, before_squared = 0;
     for (unsigned int b = 0; b < 2; ++b)

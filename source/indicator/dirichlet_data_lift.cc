@@ -80,8 +80,15 @@ namespace coulomb_adapt
     const TrilinosWrappers::MPI::Vector &u_kinematic)
     : body(body)
     , u_kinematic(u_kinematic)
+  {}
+
+
+
+  void
+  check_displacement_data_gradient(const ElasticBody &body)
   {
-    if (!active())
+    if (body.description().displacement_data_interpolated_exactly ||
+        body.description().dirichlet.empty())
       return;
     // Every Dirichlet face this rank owns (a few function values each),
     // until one disagrees; the verdict is every rank's, so all stop

@@ -42,7 +42,9 @@ namespace coulomb_adapt
   {
   public:
     /** The lift of @p u_kinematic's (ghosted) misfit to @p body's
-     * displacement data; both must outlive this object. */
+     * displacement data; both must outlive this object. The data's
+     * gradient is not checked here: check_displacement_data_gradient()
+     * does it once per body and estimate. */
     DirichletDataLiftField(const ElasticBody                   &body,
                            const TrilinosWrappers::MPI::Vector &u_kinematic);
 
@@ -93,15 +95,24 @@ namespace coulomb_adapt
    * lift reads the data's gradient (g' above), and deal.II's
    * Function::gradient() returns zero in release builds where a scene
    * does not implement it: without this check such a scene's lift would
-   * be silently wrong. DirichletDataLiftField's constructor checks every
-   * Dirichlet face of each rank and stops the run, on every rank, with a
-   * message naming the body and the way out.
+   * be silently wrong.
    */
   std::string
   data_gradient_mismatch(const Function<2> &data,
                          const unsigned int c,
                          const Point<2>    &a,
                          const Point<2>    &b);
+
+  /**
+   * data_gradient_mismatch() on every Dirichlet face this rank owns of a
+   * body whose data need the lift (DirichletDataLiftField::active()); a
+   * mismatch on any rank stops the run on every rank, with a message
+   * naming @p body and the way out. Nothing to check (and no
+   * communication) where the data are interpolated exactly. The cre
+   * estimate calls it once per body before the lift is built.
+   */
+  void
+  check_displacement_data_gradient(const ElasticBody &body);
 } // namespace coulomb_adapt
 
 #endif

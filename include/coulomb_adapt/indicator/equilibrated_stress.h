@@ -76,7 +76,10 @@ namespace coulomb_adapt
   /**
    * How the relaxed system's free parameters are minimised ('Error
    * indicator/CRE minimisation tolerance' and 'CRE exact minimisation up
-   * to').
+   * to'). The program and the tests set every member from the parameters
+   * (error_estimate.cc), so the defaults that count are the parameters'
+   * (core/parameters.cc); those below only keep a default-constructed
+   * object defined.
    */
   struct CreMinimisation
   {
@@ -98,8 +101,8 @@ namespace coulomb_adapt
     /** Where the body's displacement data are not interpolated exactly:
      * true relaxes the equilibration there too (the estimate then adds
      * the lift of the data's interpolation error, dirichlet_data_lift.h);
-     * false keeps the prolongation conditions. The default of the
-     * parameter 'CRE lift of displacement data'. */
+     * false keeps the prolongation conditions (parameter 'CRE lift of
+     * displacement data'). */
     bool lift_displacement_data = true;
   };
 
