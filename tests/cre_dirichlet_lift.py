@@ -12,7 +12,8 @@ Q1 and P1: theta 0.871 on the coarsest Q1 mesh). Checks, on P1/P2 triangles
 and Q1/Q2 quadrilaterals, three uniform cycles each, against the exact
 solution:
   - epsilon >= epsilon_exact on every mesh (the bound) and <= 2
-    epsilon_exact (issue 17's target);
+    epsilon_exact (issue 17's target); on P2 triangles <= 1.15
+    epsilon_exact (the quadratic relaxed modes; 1.61-1.90 without);
   - the prolongation conditions are relaxed in both bodies;
   - ||sigma(r)|| falls as h^(p + 1/2) (d = u_D - u_c ~ h^(p+1) on a strip
     of cells of width h): the rate between the last two meshes within
@@ -25,7 +26,9 @@ solution:
   - with the option false nothing is lifted and the conditions are kept;
   - a contact scene (blocks, whose data are interpolated exactly) gets
     no lift and the same estimate, to every digit, with the option true
-    or false.
+    or false;
+  - summary.json records blocks' friction coefficient and none for the
+    manufactured scene, which has no contact.
 
 usage: cre_dirichlet_lift.py EXE PRM_DIR OUTPUT_DIR MPIEXEC
 """
@@ -83,6 +86,13 @@ def main():
                    100 * c["cre"]["epsilon_dirichlet_lift"]))
             if not exact <= eps <= 2 * exact:
                 failures.append("%s, %d DoFs: theta %.3f outside [1, 2]" %
+                                (name, c["n_dofs"], eps / exact))
+            # P2's quadratic relaxed modes (traction_optimisation.cc):
+            # without them theta was 1.61-1.90 on these meshes and rose
+            # with refinement; with them 1.06-1.12.
+            if name == "triangle P2" and eps > 1.15 * exact:
+                failures.append("%s, %d DoFs: theta %.3f > 1.15 (the "
+                                "quadratic relaxed modes?)" %
                                 (name, c["n_dofs"], eps / exact))
             if c["cre"]["relaxed_equilibration"] != [True, True]:
                 failures.append("%s: prolongation conditions not relaxed" %
@@ -159,6 +169,20 @@ def main():
             failures.append("without the option: lift %g, relaxed %s" %
                             (c["cre"]["epsilon_dirichlet_lift"],
                              c["cre"]["relaxed_equilibration"]))
+
+    # summary.json's friction coefficient: the parameter's on a contact
+    # scene, no entry on the manufactured one, which has no contact.
+    def top_level(directory):
+        with open(os.path.join(output, directory, "summary.json")) as f:
+            return json.load(f)
+    mu_blocks = top_level("blocks_True").get("friction_coefficient")
+    mu_manufactured = top_level("without").get("friction_coefficient")
+    print("summary.json friction_coefficient: blocks %s, manufactured %s" %
+          (mu_blocks, mu_manufactured))
+    if mu_blocks != 0.3 or mu_manufactured is not None:
+        failures.append("friction_coefficient: blocks %s (expected 0.3), "
+                        "manufactured %s (expected no entry)" %
+                        (mu_blocks, mu_manufactured))
 
     if failures:
         sys.exit("FAILED:\n  " + "\n  ".join(failures))

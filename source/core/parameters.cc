@@ -250,7 +250,9 @@ namespace coulomb_adapt
           "conditions (per interior edge a linear "
           "tangential traction, per interior node a "
           "linear normal traction on its edges whose "
-          "couples cancel in each element): sigma^ stays "
+          "couples cancel in each element; with degree 2 "
+          "also the quadratic tangential and normal "
+          "tractions of each edge): sigma^ stays "
           "statically admissible and the estimate is much "
           "tighter (P1 triangles: effectivity about 1.02-1.2 "
           "instead of 1.6-2.1; evaluated with the "
@@ -273,8 +275,8 @@ namespace coulomb_adapt
           "adds ||sigma(r)||: a bound up to quadrature and the local "
           "problems' discretisation, where the kept conditions are only "
           "measured above the error (manufactured, effectivity: P1 "
-          "1.07-1.19 instead of 1.58-1.81, P2 1.61-2.00 instead of "
-          "1.69-2.03, Q1 1.13-1.27 instead of 1.19-1.22, Q2 1.18-1.33 "
+          "1.07-1.19 instead of 1.58-1.81, P2 1.04-1.12 instead of "
+          "1.69-2.03, Q1 1.13-1.27 instead of 1.19-1.22, Q2 1.12-1.26 "
           "instead of 1.06-1.11; doc/indicator.md 4b). false: the "
           "prolongation conditions are kept there and no lift is added "
           "(the estimates measured above the error, but not a proof). "
@@ -345,7 +347,7 @@ namespace coulomb_adapt
           "meshes (manufactured, 4 uniform refinements: "
           "effectivity 0.45 to 0.09 with Q2, 0.69 to 0.54 "
           "with P2; spr 2.3 to 1.0 and 1.09 to 0.99, cre "
-          "1.33 to 1.18 and 1.61 to 2.00): use spr or cre "
+          "1.26 to 1.12 and 1.12 to 1.04): use spr or cre "
           "there.");
         prm.declare_entry("Recovery",
                           "",

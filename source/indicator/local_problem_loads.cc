@@ -58,13 +58,14 @@ namespace coulomb_adapt
       const unsigned int n   = face.nodes.size();
       const unsigned int M   = local.n_coefficients() / 2;
       const double       eta = face.plus == static_cast<int>(slot) ? 1 : -1;
-      W.reinit(M, n + 2);
+      W.reinit(M, n + 3);
       for (unsigned int q = 0; q < edge_rule.size(); ++q)
         {
           const double s   = edge_rule.point(q)[0];
           const auto   phi = face_shape_values(face.s, s);
           const double L   = edge_bubble(fe_degree + 1, s);
           const double P1  = edge_bubble(1, s);
+          const double P2  = edge_bubble(2, s);
           const double w   = eta * edge_rule.weight(q) * face.length;
           const auto  &values =
             local.monomial_values(face.v0 + s * (face.v1 - face.v0));
@@ -74,6 +75,7 @@ namespace coulomb_adapt
                 W(m, j) += phi[j] * values[m] * w;
               W(m, n) += L * values[m] * w;
               W(m, n + 1) += P1 * values[m] * w;
+              W(m, n + 2) += P2 * values[m] * w;
             }
         }
     }

@@ -41,8 +41,9 @@ namespace coulomb_adapt
       // and one per edge whatever p; deal.II 9.4 has no cubic
       // FE_SimplexP; components 0 and 1 for the node systems' null vectors
       // and the bubbles, with the relaxed modes a third for the couple
-      // modes (vertices) and the tangential ones (edges)), which also give
-      // the pattern of the parameters'
+      // modes (vertices) and the linear tangential ones (edges), and for
+      // p >= 2 a fourth and a fifth for the edges' quadratic tangential
+      // and normal modes), which also give the pattern of the parameters'
       // system and its parallel layout.
       struct ParameterNames
       {
@@ -50,7 +51,11 @@ namespace coulomb_adapt
           : scalar(body.is_simplex_mesh() ?
                      std::unique_ptr<FiniteElement<2>>(new FE_SimplexP<2>(2)) :
                      std::unique_ptr<FiniteElement<2>>(new FE_Q<2>(2)))
-          , fe(*scalar, relaxed ? 3 : 2)
+          , quadratic_modes(relaxed && body.dof_handler().get_fe().degree >= 2)
+          , fe(*scalar,
+               !relaxed        ? 2 :
+               quadratic_modes ? 5 :
+                                 3)
           , dof_handler(body.triangulation())
         {
           dof_handler.distribute_dofs(fe);
@@ -59,9 +64,11 @@ namespace coulomb_adapt
         }
 
         std::unique_ptr<FiniteElement<2>> scalar;
-        FESystem<2>                       fe;
-        DoFHandler<2>                     dof_handler;
-        IndexSet                          owned, relevant;
+        // Whether the edges carry the quadratic modes (add_relaxed_modes()).
+        bool          quadratic_modes;
+        FESystem<2>   fe;
+        DoFHandler<2> dof_handler;
+        IndexSet      owned, relevant;
       };
 
       // Where a cell's quadratic form sits in CellForms' flat arrays.
@@ -135,8 +142,17 @@ namespace coulomb_adapt
       // edge through it with couple +1 on the cell counterclockwise of the
       // edge (seen from the vertex) and -1 on the other one: each cell gets
       // +1 and -1 from its two edges there, named by the vertex's
-      // third-component DoF. W's last column is the linear Legendre
-      // polynomial's work (with the cell's orientation eta).
+      // third-component DoF. W's column n + 1 (n the face's nodes) is the
+      // linear Legendre polynomial's work (with the cell's orientation
+      // eta).
+      // For p >= 2 the quadratic Legendre polynomial P2 is also
+      // self-equilibrated along the edge in both directions (zero force;
+      // zero couple, since it is orthogonal to 1 and s), and it lies in
+      // the span of the face's nodal polynomials, whose moments the node
+      // systems fix: so P2 tangent and P2 normal are two more modes per
+      // edge, named by the edge's fourth- and fifth-component DoFs (W's
+      // column n + 2). For p = 1, P2 is the edge bubble (degree p + 1),
+      // already a parameter.
       template <typename Name, typename Direction>
       void
       add_relaxed_modes(const FormInputs         &in,
@@ -162,6 +178,28 @@ namespace coulomb_adapt
             for (unsigned int c = 0; c < 2; ++c)
               for (unsigned int m = 0; m < M; ++m)
                 d(c * M + m) += tangent[c] * W(m, column);
+          }
+        if (in.names.quadratic_modes)
+          {
+            // A direction may carry the mode where each component it has
+            // is unknown (a sliding support: the normal one only).
+            const auto along = [&](const Tensor<1, 2> &direction_vector) {
+              for (unsigned int c = 0; c < 2; ++c)
+                if (!face.unknown[c] && std::abs(direction_vector[c]) > 1e-12)
+                  return false;
+              return true;
+            };
+            const std::array<std::pair<unsigned int, Tensor<1, 2>>, 2> modes = {
+              {{3, tangent}, {4, face.normal}}};
+            for (const auto &[component, vector] : modes)
+              if (along(vector))
+                {
+                  Vector<double> &d =
+                    direction(name(component, cell->n_vertices() + f));
+                  for (unsigned int c = 0; c < 2; ++c)
+                    for (unsigned int m = 0; m < M; ++m)
+                      d(c * M + m) += vector[c] * W(m, column + 1);
+                }
           }
         if (!(face.unknown[0] && face.unknown[1]))
           return;
