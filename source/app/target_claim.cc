@@ -96,7 +96,7 @@ namespace coulomb_adapt
            "refinements: effectivity 0.45 to 0.09 with Q2, 0.69 to 0.54 with "
            "P2; doc/indicator.md section 6); 'Error indicator/Estimator = "
            "spr' or 'cre' estimates them (spr 2.3 to 1.0 and 1.09 to 0.99, "
-           "cre 1.33 to 1.18 and 1.61 to 2.00)";
+           "cre 1.26 to 1.12 and 1.12 to 1.04)";
   }
 
 

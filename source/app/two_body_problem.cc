@@ -17,6 +17,20 @@
 
 namespace coulomb_adapt
 {
+  namespace
+  {
+    // Whether two bodies so described touch: both name a contact
+    // boundary (the manufactured scene's do not).
+    bool
+    describe_contact(const BodyDescription &a, const BodyDescription &b)
+    {
+      return a.contact_boundary_id != numbers::invalid_boundary_id &&
+             b.contact_boundary_id != numbers::invalid_boundary_id;
+    }
+  } // namespace
+
+
+
   void
   TwoBodyProblem::declare_parameters(ParameterHandler &prm)
   {
@@ -57,12 +71,7 @@ namespace coulomb_adapt
     // A scene without contact (manufactured) has no friction: no entry,
     // rather than the parameter file's value, which nothing there uses
     // (and not null, which summary.json keeps for numbers that failed).
-    const bool scene_has_contact =
-      scene->describe_body(0).contact_boundary_id !=
-        numbers::invalid_boundary_id &&
-      scene->describe_body(1).contact_boundary_id !=
-        numbers::invalid_boundary_id;
-    if (scene_has_contact)
+    if (describe_contact(scene->describe_body(0), scene->describe_body(1)))
       cycle_report->set_run_entry("friction_coefficient",
                                   parameters.contact.friction_coefficient);
   }
@@ -125,10 +134,7 @@ namespace coulomb_adapt
   bool
   TwoBodyProblem::has_contact() const
   {
-    return bodies[0]->description().contact_boundary_id !=
-             numbers::invalid_boundary_id &&
-           bodies[1]->description().contact_boundary_id !=
-             numbers::invalid_boundary_id;
+    return describe_contact(bodies[0]->description(), bodies[1]->description());
   }
 
 
@@ -538,20 +544,20 @@ namespace coulomb_adapt
         // Without contact (the manufactured scene) the friction
         // coefficient of the parameter file plays no part: the bound is
         // that of linear elasticity.
-        const TargetClaim claim = make_target_claim(
-          error_estimate->estimator,
-          has_contact() ? parameters.contact.friction_coefficient : 0.,
-          cycle_report->exact_error(),
-          error_estimate->misses_held_reaction(),
-          parameters.finite_elements.degree,
-          error_estimate->relaxed_equilibration[0] ||
-            error_estimate->relaxed_equilibration[1],
-          error_estimate->evaluation_degree_increase,
-          error_estimate->penetration_after > 0,
-          error_estimate->negative_pressure > 1e-8,
-          !parameters.error_indicator.cre_lift_displacement_data &&
-            (!bodies[0]->description().displacement_data_interpolated_exactly ||
-             !bodies[1]->description().displacement_data_interpolated_exactly));
+        const TargetClaim claim =
+          make_target_claim(error_estimate->estimator,
+                            has_contact() ?
+                              parameters.contact.friction_coefficient :
+                              0.,
+                            cycle_report->exact_error(),
+                            error_estimate->misses_held_reaction(),
+                            parameters.finite_elements.degree,
+                            error_estimate->relaxed_equilibration[0] ||
+                              error_estimate->relaxed_equilibration[1],
+                            error_estimate->evaluation_degree_increase,
+                            error_estimate->penetration_after > 0,
+                            error_estimate->negative_pressure > 1e-8,
+                            error_estimate->displacement_data_unlifted);
         s << "target reached: epsilon = " << std::setprecision(4)
           << 100 * error_estimate->epsilon
           << " % <= epsilon_0 = " << 100 * a.target_error << " %"

@@ -326,6 +326,11 @@ namespace coulomb_adapt
     if (minimisation.lift_displacement_data)
       for (const ElasticBody *body : bodies)
         check_displacement_data_gradient(*body);
+    else
+      for (const ElasticBody *body : bodies)
+        estimate.displacement_data_unlifted =
+          estimate.displacement_data_unlifted ||
+          !body->description().displacement_data_interpolated_exactly;
 
     std::array<double, 2> volume_squared;
     double                normalisation_squared = 0, before_squared = 0;

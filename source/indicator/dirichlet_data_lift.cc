@@ -25,6 +25,15 @@ namespace coulomb_adapt
       std::array<bool, 2>                components = {{false, false}};
       std::array<std::vector<double>, 2> g, dg;
     };
+
+    // Whether a body's displacement data need the lift: there are some,
+    // and the FE space does not interpolate them exactly.
+    bool
+    data_need_lift(const BodyDescription &description)
+    {
+      return !description.displacement_data_interpolated_exactly &&
+             !description.dirichlet.empty();
+    }
   } // namespace
 
 
@@ -87,8 +96,7 @@ namespace coulomb_adapt
   void
   check_displacement_data_gradient(const ElasticBody &body)
   {
-    if (body.description().displacement_data_interpolated_exactly ||
-        body.description().dirichlet.empty())
+    if (!data_need_lift(body.description()))
       return;
     // Every Dirichlet face this rank owns (a few function values each),
     // until one disagrees; the verdict is every rank's, so all stop
@@ -129,8 +137,7 @@ namespace coulomb_adapt
   bool
   DirichletDataLiftField::active() const
   {
-    return !body.description().displacement_data_interpolated_exactly &&
-           !body.description().dirichlet.empty();
+    return data_need_lift(body.description());
   }
 
 

@@ -238,8 +238,9 @@ namespace coulomb_adapt
 
       // The loads of the cell's free parameters (its "directions"), from
       // the work W of each face's traction basis (the nodal polynomials,
-      // then the bubble) on the monomials; the parameters' names go to
-      // copy. Returns their number.
+      // the bubble, the linear and quadratic Legendre polynomials:
+      // LocalProblemLoads::face_work()) on the monomials; the parameters'
+      // names go to copy. Returns their number.
       unsigned int
       parameter_loads(const FormInputs  &in,
                       const unsigned int slot,
@@ -685,7 +686,8 @@ namespace coulomb_adapt
       // whose parameters this rank owns, its own names and those of the
       // edges through it (ghost cells complete the edges of every owned
       // vertex). Such a patch holds the vertex's couple mode and the
-      // tangential modes and bubbles of its edges, the fourth-order
+      // tangential modes and bubbles of its edges (for p >= 2 also their
+      // quadratic modes: ~33 names instead of ~21), the fourth-order
       // coupling that point Jacobi misses. The stars' cells' names too
       // (patches of ~46 instead of ~20 on P1 triangles) took fewer steps
       // but about twice the flops (steps measured on the relaxed system of

@@ -76,6 +76,11 @@ namespace coulomb_adapt
     std::array<bool, 2> relaxed_equilibration = {{false, false}};
     /** cre: whether 'CRE relaxed equilibration' asked for them. */
     bool relaxed_equilibration_requested = false;
+    /** cre: whether a body's displacement data are not interpolated
+     * exactly by the FE space and were not lifted either ('CRE lift of
+     * displacement data' false): its kinematic side misses them between
+     * the nodes, so the estimate is not a proven bound. */
+    bool displacement_data_unlifted = false;
     /** cre: the estimate comes from local problems this much higher in
      * degree than the minimisation's ('CRE evaluation degree increase'),
      * and per body whether the optimised tractions, evaluated there, were

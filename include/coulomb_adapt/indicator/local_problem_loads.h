@@ -48,10 +48,10 @@ namespace coulomb_adapt
                 const unsigned int         slot,
                 Vector<double>            &load) const;
 
-      /** W(m, j): the work of the traction basis j of @p face (its nodal
-       * polynomials, then the bubble of degree p + 1, then the linear
-       * Legendre polynomial), with cell @p slot's orientation, on monomial
-       * m of @p local. */
+      /** W(m, j): the work of the traction basis j of @p face (its n nodal
+       * polynomials, then the bubble of degree p + 1, then the linear and
+       * the quadratic Legendre polynomials: columns n, n + 1, n + 2), with
+       * cell @p slot's orientation, on monomial m of @p local. */
       void
       face_work(const LocalNeumannProblem &local,
                 const unsigned int         slot,
