@@ -77,21 +77,27 @@ def main():
     for case, _ in keys:
         if case not in cases:
             cases.append(case)
-    figure, axes = plt.subplots(1, 3, figsize=(13, 4), sharey=True)
+    figure, axes = plt.subplots(1, 3, figsize=(13, 5.2), sharey=True)
+    # One colour per case (more cases than the default cycle's 10 colours);
+    # degree 2 dashed with squares, so the two degrees tell apart.
+    colours = plt.get_cmap("tab20").colors
     for axis, estimator in zip(axes, ("zz", "spr", "cre")):
-        for case in cases:
+        for i, case in enumerate(cases):
             points = [(r["n_dofs"], r["effectivity_extrapolated"])
                       for r in rows
                       if r["case"] == case and r["estimator"] == estimator]
+            degree_2 = " P2" in case or " Q2" in case
             if points:
-                axis.semilogx(*zip(*points), "o-", label=case)
+                axis.semilogx(*zip(*points), "s--" if degree_2 else "o-",
+                              color=colours[i % len(colours)], label=case)
         axis.axhline(1, color="grey", linewidth=0.8)
         axis.axhline(2, color="grey", linewidth=0.8, linestyle=":")
         axis.set_title(estimator)
         axis.set_xlabel("DoFs")
     axes[0].set_ylabel("θ = ε / ε_exact (extrapolated)")
-    axes[2].legend(fontsize=7)
-    figure.tight_layout()
+    handles, labels = axes[2].get_legend_handles_labels()
+    figure.legend(handles, labels, loc="lower center", ncol=4, fontsize=7)
+    figure.tight_layout(rect=(0, 0.2, 1, 1))
     figure.savefig(args.png, dpi=110)
     print("wrote " + args.png)
 
