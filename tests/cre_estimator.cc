@@ -288,10 +288,11 @@ main(int argc, char **argv)
       // Loads x 1e3 change the FE solution by round-off (6.7e-14 of it
       // with P2 here). Epsilon keeps that to 1e-10, but single cells'
       // errors carry it further the worse the relaxed system's condition:
-      // P1 4e-15 of epsilon, P2 with its quadratic modes 3.3e-9 (2 ranks:
-      // 2.7e-8), with the exact minimum (MUMPS) as with the truncated CG,
-      // so it is the system's condition, not the iteration. A
-      // load-dependent threshold would change them by far more.
+      // P1 4e-15 of epsilon, P2 3.3e-9 (2 ranks: 2.7e-8), with the exact
+      // minimum (MUMPS) as with the truncated CG, so it is the system's
+      // condition, not the iteration; without the quadratic modes P2's
+      // were 5.4e-9 and 4.3e-8. A load-dependent threshold would change
+      // them by far more.
       const double cell_tolerance = degree == "1" ? 1e-9 : 1e-7;
       out << "  epsilon(cre) " << 100 * e1.epsilon << " % (contact part "
           << 100 * e1.epsilon_contact
