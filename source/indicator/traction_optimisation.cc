@@ -162,44 +162,40 @@ namespace coulomb_adapt
                         const Name               &name,
                         const Direction          &direction)
       {
-        const CellData    &data    = in.cells[slot];
-        const auto        &cell    = data.cell;
-        const FaceData    &face    = in.faces[data.faces[f]];
-        const unsigned int column  = face.nodes.size() + 1;
-        const unsigned int M       = W.m();
-        const Tensor<1, 2> tangent = (face.v1 - face.v0) / face.length;
+        const CellData &data = in.cells[slot];
+        const auto     &cell = data.cell;
+        const FaceData &face = in.faces[data.faces[f]];
+        // W's columns of the linear and the quadratic Legendre polynomial.
+        const unsigned int linear_column    = face.nodes.size() + 1;
+        const unsigned int quadratic_column = face.nodes.size() + 2;
+        const unsigned int M                = W.m();
+        const Tensor<1, 2> tangent          = (face.v1 - face.v0) / face.length;
         const double       eta = face.plus == static_cast<int>(slot) ? 1 : -1;
-        const auto         allowed = [&](const unsigned int c) {
-          return face.unknown[c] || std::abs(tangent[c]) < 1e-12;
+        // A traction along @p direction may move where each component it
+        // has is unknown (on a sliding support: the normal one only).
+        const auto may_move = [&](const Tensor<1, 2> &direction_vector) {
+          for (unsigned int c = 0; c < 2; ++c)
+            if (!face.unknown[c] && std::abs(direction_vector[c]) >= 1e-12)
+              return false;
+          return true;
         };
-        if (allowed(0) && allowed(1))
-          {
-            Vector<double> &d = direction(name(2, cell->n_vertices() + f));
-            for (unsigned int c = 0; c < 2; ++c)
-              for (unsigned int m = 0; m < M; ++m)
-                d(c * M + m) += tangent[c] * W(m, column);
-          }
+        const auto add_mode = [&](const unsigned int  component,
+                                  const Tensor<1, 2> &direction_vector,
+                                  const unsigned int  w_column) {
+          Vector<double> &d =
+            direction(name(component, cell->n_vertices() + f));
+          for (unsigned int c = 0; c < 2; ++c)
+            for (unsigned int m = 0; m < M; ++m)
+              d(c * M + m) += direction_vector[c] * W(m, w_column);
+        };
+        if (may_move(tangent))
+          add_mode(2, tangent, linear_column);
         if (in.names.quadratic_modes)
           {
-            // A direction may carry the mode where each component it has
-            // is unknown (a sliding support: the normal one only).
-            const auto along = [&](const Tensor<1, 2> &direction_vector) {
-              for (unsigned int c = 0; c < 2; ++c)
-                if (!face.unknown[c] && std::abs(direction_vector[c]) > 1e-12)
-                  return false;
-              return true;
-            };
-            const std::array<std::pair<unsigned int, Tensor<1, 2>>, 2> modes = {
-              {{3, tangent}, {4, face.normal}}};
-            for (const auto &[component, vector] : modes)
-              if (along(vector))
-                {
-                  Vector<double> &d =
-                    direction(name(component, cell->n_vertices() + f));
-                  for (unsigned int c = 0; c < 2; ++c)
-                    for (unsigned int m = 0; m < M; ++m)
-                      d(c * M + m) += vector[c] * W(m, column + 1);
-                }
+            if (may_move(tangent))
+              add_mode(3, tangent, quadratic_column);
+            if (may_move(face.normal))
+              add_mode(4, face.normal, quadratic_column);
           }
         if (!(face.unknown[0] && face.unknown[1]))
           return;
@@ -230,7 +226,7 @@ namespace coulomb_adapt
             Vector<double> &d = direction(name(2, v));
             for (unsigned int c = 0; c < 2; ++c)
               for (unsigned int m = 0; m < M; ++m)
-                d(c * M + m) += scale * face.normal[c] * W(m, column);
+                d(c * M + m) += scale * face.normal[c] * W(m, linear_column);
           }
       }
 
