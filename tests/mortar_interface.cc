@@ -12,10 +12,7 @@
 //    psi_j = 2 phi_j - phi_k, sum_k h_k^3 / (12 R (h_1 + h_2)); up to the
 //    tilt of the normals (relative error (x/R)^2 / 2).
 
-#include <coulomb_adapt/contact/mortar_interface.h>
-#include <coulomb_adapt/scenes/scene_factory.h>
-
-#include "test_utilities.h"
+#include "mortar_test_utilities.h"
 
 #include <cmath>
 
@@ -24,32 +21,13 @@ using namespace coulomb_adapt;
 void
 check_patch(const std::string &cell_type, const std::string &degree = "1")
 {
-  ParameterHandler prm;
-  const Parameters parameters =
-    testing::make_parameters(prm,
-                             {{"Scene/Name", "patch"},
-                              {"Mesh/Cell type", cell_type},
-                              {"Finite elements/Polynomial degree", degree},
-                              {"Scene/Patch/Upper body subdivisions", "3, 2"},
-                              {"Scene/Patch/Lower body subdivisions",
-                               "10, 4"}});
-  const auto  scene = scenes::create_scene(parameters, prm);
-  ElasticBody slave(MPI_COMM_WORLD,
-                    *scene,
-                    0,
-                    parameters.mesh.cell_type,
-                    0,
-                    parameters.finite_elements);
-  ElasticBody master(MPI_COMM_WORLD,
-                     *scene,
-                     1,
-                     parameters.mesh.cell_type,
-                     0,
-                     parameters.finite_elements);
-  slave.setup_system();
-  master.setup_system();
-  MortarInterface interface;
-  interface.reinit(slave, master);
+  const testing::SceneInterface scene_interface(
+    {{"Scene/Name", "patch"},
+     {"Mesh/Cell type", cell_type},
+     {"Finite elements/Polynomial degree", degree},
+     {"Scene/Patch/Upper body subdivisions", "3, 2"},
+     {"Scene/Patch/Lower body subdivisions", "10, 4"}});
+  const MortarInterface &interface = scene_interface.mortar;
 
   const auto &nodes = interface.slave_nodes();
   const auto &D     = interface.slave_weights();
@@ -108,26 +86,9 @@ check_patch(const std::string &cell_type, const std::string &degree = "1")
 void
 check_hertz(const std::string &cell_type)
 {
-  ParameterHandler prm;
-  const Parameters parameters = testing::make_parameters(
-    prm, {{"Scene/Name", "hertz"}, {"Mesh/Cell type", cell_type}});
-  const auto  scene = scenes::create_scene(parameters, prm);
-  ElasticBody slave(MPI_COMM_WORLD,
-                    *scene,
-                    0,
-                    parameters.mesh.cell_type,
-                    0,
-                    parameters.finite_elements);
-  ElasticBody master(MPI_COMM_WORLD,
-                     *scene,
-                     1,
-                     parameters.mesh.cell_type,
-                     0,
-                     parameters.finite_elements);
-  slave.setup_system();
-  master.setup_system();
-  MortarInterface interface;
-  interface.reinit(slave, master);
+  const testing::SceneInterface scene_interface(
+    {{"Scene/Name", "hertz"}, {"Mesh/Cell type", cell_type}});
+  const MortarInterface &interface = scene_interface.mortar;
 
   const double R         = 100;
   const auto  &nodes     = interface.slave_nodes();

@@ -380,60 +380,63 @@ namespace coulomb_adapt
   std::vector<MortarInterface::OverlapPoint>
   MortarInterface::overlap_quadrature(const Quadrature<1> &gauss) const
   {
-    const unsigned int        n_points = gauss.size();
     std::vector<OverlapPoint> points;
-    points.reserve(overlap_list.size() * n_points);
+    points.reserve(overlap_list.size() * gauss.size());
     for (unsigned int o = 0; o < overlap_list.size(); ++o)
-      {
-        const Overlap &overlap = overlap_list[o];
-        const Segment &s_seg   = slave_segments[overlap.slave_segment];
-        const Segment &m_seg   = master_segments[overlap.master_segment];
-        if (s_seg.curved || m_seg.curved)
-          {
-            const SegmentCurve x = segment_curve(slave, s_seg, slave_degree);
-            const SegmentCurve y = segment_curve(master, m_seg, master_degree);
-            for (unsigned int q = 0; q < gauss.size(); ++q)
-              {
-                const double xi =
-                  overlap.begin +
-                  (overlap.end - overlap.begin) * gauss.point(q)[0];
-                const double eta = project_onto_master(x, y, s_seg, xi).first;
-                points.push_back(
-                  {o,
-                   xi,
-                   eta,
-                   x.value(xi),
-                   y.value(eta),
-                   gauss.weight(q) * (overlap.end - overlap.begin) *
-                     x.derivative(xi).norm()});
-              }
-            continue;
-          }
-        const Point<2>    &a   = slave[s_seg.nodes[0]].position;
-        const Point<2>    &b   = slave[s_seg.nodes[1]].position;
-        const Point<2>    &c   = master[m_seg.nodes[0]].position;
-        const Point<2>    &d   = master[m_seg.nodes[1]].position;
-        const Tensor<1, 2> n   = s_seg.normal;
-        const Tensor<1, 2> cd  = d - c;
-        const double       det = -cd[0] * n[1] + cd[1] * n[0];
-        const double       h   = (b - a).norm();
-        for (unsigned int q = 0; q < gauss.size(); ++q)
-          {
-            const double xi =
-              overlap.begin + (overlap.end - overlap.begin) * gauss.point(q)[0];
-            const Point<2>     x   = a + xi * (b - a);
-            const Tensor<1, 2> r   = x - c;
-            const double       eta = (-r[0] * n[1] + r[1] * n[0]) / det;
-            points.push_back(
-              {o,
-               xi,
-               eta,
-               x,
-               c + eta * cd,
-               gauss.weight(q) * (overlap.end - overlap.begin) * h});
-          }
-      }
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+        points.push_back(overlap_point(o, gauss.point(q)[0], gauss.weight(q)));
     return points;
+  }
+
+
+
+  bool
+  MortarInterface::overlap_is_straight(const unsigned int o) const
+  {
+    return !slave_segments[overlap_list[o].slave_segment].curved &&
+           !master_segments[overlap_list[o].master_segment].curved;
+  }
+
+
+
+  MortarInterface::OverlapPoint
+  MortarInterface::overlap_point(const unsigned int o,
+                                 const double       t,
+                                 const double       weight) const
+  {
+    const Overlap &overlap = overlap_list[o];
+    const Segment &s_seg   = slave_segments[overlap.slave_segment];
+    const Segment &m_seg   = master_segments[overlap.master_segment];
+    const double   xi      = overlap.begin + (overlap.end - overlap.begin) * t;
+    if (s_seg.curved || m_seg.curved)
+      {
+        const SegmentCurve x   = segment_curve(slave, s_seg, slave_degree);
+        const SegmentCurve y   = segment_curve(master, m_seg, master_degree);
+        const double       eta = project_onto_master(x, y, s_seg, xi).first;
+        return {o,
+                xi,
+                eta,
+                x.value(xi),
+                y.value(eta),
+                weight * (overlap.end - overlap.begin) *
+                  x.derivative(xi).norm()};
+      }
+    const Point<2>    &a   = slave[s_seg.nodes[0]].position;
+    const Point<2>    &b   = slave[s_seg.nodes[1]].position;
+    const Point<2>    &c   = master[m_seg.nodes[0]].position;
+    const Point<2>    &d   = master[m_seg.nodes[1]].position;
+    const Tensor<1, 2> n   = s_seg.normal;
+    const Tensor<1, 2> cd  = d - c;
+    const double       det = -cd[0] * n[1] + cd[1] * n[0];
+    const Point<2>     x   = a + xi * (b - a);
+    const Tensor<1, 2> r   = x - c;
+    const double       eta = (-r[0] * n[1] + r[1] * n[0]) / det;
+    return {o,
+            xi,
+            eta,
+            x,
+            c + eta * cd,
+            weight * (overlap.end - overlap.begin) * (b - a).norm()};
   }
 
 

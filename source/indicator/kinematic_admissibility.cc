@@ -338,13 +338,18 @@ namespace coulomb_adapt
     KinematicAdmissibility                                          result;
     const std::array<const std::vector<MortarInterface::Node> *, 2> nodes = {
       {&mortar.slave_nodes(), &mortar.master_nodes()}};
-    const auto points =
+    std::vector<MortarInterface::OverlapPoint> points =
       mortar.overlap_quadrature(gap_sample_rule(mortar.slave_element_degree()));
     std::array<std::vector<Tensor<1, 2>>, 2> values;
     for (unsigned int s = 0; s < 2; ++s)
       values[s] =
         MortarInterface::gather_nodal_displacements(*nodes[s],
                                                     *displacements[s]);
+    // The samples are the opening's points, and so are the gap's minima
+    // between them (interior_gap_minima()): one that penetrates is lifted
+    // like they are.
+    const auto minima = interior_gap_minima(mortar, values[0], values[1]);
+    points.insert(points.end(), minima.begin(), minima.end());
     const double negligible = negligible_penetration(values[0], values[1]);
     std::vector<double> gaps =
       pointwise_gaps(mortar, points, values[0], values[1]);
@@ -376,30 +381,31 @@ namespace coulomb_adapt
     for (unsigned int s = 0; s < 2; ++s)
       stiffness[s] = opening_stiffness(*nodes[s], normals[s], *bodies[s]);
     // The nodes that lift each point, and the points each node lifts.
-    std::vector<std::vector<Candidate>> lifters(points.size());
+    std::vector<std::vector<Candidate>> lifters;
     // Per node: (point, rise) of every point it lifts.
     using LiftedPoints =
       std::vector<std::vector<std::pair<unsigned int, double>>>;
     std::array<LiftedPoints, 2> lifted = {
       {LiftedPoints(nodes[0]->size()), LiftedPoints(nodes[1]->size())}};
+    const auto add_lifters = [&](const unsigned int q) {
+      const auto &overlap = mortar.overlaps()[points[q].overlap];
+      const auto &s_seg   = mortar.slave_segment_list()[overlap.slave_segment];
+      const auto &m_seg = mortar.master_segment_list()[overlap.master_segment];
+      const auto  phi_s = mortar.slave_shape_values(points[q].xi);
+      const auto  phi_m = mortar.master_shape_values(points[q].eta);
+      const Tensor<1, 2> n = gap_normal(mortar, points[q]);
+      lifters.emplace_back();
+      for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
+        lifters[q].push_back(
+          {0, s_seg.nodes[k], phi_s[k] * (normals[0][s_seg.nodes[k]] * n)});
+      for (unsigned int k = 0; k < m_seg.nodes.size(); ++k)
+        lifters[q].push_back(
+          {1, m_seg.nodes[k], -phi_m[k] * (normals[1][m_seg.nodes[k]] * n)});
+      for (const auto &c : lifters[q])
+        lifted[c.side][c.node].emplace_back(q, c.rise);
+    };
     for (unsigned int q = 0; q < points.size(); ++q)
-      {
-        const auto &overlap = mortar.overlaps()[points[q].overlap];
-        const auto &s_seg = mortar.slave_segment_list()[overlap.slave_segment];
-        const auto &m_seg =
-          mortar.master_segment_list()[overlap.master_segment];
-        const auto         phi_s = mortar.slave_shape_values(points[q].xi);
-        const auto         phi_m = mortar.master_shape_values(points[q].eta);
-        const Tensor<1, 2> n     = gap_normal(mortar, points[q]);
-        for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
-          lifters[q].push_back(
-            {0, s_seg.nodes[k], phi_s[k] * (normals[0][s_seg.nodes[k]] * n)});
-        for (unsigned int k = 0; k < m_seg.nodes.size(); ++k)
-          lifters[q].push_back(
-            {1, m_seg.nodes[k], -phi_m[k] * (normals[1][m_seg.nodes[k]] * n)});
-        for (const auto &c : lifters[q])
-          lifted[c.side][c.node].emplace_back(q, c.rise);
-      }
+      add_lifters(q);
 
     // Worst penetration first, each by its cheapest openings of the nodes
     // that can lift it; the gaps move linearly with the openings, so they
@@ -424,43 +430,77 @@ namespace coulomb_adapt
     // A point no free node can open stays penetrating (penetration_after
     // says so); the others are still opened.
     std::vector<bool> unopenable(points.size(), false);
-    for (unsigned int step = 0; step < 4 * points.size(); ++step)
+    const auto        open_worst_first = [&]() {
+      for (unsigned int step = 0; step < 4 * points.size(); ++step)
+        {
+          unsigned int worst = points.size();
+          double       depth = negligible;
+          for (unsigned int q = 0; q < points.size(); ++q)
+            if (!unopenable[q] && -gaps[q] > depth)
+              {
+                depth = -gaps[q];
+                worst = q;
+              }
+          if (worst == points.size())
+            break;
+          std::vector<Candidate> usable;
+          for (const auto &c : lifters[worst])
+            if (c.rise > 1e-3 && std::isfinite(stiffness[c.side][c.node]) &&
+                stiffness[c.side][c.node] > 0)
+              usable.push_back(c);
+          if (usable.empty())
+            {
+              unopenable[worst] = true;
+              continue;
+            }
+          std::vector<OpeningCost> costs;
+          for (const auto &c : usable)
+            costs.push_back({c.rise,
+                             stiffness[c.side][c.node],
+                             pressure_work[c.side][c.node],
+                             opening[c.side][c.node]});
+          const std::vector<double> amounts = least_cost_openings(costs, depth);
+          for (unsigned int k = 0; k < usable.size(); ++k)
+            if (amounts[k] > 0)
+              {
+                opening[usable[k].side][usable[k].node] += amounts[k];
+                for (const auto &[q, rise] :
+                     lifted[usable[k].side][usable[k].node])
+                  gaps[q] += amounts[k] * rise;
+              }
+        }
+    };
+    open_worst_first();
+    // Opening moves the gaps' minima between the samples: a minimum of the
+    // opened gaps that penetrates becomes a point of its own and is lifted
+    // in turn. On blocks with the centre line held the first opening left
+    // 1.2e-8 mm (P2 triangles) and 2.9e-8 mm (Q2) at such minima, hertz P2
+    // (curved) 2.1e-9 mm; the rounds after it left 1.8e-10 and 3e-13 mm,
+    // 1e-12 mm and 4.5e-11 mm.
+    for (unsigned int round = 0;
+         round < 8 && mortar.slave_element_degree() >= 2;
+         ++round)
       {
-        unsigned int worst = points.size();
-        double       depth = negligible;
-        for (unsigned int q = 0; q < points.size(); ++q)
-          if (!unopenable[q] && -gaps[q] > depth)
+        std::array<std::vector<Tensor<1, 2>>, 2> opened = values;
+        for (unsigned int s = 0; s < 2; ++s)
+          for (unsigned int j = 0; j < nodes[s]->size(); ++j)
+            opened[s][j] -= opening[s][j] * normals[s][j];
+        const auto vertices = interior_gap_minima(mortar, opened[0], opened[1]);
+        const std::vector<double> vertex_gaps =
+          pointwise_gaps(mortar, vertices, opened[0], opened[1]);
+        bool penetrating = false;
+        for (unsigned int k = 0; k < vertices.size(); ++k)
+          if (-vertex_gaps[k] > negligible)
             {
-              depth = -gaps[q];
-              worst = q;
+              points.push_back(vertices[k]);
+              gaps.push_back(vertex_gaps[k]);
+              unopenable.push_back(false);
+              add_lifters(points.size() - 1);
+              penetrating = true;
             }
-        if (worst == points.size())
+        if (!penetrating)
           break;
-        std::vector<Candidate> usable;
-        for (const auto &c : lifters[worst])
-          if (c.rise > 1e-3 && std::isfinite(stiffness[c.side][c.node]) &&
-              stiffness[c.side][c.node] > 0)
-            usable.push_back(c);
-        if (usable.empty())
-          {
-            unopenable[worst] = true;
-            continue;
-          }
-        std::vector<OpeningCost> costs;
-        for (const auto &c : usable)
-          costs.push_back({c.rise,
-                           stiffness[c.side][c.node],
-                           pressure_work[c.side][c.node],
-                           opening[c.side][c.node]});
-        const std::vector<double> amounts = least_cost_openings(costs, depth);
-        for (unsigned int k = 0; k < usable.size(); ++k)
-          if (amounts[k] > 0)
-            {
-              opening[usable[k].side][usable[k].node] += amounts[k];
-              for (const auto &[q, rise] :
-                   lifted[usable[k].side][usable[k].node])
-                gaps[q] += amounts[k] * rise;
-            }
+        open_worst_first();
       }
 
     // u^ = U_c + delta, delta given at the opened nodes and extended into
@@ -516,6 +556,11 @@ namespace coulomb_adapt
                                                                 opened_ghosted);
       }
 
+    // The opening moves the minima between the samples: u^'s own are
+    // measured.
+    const auto opened_minima =
+      interior_gap_minima(mortar, values[0], values[1]);
+    points.insert(points.end(), opened_minima.begin(), opened_minima.end());
     for (const double g : pointwise_gaps(mortar, points, values[0], values[1]))
       if (-g > negligible)
         result.penetration_after = std::max(result.penetration_after, -g);

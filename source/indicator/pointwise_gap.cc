@@ -1,11 +1,133 @@
 #include <coulomb_adapt/indicator/pointwise_gap.h>
 
+#include <algorithm>
+#include <optional>
+
 namespace coulomb_adapt
 {
   QGaussLobatto<1>
   gap_sample_rule(const unsigned int degree)
   {
     return QGaussLobatto<1>(degree == 1 ? 2 : 9);
+  }
+
+
+
+  namespace
+  {
+    // The gap at parameter t of overlap o.
+    double
+    gap_at(const MortarInterface           &mortar,
+           const unsigned int               o,
+           const double                     t,
+           const std::vector<Tensor<1, 2>> &slave_values,
+           const std::vector<Tensor<1, 2>> &master_values)
+    {
+      return pointwise_gaps(mortar,
+                            {mortar.overlap_point(o, t, 0.)},
+                            slave_values,
+                            master_values)[0];
+    }
+
+
+
+    // The vertex of the parabola through the gaps at the overlap's ends
+    // and middle, where it opens upwards and lies inside.
+    std::optional<double>
+    parabola_vertex(const double g0, const double g_half, const double g1)
+    {
+      const double curvature = 2 * (g0 - 2 * g_half + g1); // g''/2
+      const double slope     = g1 - g0 - curvature;        // g'(0)
+      if (!(curvature > 0))
+        return std::nullopt;
+      const double t = -slope / (2 * curvature);
+      if (t > 0 && t < 1)
+        return t;
+      return std::nullopt;
+    }
+
+
+
+    // On a curved overlap: from the smallest of the gap's samples inside
+    // it, successive parabolic interpolation through it and its
+    // neighbours, each step keeping the three best points around the
+    // minimum (a bracket that only shrinks), until the bracket is 1e-10
+    // of the overlap or a step no longer lowers the gap. None where the
+    // smallest sample is at an end.
+    std::optional<double>
+    curved_gap_minimum(const MortarInterface           &mortar,
+                       const unsigned int               o,
+                       const std::vector<Tensor<1, 2>> &slave_values,
+                       const std::vector<Tensor<1, 2>> &master_values,
+                       const Quadrature<1>             &samples)
+    {
+      std::vector<double> g(samples.size());
+      for (unsigned int k = 0; k < samples.size(); ++k)
+        g[k] =
+          gap_at(mortar, o, samples.point(k)[0], slave_values, master_values);
+      const unsigned int i = std::min_element(g.begin(), g.end()) - g.begin();
+      if (i == 0 || i + 1 == samples.size())
+        return std::nullopt;
+      double a = samples.point(i - 1)[0], b = samples.point(i)[0],
+             c  = samples.point(i + 1)[0];
+      double ga = g[i - 1], gb = g[i], gc = g[i + 1];
+      for (unsigned int step = 0; step < 50 && c - a > 1e-10; ++step)
+        {
+          const double p = (b - a) * (gb - gc), q = (b - c) * (gb - ga);
+          const double denominator = 2 * (p - q);
+          if (!(denominator != 0))
+            break;
+          const double u = b - ((b - a) * p - (b - c) * q) / denominator;
+          if (!(u > a && u < c) || u == b)
+            break;
+          const double gu = gap_at(mortar, o, u, slave_values, master_values);
+          if (gu < gb)
+            {
+              (u < b ? c : a)   = b;
+              (u < b ? gc : ga) = gb;
+              b                 = u;
+              gb                = gu;
+            }
+          else
+            {
+              (u < b ? a : c)   = u;
+              (u < b ? ga : gc) = gu;
+            }
+        }
+      return b;
+    }
+  } // namespace
+
+
+
+  std::vector<MortarInterface::OverlapPoint>
+  interior_gap_minima(const MortarInterface           &mortar,
+                      const std::vector<Tensor<1, 2>> &slave_values,
+                      const std::vector<Tensor<1, 2>> &master_values)
+  {
+    std::vector<MortarInterface::OverlapPoint> minima;
+    const unsigned int degree = mortar.slave_element_degree();
+    if (degree < 2)
+      return minima;
+    AssertThrow(degree == 2,
+                ExcNotImplemented(
+                  "the gap's minima of segments of degree > 2"));
+    const QGaussLobatto<1> samples = gap_sample_rule(degree);
+    for (unsigned int o = 0; o < mortar.overlaps().size(); ++o)
+      {
+        std::optional<double> t;
+        if (mortar.overlap_is_straight(o))
+          t =
+            parabola_vertex(gap_at(mortar, o, 0., slave_values, master_values),
+                            gap_at(mortar, o, 0.5, slave_values, master_values),
+                            gap_at(mortar, o, 1., slave_values, master_values));
+        else
+          t =
+            curved_gap_minimum(mortar, o, slave_values, master_values, samples);
+        if (t)
+          minima.push_back(mortar.overlap_point(o, *t, 0.));
+      }
+    return minima;
   }
 
 

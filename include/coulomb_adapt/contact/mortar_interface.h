@@ -186,6 +186,21 @@ namespace coulomb_adapt
     std::vector<OverlapPoint>
     overlap_quadrature(const Quadrature<1> &quadrature) const;
 
+    /** Whether overlap @p o faces a straight master segment from a
+     * straight slave segment: the master parameter is then affine in the
+     * slave parameter, and the gap of segments of degree p is a
+     * polynomial of degree p along the overlap. */
+    bool
+    overlap_is_straight(const unsigned int o) const;
+
+    /** The point at @p t in [0, 1] of overlap @p o, its weight @p weight
+     * times the overlap's length element (what overlap_quadrature() makes
+     * of each quadrature point). */
+    OverlapPoint
+    overlap_point(const unsigned int o,
+                  const double       t,
+                  const double       weight) const;
+
     /** Whether the master surface covers slave node j's support
      * completely (sum_l M_jl = D_jj): only such nodes can come into
      * contact; the others lie beyond the master's edge. */

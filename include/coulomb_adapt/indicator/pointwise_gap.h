@@ -27,10 +27,28 @@ namespace coulomb_adapt
    * ends (the gap of linear segments is linear in between, so its
    * smallest value is at an end) and, for quadratic segments, enough
    * points between them to see a parabola's minimum to a fraction of its
-   * depth.
+   * depth. interior_gap_minima() adds the minima between them.
    */
   QGaussLobatto<1>
   gap_sample_rule(const unsigned int degree);
+
+  /**
+   * Where the gap of the nodal displacements @p slave_values,
+   * @p master_values of quadratic segments is smallest inside each
+   * overlap: points the samples of gap_sample_rule() can miss (a
+   * parabola's minimum between two of 9 Gauss-Lobatto points lies below
+   * both). On a straight overlap (MortarInterface::overlap_is_straight())
+   * the gap is a parabola in the overlap's parameter: its vertex, where it
+   * opens upwards and lies inside, exactly. On a curved one it is smooth
+   * but no polynomial: the minimum near the smallest interior sample, by
+   * successive parabolic interpolation. As points of weight 0 (samples,
+   * not quadrature points); none for linear segments, whose gap is
+   * smallest at an overlap's end.
+   */
+  std::vector<MortarInterface::OverlapPoint>
+  interior_gap_minima(const MortarInterface           &mortar,
+                      const std::vector<Tensor<1, 2>> &slave_values,
+                      const std::vector<Tensor<1, 2>> &master_values);
 
   /**
    * The normal in which the gap is measured at @p point: the slave
