@@ -36,34 +36,25 @@ usage: cre_dirichlet_lift.py EXE PRM_DIR OUTPUT_DIR MPIEXEC
 import json
 import math
 import os
-import shutil
-import subprocess
 import sys
+
+from coulomb_adapt_run import run_cycles
 
 
 def run(exe, prm_dir, directory, cell_type, degree, lift=None, ranks=1,
         mpiexec=None, extra=(), prm="two_body_demo.prm"):
-    shutil.rmtree(directory, ignore_errors=True)
-    command = ([mpiexec, "-np", str(ranks)] if ranks > 1 else []) + \
-        [exe, os.path.join(prm_dir, prm)]
-    for setting in ["Mesh/Cell type=" + cell_type,
-                    "Finite elements/Polynomial degree=%d" % degree,
-                    "Mesh/Global refinements=0",
-                    "Adaptation/Number of cycles=3",
-                    "Error indicator/Estimator=cre",
-                    "Error indicator/Compute exact error=true",
-                    "Output/Write VTU=false",
-                    "Output/Output directory=" + directory] + \
-            ([] if lift is None else
-             ["Error indicator/CRE lift of displacement data=" +
-              str(lift).lower()]) + list(extra):
-        command += ["-s", setting]
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit("run failed (%s):\n%s%s" %
-                 (" ".join(command), result.stdout, result.stderr))
-    with open(os.path.join(directory, "summary.json")) as f:
-        return json.load(f)["cycles"]
+    settings = ["Mesh/Cell type=" + cell_type,
+                "Finite elements/Polynomial degree=%d" % degree,
+                "Mesh/Global refinements=0",
+                "Adaptation/Number of cycles=3",
+                "Error indicator/Estimator=cre",
+                "Error indicator/Compute exact error=true",
+                "Output/Write VTU=false"] + \
+        ([] if lift is None else
+         ["Error indicator/CRE lift of displacement data=" +
+          str(lift).lower()]) + list(extra)
+    return run_cycles(exe, os.path.join(prm_dir, prm), directory, settings,
+                      ranks, mpiexec)[0]
 
 
 def main():

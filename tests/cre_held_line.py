@@ -21,37 +21,27 @@ above 1e-8 of the largest element residual, with the warning.
 usage: cre_held_line.py EXE PRM_DIR OUTPUT_DIR
 """
 
-import json
 import os
 import re
-import shutil
-import subprocess
 import sys
+
+from coulomb_adapt_run import run_cycles
 
 WARNING = "cre: warning: the reaction of nodes held"
 
 
 def run(exe, prm_dir, directory, hold):
-    shutil.rmtree(directory, ignore_errors=True)
-    command = [exe, os.path.join(prm_dir, "punch.prm")]
-    for setting in ["Mesh/Cell type=triangle", "Adaptation/Strategy=remesh",
-                    "Error indicator/Estimator=cre",
-                    "Adaptation/Target error=2",
-                    "Adaptation/Number of cycles=2",
-                    "Adaptation/Minimum number of cycles=2",
-                    "Output/Write cycles=none",
-                    "Scene/Punch/Hold centre line=" + str(hold).lower(),
-                    "Output/Output directory=" + directory]:
-        command += ["-s", setting]
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit("run failed (%s):\n%s%s" %
-                 (" ".join(command), result.stdout, result.stderr))
-    with open(os.path.join(directory, "summary.json")) as f:
-        cycles = json.load(f)["cycles"]
+    cycles, log = run_cycles(
+        exe, os.path.join(prm_dir, "punch.prm"), directory,
+        ["Mesh/Cell type=triangle", "Adaptation/Strategy=remesh",
+         "Error indicator/Estimator=cre",
+         "Adaptation/Target error=2",
+         "Adaptation/Number of cycles=2",
+         "Adaptation/Minimum number of cycles=2",
+         "Output/Write cycles=none",
+         "Scene/Punch/Hold centre line=" + str(hold).lower()])
     # The log's cycles: the text up to each cycle's "Cycle N: ..." line.
-    logs = re.split(r"\nCycle [0-9]+: ", result.stdout)
-    return cycles, logs
+    return cycles, re.split(r"\nCycle [0-9]+: ", log)
 
 
 def main():
@@ -86,20 +76,13 @@ def main():
             if not hold and not (defect < 1e-5 and not warned):
                 failures.append("not held, cycle %d: defect %g, warning %s"
                                 % (c, defect, warned))
-    directory = os.path.join(output, "press_fit")
-    shutil.rmtree(directory, ignore_errors=True)
-    command = [exe, os.path.join(prm_dir, "press_fit.prm"),
-               "-s", "Error indicator/Estimator=cre",
-               "-s", "Output/Write cycles=none",
-               "-s", "Output/Output directory=" + directory]
-    result = subprocess.run(command, capture_output=True, text=True,
-                            cwd=os.path.dirname(prm_dir))
-    if result.returncode != 0:
-        sys.exit("run failed (%s):\n%s%s" %
-                 (" ".join(command), result.stdout, result.stderr))
-    with open(os.path.join(directory, "summary.json")) as f:
-        cre = json.load(f)["cycles"][0]["cre"]
-    warned = WARNING in result.stdout
+    cycles, log = run_cycles(
+        exe, os.path.join(prm_dir, "press_fit.prm"),
+        os.path.join(output, "press_fit"),
+        ["Error indicator/Estimator=cre", "Output/Write cycles=none"],
+        cwd=os.path.dirname(prm_dir))
+    cre = cycles[0]["cre"]
+    warned = WARNING in log
     print("press_fit (point supports): uncarried reaction %s, warning %s" %
           ("> 1e-8" if cre["uncarried_held_reaction"] > 1e-8 else "<= 1e-8",
            "yes" if warned else "no"))

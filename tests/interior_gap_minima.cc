@@ -131,18 +131,37 @@ namespace
   // can only be below their smallest, by at most what a parabola of
   // curvature g'' = 1/R dips between two of them, (1/R)/2 (Delta/2)^2
   // with Delta the overlap's length / 2000 (checked with a factor 2), and
-  // it must undercut the 9 samples' smallest.
+  // it must undercut the 9 samples' smallest. With @p in_end_interval
+  // alpha puts the minimum inside the first of the 8 sample intervals of
+  // the overlap that held it, where the smallest sample of that overlap
+  // is its end.
   void
-  check_curved()
+  check_curved(const bool in_end_interval)
   {
     const testing::SceneInterface interface(
       {{"Scene/Name", "hertz"},
        {"Mesh/Cell type", "triangle"},
        {"Finite elements/Polynomial degree", "2"}});
-    const MortarInterface &mortar = interface.mortar;
+    const MortarInterface &mortar         = interface.mortar;
+    const double           radius         = 100; // the scene's default 'Radius'
+    const double           first_interval = gap_sample_rule(2).point(1)[0];
 
-    const double alpha = 1.234e-3;
-    const auto   slave_values =
+    double alpha = 1.234e-3;
+    if (in_end_interval)
+      {
+        // The overlap where alpha = 1.234e-3 puts the minimum, and the
+        // middle of its first sample interval.
+        const auto tilted = interior_gap_minima(
+          mortar,
+          vertical(mortar.slave_nodes(),
+                   [&](const double x) { return -alpha * x; }),
+          vertical(mortar.master_nodes(), [](const double) { return 0.; }));
+        AssertThrow(tilted.size() == 1, ExcInternalError());
+        alpha = mortar.overlap_point(tilted[0].overlap, first_interval / 2, 0.)
+                  .slave_point[0] /
+                radius;
+      }
+    const auto slave_values =
       vertical(mortar.slave_nodes(),
                [&](const double x) { return -alpha * x; });
     const auto master_values =
@@ -178,7 +197,6 @@ namespace
     const unsigned int k_found =
       std::min_element(minima_gaps.begin(), minima_gaps.end()) -
       minima_gaps.begin();
-    const double radius = 100; // the scene's default 'Radius'
     const double overlap_length =
       (mortar.overlap_point(dense[k_dense].overlap, 1., 0.).slave_point -
        mortar.overlap_point(dense[k_dense].overlap, 0., 0.).slave_point)
@@ -190,11 +208,19 @@ namespace
     const double x_error =
       std::abs(minima[k_found].slave_point[0] - dense[k_dense].slave_point[0]);
 
+    const auto  &overlap = mortar.overlaps()[minima[k_found].overlap];
+    const double t_found =
+      (minima[k_found].xi - overlap.begin) / (overlap.end - overlap.begin);
+    const bool in_first_interval =
+      std::min(t_found, 1 - t_found) < first_interval;
+
     auto out = testing::root_output();
-    out << "hertz, P2 triangles, disc tilted: " << n_curved
-        << " curved overlaps; smallest gap inside them " << std::setprecision(6)
-        << minima_gaps[k_found]
+    out << "hertz, P2 triangles, disc tilted"
+        << (in_end_interval ? " to a minimum in an end interval" : "") << ": "
+        << n_curved << " curved overlaps; smallest gap inside them "
+        << std::setprecision(6) << minima_gaps[k_found]
         << " mm at x = " << minima[k_found].slave_point[0]
+        << (in_first_interval ? ", between an end and the next sample" : "")
         << "; below the 2,001-point sampling's smallest by "
         << (below >= -1e-14 * scale && below <= dip ? "no more than" :
                                                       "MORE than")
@@ -207,6 +233,8 @@ namespace
                            std::to_string(x_error)));
     AssertThrow(minima_gaps[k_found] < sample_min,
                 ExcMessage("the samples already saw the minimum"));
+    AssertThrow(in_first_interval == in_end_interval,
+                ExcMessage("the minimum is not where the tilt put it"));
   }
 } // namespace
 
@@ -219,5 +247,6 @@ main(int argc, char *argv[])
   check("triangle", "2");
   check("quadrilateral", "2");
   check("triangle", "1");
-  check_curved();
+  check_curved(false);
+  check_curved(true);
 }

@@ -394,6 +394,7 @@ namespace coulomb_adapt
       const auto  phi_s = mortar.slave_shape_values(points[q].xi);
       const auto  phi_m = mortar.master_shape_values(points[q].eta);
       const Tensor<1, 2> n = gap_normal(mortar, points[q]);
+      Assert(q == lifters.size(), ExcInternalError());
       lifters.emplace_back();
       for (unsigned int k = 0; k < s_seg.nodes.size(); ++k)
         lifters[q].push_back(

@@ -48,12 +48,34 @@ namespace coulomb_adapt
 
 
 
-    // On a curved overlap: from the smallest of the gap's samples inside
-    // it, successive parabolic interpolation through it and its
-    // neighbours, each step keeping the three best points around the
-    // minimum (a bracket that only shrinks), until the bracket is 1e-10
-    // of the overlap or a step no longer lowers the gap. None where the
-    // smallest sample is at an end.
+    // The vertex of the parabola through (a, ga), (b, gb), (c, gc), a < b <
+    // c; none where the three points are on a line.
+    std::optional<double>
+    vertex_through(const double a,
+                   const double b,
+                   const double c,
+                   const double ga,
+                   const double gb,
+                   const double gc)
+    {
+      const double p = (b - a) * (gb - gc), q = (b - c) * (gb - ga);
+      const double denominator = 2 * (p - q);
+      if (!(denominator != 0))
+        return std::nullopt;
+      return b - ((b - a) * p - (b - c) * q) / denominator;
+    }
+
+
+
+    // On a curved overlap: from the smallest of the gap's samples,
+    // successive parabolic interpolation through it and its neighbours,
+    // each step keeping the three best points around the minimum (a
+    // bracket a < b < c with g(b) <= g(a), g(c) that only shrinks), until
+    // the bracket is 1e-10 of the overlap, a step lands outside it or on
+    // b, or 50 steps. Where the smallest sample is an end, the gap may
+    // still dip below it within the first (last) interval: the parabola
+    // through the three end samples says where to look, and the bracket
+    // starts there if the gap is lower; else none.
     std::optional<double>
     curved_gap_minimum(const MortarInterface           &mortar,
                        const unsigned int               o,
@@ -61,37 +83,62 @@ namespace coulomb_adapt
                        const std::vector<Tensor<1, 2>> &master_values,
                        const Quadrature<1>             &samples)
     {
-      std::vector<double> g(samples.size());
-      for (unsigned int k = 0; k < samples.size(); ++k)
-        g[k] =
-          gap_at(mortar, o, samples.point(k)[0], slave_values, master_values);
+      const unsigned int  n = samples.size();
+      std::vector<double> t(n), g(n);
+      for (unsigned int k = 0; k < n; ++k)
+        {
+          t[k] = samples.point(k)[0];
+          g[k] = gap_at(mortar, o, t[k], slave_values, master_values);
+        }
       const unsigned int i = std::min_element(g.begin(), g.end()) - g.begin();
-      if (i == 0 || i + 1 == samples.size())
-        return std::nullopt;
-      double a = samples.point(i - 1)[0], b = samples.point(i)[0],
-             c  = samples.point(i + 1)[0];
-      double ga = g[i - 1], gb = g[i], gc = g[i + 1];
+      double             a, b, c, ga, gb, gc;
+      if (i > 0 && i + 1 < n)
+        {
+          a  = t[i - 1];
+          b  = t[i];
+          c  = t[i + 1];
+          ga = g[i - 1];
+          gb = g[i];
+          gc = g[i + 1];
+        }
+      else
+        {
+          // The end sample e and its neighbour f: a dip between them.
+          const bool         first = i == 0;
+          const unsigned int e = i, f = first ? 1 : n - 2,
+                             m = first ? 2 : n - 3;
+          const auto u         = first ?
+                                   vertex_through(t[e], t[f], t[m], g[e], g[f], g[m]) :
+                                   vertex_through(t[m], t[f], t[e], g[m], g[f], g[e]);
+          if (!u || !(std::min(t[e], t[f]) < *u && *u < std::max(t[e], t[f])))
+            return std::nullopt;
+          const double gu = gap_at(mortar, o, *u, slave_values, master_values);
+          if (!(gu < g[e]))
+            return std::nullopt;
+          a  = first ? t[e] : t[f];
+          c  = first ? t[f] : t[e];
+          ga = first ? g[e] : g[f];
+          gc = first ? g[f] : g[e];
+          b  = *u;
+          gb = gu;
+        }
       for (unsigned int step = 0; step < 50 && c - a > 1e-10; ++step)
         {
-          const double p = (b - a) * (gb - gc), q = (b - c) * (gb - ga);
-          const double denominator = 2 * (p - q);
-          if (!(denominator != 0))
+          const auto u = vertex_through(a, b, c, ga, gb, gc);
+          if (!u || !(*u > a && *u < c) || *u == b)
             break;
-          const double u = b - ((b - a) * p - (b - c) * q) / denominator;
-          if (!(u > a && u < c) || u == b)
-            break;
-          const double gu = gap_at(mortar, o, u, slave_values, master_values);
+          const double gu = gap_at(mortar, o, *u, slave_values, master_values);
           if (gu < gb)
             {
-              (u < b ? c : a)   = b;
-              (u < b ? gc : ga) = gb;
-              b                 = u;
-              gb                = gu;
+              (*u < b ? c : a)   = b;
+              (*u < b ? gc : ga) = gb;
+              b                  = *u;
+              gb                 = gu;
             }
           else
             {
-              (u < b ? a : c)   = u;
-              (u < b ? ga : gc) = gu;
+              (*u < b ? a : c)   = *u;
+              (*u < b ? ga : gc) = gu;
             }
         }
       return b;
