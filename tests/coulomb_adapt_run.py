@@ -27,3 +27,13 @@ def run_cycles(exe, prm, directory, settings, ranks=1, mpiexec=None,
                  (" ".join(command), result.stdout, result.stderr))
     with open(os.path.join(directory, "summary.json")) as f:
         return json.load(f)["cycles"], result.stdout
+
+
+def report(failures):
+    """The test's verdict: each failure on its own line and 1, or "OK" and
+    0 (the exit code)."""
+    if failures:
+        print("FAILED:\n  " + "\n  ".join(failures))
+        return 1
+    print("OK")
+    return 0

@@ -25,7 +25,7 @@ import os
 import re
 import sys
 
-from coulomb_adapt_run import run_cycles
+from coulomb_adapt_run import report, run_cycles
 
 WARNING = "cre: warning: the reaction of nodes held"
 
@@ -90,11 +90,7 @@ def main():
         failures.append("press_fit: uncarried %g, warning %s" %
                         (cre["uncarried_held_reaction"], warned))
 
-    if failures:
-        print("FAILED:\n  " + "\n  ".join(failures))
-        return 1
-    print("OK")
-    return 0
+    return report(failures)
 
 
 if __name__ == "__main__":

@@ -20,7 +20,7 @@ import json
 import os
 import sys
 
-from coulomb_adapt_run import run_cycles
+from coulomb_adapt_run import report, run_cycles
 
 
 def main():
@@ -47,11 +47,7 @@ def main():
         if not (abs(ratio - 1) <= 0.02 and overlap <= 1e-4):
             failures.append("%s: p / p0 = %.4f, initial overlap %g mm" %
                             (cell_type, ratio, overlap))
-    if failures:
-        print("FAILED:\n  " + "\n  ".join(failures))
-        return 1
-    print("OK")
-    return 0
+    return report(failures)
 
 
 if __name__ == "__main__":

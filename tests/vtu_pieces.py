@@ -33,6 +33,8 @@ import sys
 import xml.etree.ElementTree as ElementTree
 import zlib
 
+from coulomb_adapt_run import report
+
 MAX_CELLS = 50
 
 
@@ -299,11 +301,7 @@ def main():
               "message, no other temporary file, cycle 0 intact" %
               result.returncode)
 
-    if failures:
-        print("FAILED:\n  " + "\n  ".join(failures))
-        return 1
-    print("OK")
-    return 0
+    return report(failures)
 
 
 if __name__ == "__main__":
