@@ -241,6 +241,57 @@ namespace coulomb_adapt
 
 
 
+  unsigned int
+  node_balancing_friction(const ActiveSetRule       &rule,
+                          const std::vector<double> &previous_weighted_slip,
+                          const std::vector<ContactNodeState> &states,
+                          const std::vector<double>           &velocities)
+  {
+    const double       mu   = rule.friction_coefficient;
+    const unsigned int none = states.size();
+    if (mu == 0 || velocities.size() != states.size())
+      return none;
+    struct Flip
+    {
+      double       at;
+      double       jump;
+      unsigned int node;
+    };
+    std::vector<Flip> flips;
+    double            load = 0, lowest = 0;
+    for (unsigned int j = 0; j < states.size(); ++j)
+      {
+        const ContactNodeState &s = states[j];
+        if (s.status == ContactStatus::open)
+          continue;
+        const double v = velocities[j];
+        load += s.weight * v * s.tangential_traction;
+        const auto [normal, trial] =
+          trial_tractions(s,
+                          previous_weighted_slip[j],
+                          rule.complementarity_constant[j]);
+        const double c = rule.complementarity_constant[j];
+        if (normal <= 0 || v == 0 || c <= 0)
+          continue;
+        const double force = s.weight * std::abs(v) * mu * normal;
+        lowest -= force;
+        flips.push_back({-trial / (c * v), 2 * force, j});
+      }
+    std::sort(flips.begin(), flips.end(), [](const Flip &a, const Flip &b) {
+      return a.at < b.at;
+    });
+    double friction = lowest;
+    for (const Flip &flip : flips)
+      {
+        if (friction <= load && load <= friction + flip.jump)
+          return flip.node;
+        friction += flip.jump;
+      }
+    return none;
+  }
+
+
+
   std::string
   set_signature(const std::vector<ContactNodeState> &states)
   {

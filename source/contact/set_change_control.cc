@@ -76,8 +76,11 @@ namespace coulomb_adapt
                                             restricted_fraction,
                                             states) :
                        update.n_changed;
-    if (update.n_changed > 0 && k > 1)
-      keep_body_held();
+    // After step 1 only where friction can hold the body: its sets come
+    // from the initial gap or a prediction, and a body that slides is
+    // diagnosed at once, not after the kept steps.
+    if (update.n_changed > 0)
+      keep_body_held(k == 1);
 
     const std::string after = set_signature(states);
     for (unsigned int j = 0; j < after.size(); ++j)
@@ -116,7 +119,7 @@ namespace coulomb_adapt
                            restricted_fraction,
                            states);
     if (k > 1)
-      keep_body_held();
+      keep_body_held(false);
     pcout << "    the sets repeat those of step " << repeated
           << ": c_n, c_t reduced to " << std::pow(0.1, n_damping)
           << " times their value (damped set changes)" << std::endl;
@@ -180,23 +183,45 @@ namespace coulomb_adapt
   // stick node as easily as it regains it, so the count applies only
   // before the restriction; the step limit still ends it.
   void
-  SetChangeControl::keep_body_held()
+  SetChangeControl::keep_body_held(const bool only_where_friction_holds)
   {
     if (n_kept_stuck >= max_kept_stuck && !restricted)
       return;
-    const unsigned int j =
+    unsigned int j =
       node_nearest_to_sticking(rule, previous_weighted_slip, states);
     if (j == states.size())
       return;
     // (Every active node slips.) Held without a stick node: by its
     // Dirichlet data, or by the normals of the active nodes alone.
-    if (!support.slip_motion_free(states))
+    const std::vector<double> velocities = support.free_slip_velocities(states);
+    if (velocities.empty())
+      return;
+    // In step 1: the node where friction balances the load along the free
+    // motion, or none (the body slides: the diagnosis follows at step 2).
+    // On blocks with mu = 0.01, remeshed, step 1 lost every stick node and
+    // the solve ended in "would slide" although the load along the
+    // interface is 0. After step 1: the node nearest to sticking (the
+    // balancing node there too sent the stagnating case of
+    // tests/contact_stagnation to "would slide" at step 20).
+    const unsigned int balancing =
+      only_where_friction_holds ?
+        node_balancing_friction(rule,
+                                previous_weighted_slip,
+                                states,
+                                velocities) :
+        states.size();
+    if (balancing != states.size())
+      j = balancing;
+    else if (only_where_friction_holds)
       return;
     states[j].status = ContactStatus::stick;
     if (!restricted)
       ++n_kept_stuck;
     pcout << "    no stick node left: the node at (" << states[j].position[0]
-          << ", " << states[j].position[1]
-          << "), nearest to sticking, stays in stick" << std::endl;
+          << ", " << states[j].position[1] << "), "
+          << (j == balancing ? "where friction balances the load along the "
+                               "interface," :
+                               "nearest to sticking,")
+          << " stays in stick" << std::endl;
   }
 } // namespace coulomb_adapt

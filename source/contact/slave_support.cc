@@ -106,6 +106,41 @@ namespace coulomb_adapt
 
 
 
+  std::vector<double>
+  SlaveSupport::free_slip_velocities(
+    const std::vector<ContactNodeState> &states) const
+  {
+    if (!slip_motion_free(states))
+      return {};
+    Point<2>                 c = centre;
+    const FullMatrix<double> constrained =
+      gram_with_active_nodes(gram, centre, states, c);
+    double L = 0;
+    for (const auto &s : states)
+      if (s.status != ContactStatus::open)
+        L = std::max(L, c.distance(s.position));
+    // The eigenvector of the smallest eigenvalue on the scale of
+    // rigid_motion_left_free (rotation times L), back to (u_x, u_y, theta).
+    const double          scale[3] = {1., 1., L > 0 ? 1. / L : 1.};
+    SymmetricTensor<2, 3> g;
+    for (unsigned int a = 0; a < 3; ++a)
+      for (unsigned int b = a; b < 3; ++b)
+        g[a][b] = scale[a] * constrained(a, b) * scale[b];
+    const Tensor<1, 3>  y = eigenvectors(g)[2].second;
+    std::vector<double> velocities(states.size(), 0.);
+    for (unsigned int j = 0; j < states.size(); ++j)
+      if (states[j].status != ContactStatus::open)
+        {
+          const Tensor<1, 2> r = states[j].position - c;
+          const Tensor<1, 2> m(
+            {y[0] - y[2] * scale[2] * r[1], y[1] + y[2] * scale[2] * r[0]});
+          velocities[j] = m * states[j].tangent;
+        }
+    return velocities;
+  }
+
+
+
   // The rows of the active nodes as in rotation_free, but the test whether
   // they hold every rigid motion compares all three modes on one scale:
   // the rotation about the active nodes' centroid divided by their extent

@@ -112,6 +112,26 @@ namespace coulomb_adapt
                            const std::vector<double> &previous_weighted_slip,
                            const std::vector<ContactNodeState> &states);
 
+  /**
+   * With friction, every active node slipping and a rigid motion of body 1
+   * left free (tangential velocity @p velocities at the nodes,
+   * SlaveSupport::free_slip_velocities()): the node that sticks in the
+   * solution. Moving the body by r along the motion shifts each node's
+   * trial traction by c_j v_j r, so each slip direction flips at its own
+   * r; the friction the active nodes exert along the motion, F(r) = sum_j
+   * D_j v_j mu lambda_n,j sign(trial_j + c_j v_j r), grows by
+   * 2 D_j |v_j| mu lambda_n,j at each flip, while the load along the
+   * motion is what the current tractions exert, F* = sum_j D_j v_j
+   * lambda_t,j (every Newton iterate is in equilibrium). The node whose
+   * flip takes F past F* sticks. states.size() if F* is beyond what
+   * friction can exert (the body slides), or without such nodes.
+   */
+  unsigned int
+  node_balancing_friction(const ActiveSetRule       &rule,
+                          const std::vector<double> &previous_weighted_slip,
+                          const std::vector<ContactNodeState> &states,
+                          const std::vector<double>           &velocities);
+
   /** The sets as a string, one character per node: 'o' open, 't' stick,
    * '+' and '-' slip in either direction. */
   std::string

@@ -95,11 +95,13 @@ namespace coulomb_adapt
     n_damping_steps() const;
 
   private:
-    /** With friction and sets (after step 1) that leave no stick node and
-     * nothing else holding body 1 tangentially: the active node nearest
-     * to sticking stays in stick. */
+    /** With friction and sets that leave no stick node and nothing else
+     * holding body 1 tangentially: with @p only_where_friction_holds (step
+     * 1) the node where friction balances the load along the free motion
+     * (node_balancing_friction()) stays in stick, if there is one;
+     * otherwise the active node nearest to sticking. */
     void
-    keep_body_held();
+    keep_body_held(const bool only_where_friction_holds);
 
     ActiveSetRule                 &rule;
     std::vector<ContactNodeState> &states;

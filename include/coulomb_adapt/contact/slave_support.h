@@ -52,6 +52,12 @@ namespace coulomb_adapt
     bool
     slip_motion_free(const std::vector<ContactNodeState> &states) const;
 
+    /** If slip_motion_free(): the tangential velocity v_j = m(x_j) . t_j at
+     * each node of the rigid motion m that the sets leave free (of unit
+     * size at the active nodes; 0 at open nodes); empty otherwise. */
+    std::vector<double>
+    free_slip_velocities(const std::vector<ContactNodeState> &states) const;
+
   private:
     FullMatrix<double> gram;
     Point<2>           centre;
