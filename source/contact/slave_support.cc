@@ -75,6 +75,43 @@ namespace coulomb_adapt
           }
       return constrained;
     }
+
+
+
+    // gram_with_active_nodes on one scale for all three modes: the
+    // rotation divided by the active nodes' extent L about their centroid
+    // (a rotation of unit size at the farthest active node), so that its
+    // eigenvalues compare with the translations'. L = 0 (a single active
+    // node, or none) leaves the rotation unscaled.
+    struct ScaledActiveGram
+    {
+      FullMatrix<double>    unscaled;
+      SymmetricTensor<2, 3> matrix;
+      Point<2>              active_centre;
+      double                extent = 0;
+    };
+
+    ScaledActiveGram
+    scaled_gram_with_active_nodes(const FullMatrix<double> &gram,
+                                  const Point<2>           &gram_centre,
+                                  const std::vector<ContactNodeState> &states)
+    {
+      ScaledActiveGram result;
+      result.active_centre = gram_centre;
+      result.unscaled =
+        gram_with_active_nodes(gram, gram_centre, states, result.active_centre);
+      for (const auto &s : states)
+        if (s.status != ContactStatus::open)
+          result.extent =
+            std::max(result.extent, result.active_centre.distance(s.position));
+      const double scale[3] = {1.,
+                               1.,
+                               result.extent > 0 ? 1. / result.extent : 1.};
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = a; b < 3; ++b)
+          result.matrix[a][b] = scale[a] * result.unscaled(a, b) * scale[b];
+      return result;
+    }
   } // namespace
 
 
@@ -112,28 +149,20 @@ namespace coulomb_adapt
   {
     if (!slip_motion_free(states))
       return {};
-    Point<2>                 c = centre;
-    const FullMatrix<double> constrained =
-      gram_with_active_nodes(gram, centre, states, c);
-    double L = 0;
-    for (const auto &s : states)
-      if (s.status != ContactStatus::open)
-        L = std::max(L, c.distance(s.position));
-    // The eigenvector of the smallest eigenvalue on the scale of
-    // rigid_motion_left_free (rotation times L), back to (u_x, u_y, theta).
-    const double          scale[3] = {1., 1., L > 0 ? 1. / L : 1.};
-    SymmetricTensor<2, 3> g;
-    for (unsigned int a = 0; a < 3; ++a)
-      for (unsigned int b = a; b < 3; ++b)
-        g[a][b] = scale[a] * constrained(a, b) * scale[b];
-    const Tensor<1, 3>  y = eigenvectors(g)[2].second;
+    const ScaledActiveGram g =
+      scaled_gram_with_active_nodes(gram, centre, states);
+    const Point<2> &c = g.active_centre;
+    // The eigenvector of the smallest eigenvalue, back from the scaled
+    // rotation to (u_x, u_y, theta).
+    const double        rotation_scale = g.extent > 0 ? 1. / g.extent : 1.;
+    const Tensor<1, 3>  y              = eigenvectors(g.matrix)[2].second;
     std::vector<double> velocities(states.size(), 0.);
     for (unsigned int j = 0; j < states.size(); ++j)
       if (states[j].status != ContactStatus::open)
         {
           const Tensor<1, 2> r = states[j].position - c;
-          const Tensor<1, 2> m(
-            {y[0] - y[2] * scale[2] * r[1], y[1] + y[2] * scale[2] * r[0]});
+          const Tensor<1, 2> m({y[0] - y[2] * rotation_scale * r[1],
+                                y[1] + y[2] * rotation_scale * r[0]});
           velocities[j] = m * states[j].tangent;
         }
     return velocities;
@@ -159,23 +188,13 @@ namespace coulomb_adapt
           return s.status != ContactStatus::open;
         }))
       return !coulomb_adapt::holds_all_rigid_motions(gram);
-    Point<2>                 active_centre = gram_centre;
-    const FullMatrix<double> constrained =
-      gram_with_active_nodes(gram, gram_centre, states, active_centre);
-    double L = 0;
-    for (const auto &s : states)
-      if (s.status != ContactStatus::open)
-        L = std::max(L, active_centre.distance(s.position));
+    const ScaledActiveGram g =
+      scaled_gram_with_active_nodes(gram, gram_centre, states);
     // A single active node (L = 0) holds no rotation: only the Dirichlet
     // data can.
-    if (L == 0)
-      return !coulomb_adapt::holds_all_rigid_motions(constrained);
-    const double          scale[3] = {1., 1., 1. / L};
-    SymmetricTensor<2, 3> g;
-    for (unsigned int a = 0; a < 3; ++a)
-      for (unsigned int b = a; b < 3; ++b)
-        g[a][b] = scale[a] * constrained(a, b) * scale[b];
-    const auto values = eigenvalues(g);
-    return values[2] <= 1e-10 * trace(g);
+    if (g.extent == 0)
+      return !coulomb_adapt::holds_all_rigid_motions(g.unscaled);
+    const auto values = eigenvalues(g.matrix);
+    return values[2] <= 1e-10 * trace(g.matrix);
   }
 } // namespace coulomb_adapt
