@@ -1,4 +1,5 @@
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
 
 #include <deal.II/numerics/data_out.h>
 
@@ -7,6 +8,7 @@
 #include <coulomb_adapt/output/file_writer.h>
 
 #include <array>
+#include <optional>
 #include <string>
 
 namespace coulomb_adapt
@@ -25,21 +27,20 @@ namespace coulomb_adapt
 
   namespace
   {
-    // Per-cell fields that show the mesh: material id and subdomain (the
-    // partition), on the owned cells.
-    std::array<Vector<float>, 2>
-    material_and_subdomain(const Triangulation<2> &tria)
+    // The partition, on more than one rank (on one it is 0 everywhere).
+    // No material id: each body has one (its file holds one body), a
+    // constant field that showed nothing and cost about a twelfth of the
+    // writing (benchmarks/adaptive_run).
+    std::optional<Vector<float>>
+    subdomain_field(const Triangulation<2> &tria)
     {
-      std::array<Vector<float>, 2> fields;
-      for (auto &field : fields)
-        field.reinit(tria.n_active_cells());
+      if (Utilities::MPI::n_mpi_processes(tria.get_communicator()) == 1)
+        return std::nullopt;
+      Vector<float> subdomain(tria.n_active_cells());
       for (const auto &cell : tria.active_cell_iterators())
         if (cell->is_locally_owned())
-          {
-            fields[0](cell->active_cell_index()) = cell->material_id();
-            fields[1](cell->active_cell_index()) = cell->subdomain_id();
-          }
-      return fields;
+          subdomain(cell->active_cell_index()) = cell->subdomain_id();
+      return subdomain;
     }
 
 
@@ -97,10 +98,10 @@ namespace coulomb_adapt
     data_out.attach_dof_handler(body.dof_handler());
     const DisplacementStressPostprocessor fields(body.material());
     data_out.add_data_vector(body.solution(), fields);
-    const auto cell_fields = material_and_subdomain(tria);
+    const std::optional<Vector<float>> subdomain = subdomain_field(tria);
     add_error_fields(data_out, error_fields);
-    data_out.add_data_vector(cell_fields[0], "material_id");
-    data_out.add_data_vector(cell_fields[1], "subdomain");
+    if (subdomain)
+      data_out.add_data_vector(*subdomain, "subdomain");
 
     data_out.build_patches(
       body.mapping(),
