@@ -15,11 +15,40 @@
 
 #include <algorithm>
 #include <array>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
 namespace coulomb_adapt
 {
+  namespace
+  {
+    // Where nothing faces body 2 because the curves touch at more than 60
+    // degrees from facing (the mortar leaves such pairs out,
+    // MortarInterface::reinit): say so, instead of "the curves do not face
+    // each other". Empty where no such pair touches.
+    std::string
+    steep_contact_advice(const MortarInterface &mortar)
+    {
+      const auto &steep = mortar.steep_contact();
+      if (!steep)
+        return "";
+      std::ostringstream m;
+      m << std::setprecision(3) << "at (" << steep->position[0] << ", "
+        << steep->position[1] << ") the curves touch at " << steep->angle
+        << " degrees from facing each other (a sharp wedge or corner), "
+        << "and the mortar pairs only segments whose normals are within 60 "
+        << "degrees of opposite (steeper pairs are left out: the gap along "
+        << "the slave normal is not reliable there; doc/contact.md). Make "
+        << "the contact curves "
+        << "meet less steeply there: a blunter wedge (flanks at most 60 "
+        << "degrees from body 2's surface), or a rounded tip.";
+      return m.str();
+    }
+  } // namespace
+
+
+
   ContactSolver::ContactSolver(
     ElasticBody                         &slave,
     ElasticBody                         &master,
@@ -147,7 +176,8 @@ namespace coulomb_adapt
           "sets. Hold one of them (a 'Fixed components' group, or the "
           "scene's supports).",
         k - 1);
-    newton_diagnostics::check_support(support, states, mu, k, slave.name());
+    newton_diagnostics::check_support(
+      support, states, mu, k, slave.name(), steep_contact_advice(mortar));
     check_master_support(k);
     const bool turning = support.rotation_free(states);
     if (turning)

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 // The second half of the mortar interface: the integrals of D, M and g~
 // on the segments that mortar_contact_boundary.cc collects, and what is
@@ -40,6 +41,43 @@ namespace coulomb_adapt
     // cos(60 degrees): the least |n_s . n_m| of segments paired as facing
     // each other (reinit()).
     constexpr double facing_cosine = 0.5;
+
+
+
+    // The distance of point p from the chord a-b.
+    double
+    distance_from_chord(const Point<2> &p, const Point<2> &a, const Point<2> &b)
+    {
+      const Tensor<1, 2> ab     = b - a;
+      const double       length = ab.norm_square();
+      const double       t =
+        length > 0 ? std::clamp((p - a) * ab / length, 0., 1.) : 0.;
+      return p.distance(a + t * ab);
+    }
+
+
+
+    // How near two segments' chords (ends) come, and the slave end
+    // nearest to the master chord: chords that do not cross are nearest
+    // at an end of one of them.
+    std::pair<double, Point<2>>
+    segment_distance(const std::vector<MortarInterface::Node> &slave_nodes,
+                     const MortarInterface::Segment           &slave_segment,
+                     const std::vector<MortarInterface::Node> &master_nodes,
+                     const MortarInterface::Segment           &master_segment)
+    {
+      const Point<2> &a        = slave_nodes[slave_segment.nodes[0]].position;
+      const Point<2> &b        = slave_nodes[slave_segment.nodes[1]].position;
+      const Point<2> &c        = master_nodes[master_segment.nodes[0]].position;
+      const Point<2> &d        = master_nodes[master_segment.nodes[1]].position;
+      const double    from_a   = distance_from_chord(a, c, d);
+      const double    from_b   = distance_from_chord(b, c, d);
+      const double    distance = std::min({from_a,
+                                           from_b,
+                                           distance_from_chord(c, a, b),
+                                           distance_from_chord(d, a, b)});
+      return {distance, from_a <= from_b ? a : b};
+    }
 
 
 
@@ -230,11 +268,41 @@ namespace coulomb_adapt
     // at two flank nodes, the contact there and epsilon = 2867 %;
     // accepting any angle below 90 degrees, as before, only worked where
     // the block ended before the flanks faced it.
+    // The pairs left out by their angle are remembered where they touch,
+    // for the diagnosis of a body that nothing faces (a sharp wedge).
+    nearest_steep_contact.reset();
+    double nearest_distance = std::numeric_limits<double>::max();
     for (unsigned int s = 0; s < slave_segments.size(); ++s)
       for (unsigned int m = 0; m < master_segments.size(); ++m)
-        if (slave_segments[s].normal * master_segments[m].normal <
-            -facing_cosine)
-          integrate_segment_pair(s, m);
+        {
+          const double cosine =
+            slave_segments[s].normal * master_segments[m].normal;
+          if (cosine < -facing_cosine)
+            integrate_segment_pair(s, m);
+          else if (cosine < 0)
+            {
+              const auto [distance, position] = segment_distance(
+                slave, slave_segments[s], master, master_segments[m]);
+              const double length =
+                slave[slave_segments[s].nodes[0]].position.distance(
+                  slave[slave_segments[s].nodes[1]].position);
+              if (distance <= length && distance < nearest_distance)
+                {
+                  nearest_distance = distance;
+                  nearest_steep_contact =
+                    SteepContact{position,
+                                 std::acos(-cosine) * 180. / numbers::PI};
+                }
+            }
+        }
+  }
+
+
+
+  const std::optional<MortarInterface::SteepContact> &
+  MortarInterface::steep_contact() const
+  {
+    return nearest_steep_contact;
   }
 
 

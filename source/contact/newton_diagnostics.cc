@@ -62,7 +62,8 @@ namespace coulomb_adapt
       // moves with it shows here too).
       std::string
       unheld_message(const std::vector<ContactNodeState> &states,
-                     const unsigned int                   step)
+                     const unsigned int                   step,
+                     const std::string                   &why_nothing_faces)
       {
         unsigned int n_facing     = 0;
         double       smallest_gap = std::numeric_limits<double>::max();
@@ -105,6 +106,10 @@ namespace coulomb_adapt
             << "support (over an edge), and no static equilibrium exists "
             << "for it. Check where the load acts and where the bodies "
             << "touch.";
+        else if ((step == 1 || n_facing == 0) && !why_nothing_faces.empty())
+          m << "None of the " << states.size() << " nodes of its contact "
+            << "curve lies opposite body 2's contact curve: "
+            << why_nothing_faces;
         else if (step == 1 || n_facing == 0)
           m << "None of the " << states.size() << " nodes of its contact "
             << "curve lies opposite body 2's contact curve: the two curves "
@@ -151,7 +156,8 @@ namespace coulomb_adapt
                   const std::vector<ContactNodeState> &states,
                   const double                         friction_coefficient,
                   const unsigned int                   step,
-                  const std::string                   &body_name)
+                  const std::string                   &body_name,
+                  const std::string                   &why_nothing_faces)
     {
       unsigned int n_active = 0;
       for (const auto &s : states)
@@ -159,7 +165,8 @@ namespace coulomb_adapt
       const std::string where =
         newton_step(step) + ": body 1 (" + body_name + ") ";
       if (n_active == 0 && !support.holds_all_rigid_motions())
-        throw ContactDiagnosis(where + unheld_message(states, step), step - 1);
+        throw ContactDiagnosis(
+          where + unheld_message(states, step, why_nothing_faces), step - 1);
       check_sliding(support.slip_motion_free(states),
                     states,
                     friction_coefficient,

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <vector>
 
 namespace coulomb_adapt
@@ -201,6 +202,23 @@ namespace coulomb_adapt
                   const double       t,
                   const double       weight) const;
 
+    /** Where the curves touch at more than 60 degrees from facing (a sharp
+     * wedge's tip on a flat): the pairs reinit() leaves out by their
+     * angle. */
+    struct SteepContact
+    {
+      /** The slave segment's end nearest to the master segment. */
+      Point<2> position;
+      /** The angle between -n_slave and n_master, in degrees. */
+      double angle;
+    };
+    /** Of the pairs left out by their angle (between 60 and 90 degrees
+     * from facing), the one whose segments come nearest, if they come
+     * within the slave segment's length of each other; else none. For the
+     * diagnosis of a body that nothing faces. */
+    const std::optional<SteepContact> &
+    steep_contact() const;
+
     /** Whether the master surface covers slave node j's support
      * completely (sum_l M_jl = D_jj): only such nodes can come into
      * contact; the others lie beyond the master's edge. */
@@ -257,6 +275,7 @@ namespace coulomb_adapt
     std::vector<std::map<unsigned int, double>> M;
     std::vector<double>                         gaps;
     std::vector<Overlap>                        overlap_list;
+    std::optional<SteepContact>                 nearest_steep_contact;
     unsigned int                                slave_degree  = 1;
     unsigned int                                master_degree = 1;
     /** Dual basis of the slave segments: psi_i = sum_k A_ik phi_k. */

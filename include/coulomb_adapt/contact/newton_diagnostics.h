@@ -29,13 +29,16 @@ namespace coulomb_adapt
      * with every active node slipping, a rigid motion along which every
      * normal gap stays put is free (check_sliding): the system would be
      * singular, and the static problem has no solution. Throws the
-     * diagnosis if not. */
+     * diagnosis if not. @p why_nothing_faces, if not empty, replaces the
+     * advice when no node faces body 2 (where the curves touch too
+     * steeply to be paired). */
     void
     check_support(const SlaveSupport                  &support,
                   const std::vector<ContactNodeState> &states,
                   const double                         friction_coefficient,
                   const unsigned int                   step,
-                  const std::string                   &body_name);
+                  const std::string                   &body_name,
+                  const std::string                   &why_nothing_faces);
 
     /** Does a body whose contact nodes all slip slide? @p
      * rigid_motion_free: whether the sets and the body's Dirichlet data
