@@ -85,7 +85,8 @@ namespace coulomb_adapt
    * the contact term multiplies with the opened gap. The opening is
    * extended into each body by least energy (a linear solve with
    * @p solver_parameters, on the body's stiffness with the interface
-   * nodes fixed). With @p open false (friction: no bound is claimed) the
+   * nodes that face the other side fixed; those beyond its ends, which no
+   * gap sees, move freely). With @p open false (friction: no bound is claimed) the
    * penetration is only measured.
    */
   KinematicAdmissibility
