@@ -515,6 +515,9 @@ namespace coulomb_adapt
     // facing nodes of straight segments too gave 1.719 %; the facing nodes
     // that are not opened, 1.593 %, but the contact term of their opening
     // under the pressure raised the estimate: 7.871 % instead of 7.347 %.)
+    // Like U_c itself, the free nodes are not checked against the other
+    // body where no segments are paired: penetration_after looks at the
+    // overlaps only.
     std::array<std::vector<bool>, 2> facing = {
       {std::vector<bool>(nodes[0]->size(), false),
        std::vector<bool>(nodes[1]->size(), false)}};

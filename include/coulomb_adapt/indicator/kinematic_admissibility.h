@@ -86,8 +86,8 @@ namespace coulomb_adapt
    * extended into each body by least energy (a linear solve with
    * @p solver_parameters, on the body's stiffness with the interface
    * nodes that face the other side fixed; those beyond its ends, which no
-   * gap sees, move freely). With @p open false (friction: no bound is claimed) the
-   * penetration is only measured.
+   * gap sees, move freely). With @p open false (friction: no bound is
+   * claimed) the penetration is only measured.
    */
   KinematicAdmissibility
   make_kinematically_admissible(
