@@ -96,12 +96,15 @@ CASES = [
       "Error indicator/Reference refinements=3"]),
     # Frictionless punch driven by cre: the block's remeshed nodes miss the
     # punch's corners, where the corrected solution penetrates between the
-    # mortar's nodes (doc/indicator.md section 4c).
+    # mortar's nodes (doc/indicator.md section 4c). Three refinements: the
+    # error is at the punch's singular corners, where the twice refined
+    # reference's extrapolation overestimated it (4.055 % on the second
+    # mesh against 3.585 % with four, 3.688 % extrapolated).
     ("punch mu=0 P1 remesh 5% (cre)", "prm/punch.prm",
      ["Mesh/Cell type=triangle", "Adaptation/Strategy=remesh",
       "Adaptation/Target error=5", "Adaptation/Number of cycles=4",
       "Contact/Friction coefficient=0", "Error indicator/Estimator=cre",
-      "Error indicator/Reference refinements=2"]),
+      "Error indicator/Reference refinements=3"]),
     ("hertz mu=0 P1 remesh 2%", "prm/hertz.prm",
      ["Mesh/Cell type=triangle", "Adaptation/Strategy=remesh",
       "Adaptation/Target error=2", "Adaptation/Number of cycles=4",
