@@ -12,12 +12,14 @@
 //    local problems of degree p + k + 1, 'CRE evaluation degree
 //    increase') and stays above the exact error: effectivity in [1, 2]
 //    (the classical technique has about 2.6 on triangles); k = 3 (the
-//    default) within 5 % of k = 4, where the local problems are resolved;
-//  - frictionless contact, blocks with the centre line held (Q1):
-//    epsilon(cre) >= exact epsilon against a reference 3 refinements finer,
-//    whose own error (from the 2-refinement reference) is printed, with
-//    the relaxed equilibration (its data are exact), which is below the
-//    estimate with the prolongation conditions kept;
+//    default) within 0.5 % of k = 4, where the local problems are
+//    resolved (measured: at most 0.17 %);
+//  - frictionless contact, blocks with the centre line held (Q1 and P1):
+//    epsilon(cre) >= the exact epsilon extrapolated over the judged mesh
+//    and references 2 and 3 refinements finer (the error against the
+//    3-refinement reference alone is low by that reference's own error),
+//    with the relaxed equilibration (its data are exact), which is below
+//    the estimate with the prolongation conditions kept;
 //  - epsilon^2 = sum epsilon_E^2 and homogeneity (loads x 1e3 leave epsilon
 //    and every epsilon_E unchanged), blocks with friction, P1 and P2; there the
 //    truncated minimisation of the relaxed parameters (the default 'CRE
@@ -92,15 +94,19 @@ main(int argc, char **argv)
         const ErrorEstimate e = cre({{p->bodies[0].get(), p->bodies[1].get()}},
                                     p->solver.get(),
                                     p->parameters);
-        const double        epsilon_squared = e.epsilon * e.epsilon;
-        out << "  " << cell_type << ", mu = " << mu << ": epsilon^2 < 1e-13: "
-            << (epsilon_squared < 1e-13 ? "yes" : "no")
+        // epsilon^2 (relative to D^2) is zero up to round-off: measured
+        // 0.7-1.4e-16 (epsilon about 1e-8), the same with the exact minimum
+        // as with the truncated CG, so the floor is round-off in epsilon^2,
+        // not the minimisation's stopping.
+        const double epsilon_squared = e.epsilon * e.epsilon;
+        out << "  " << cell_type << ", mu = " << mu << ": epsilon^2 < 1e-14: "
+            << (epsilon_squared < 1e-14 ? "yes" : "no")
             << ", node systems and local problems consistent to 1e-12: "
             << (e.node_system_defect < 1e-12 && e.local_problem_defect < 1e-12 ?
                   "yes" :
                   "no")
             << std::endl;
-        AssertThrow(epsilon_squared < 1e-13 && e.node_system_defect < 1e-12 &&
+        AssertThrow(epsilon_squared < 1e-14 && e.node_system_defect < 1e-12 &&
                       e.local_problem_defect < 1e-12,
                     ExcMessage("cre patch test failed"));
       }
@@ -154,12 +160,12 @@ main(int argc, char **argv)
           const auto absolute = [](const ErrorEstimate &estimate) {
             return estimate.epsilon * std::sqrt(estimate.normalisation_squared);
           };
-          // Not above by construction; on degree 1 the optimisation must
-          // also gain (a minimisation that left alpha = 0 would pass the
-          // first check alone).
+          // Not above by construction; the optimisation must also gain (a
+          // minimisation that left alpha = 0 would pass the first check
+          // alone): on degree 1 by 17-56 %, on degree 2 by 7-49 %.
           const double ratio = absolute(e) / absolute(classical);
           const bool   below_classical =
-            ratio <= 1 + 1e-12 && (degree != "1" || ratio < 0.99);
+            ratio <= 1 + 1e-12 && ratio < (degree == "1" ? 0.99 : 0.95);
           out << "  p = " << degree << ", " << cell_type << ", refinements "
               << refinements << ": epsilon(cre) " << 100 * e.epsilon
               << " %, exact " << 100 * c.epsilon_exact << " %, effectivity "
@@ -169,13 +175,14 @@ main(int argc, char **argv)
               << (c.effectivity >= 1 && c.effectivity <= 2 ? "yes" : "no")
               << ", ||sigma^ - sigma_c|| / the classical's "
               << std::setprecision(2) << ratio << std::setprecision(3)
-              << " (degree 1: < 0.99): " << (below_classical ? "yes" : "no")
+              << " (< 0.99 on degree 1, 0.95 on 2): "
+              << (below_classical ? "yes" : "no")
               << ", classical tractions kept in body 1, 2: "
               << (e.classical_tractions_kept[0] ? "yes" : "no") << ", "
               << (e.classical_tractions_kept[1] ? "yes" : "no")
-              << "; k = 4: " << 100 * resolved << " %, k = 3 within 5 %: "
-              << (std::abs(e.epsilon - resolved) < 0.05 * resolved ? "yes" :
-                                                                     "no")
+              << "; k = 4: " << 100 * resolved << " %, k = 3 within 0.5 %: "
+              << (std::abs(e.epsilon - resolved) < 0.005 * resolved ? "yes" :
+                                                                      "no")
               << std::endl;
           // The sinusoidal displacement data are not interpolated
           // exactly: with 'CRE lift of displacement data' (the default)
@@ -195,7 +202,7 @@ main(int argc, char **argv)
                                  "tractions lost to the classical ones"));
           AssertThrow(c.effectivity >= 1 && c.effectivity <= 2 &&
                         below_classical &&
-                        std::abs(e.epsilon - resolved) < 0.05 * resolved,
+                        std::abs(e.epsilon - resolved) < 0.005 * resolved,
                       ExcMessage("manufactured: cre effectivity outside [1, 2] "
                                  "or above the classical technique's"));
         }
@@ -203,10 +210,7 @@ main(int argc, char **argv)
   out << "Frictionless contact (blocks, centre line held): epsilon(cre) >= "
          "exact epsilon"
       << std::endl;
-  // Quadrilaterals: the reference's point evaluation on 2 ranks fails for
-  // triangle meshes (RemotePointEvaluation on fully distributed simplex
-  // meshes); triangles are covered against the exact solution above.
-  for (const std::string cell_type : {"quadrilateral"})
+  for (const std::string cell_type : {"quadrilateral", "triangle"})
     {
       const Settings settings = {
         {"Scene/Name", "blocks"},
@@ -223,26 +227,30 @@ main(int argc, char **argv)
       // the set of admissible fields the minimisation sees.
       const double kept =
         cre(bodies, p->solver.get(), p->parameters, true, 3, false).epsilon;
-      std::array<double, 2> exact;
-      for (const unsigned int R : {2u, 3u})
-        {
-          const ReferenceSolutionStress reference(
-            *p->scene, p->parameters, bodies, R, false);
-          exact[R - 2] =
-            compare_with_exact_error(bodies, e, reference).epsilon_exact;
-        }
+      // Against the reference alone the exact error is low by about the
+      // reference's own error (e^2 = e_R^2 + d_R^2 for nested spaces), which
+      // the check must not leave to the estimate: it is extrapolated over
+      // the three levels (judged, R = 2, R = 3; doc/indicator.md 5).
+      const ReferenceSolutionStress reference(*p->scene,
+                                              p->parameters,
+                                              bodies,
+                                              3);
+      const double                  against_reference =
+        compare_with_exact_error(bodies, e, reference).epsilon_exact;
+      const double exact =
+        extrapolated_exact_error(against_reference, reference.own_error(), 3);
       out << "  " << cell_type << ": epsilon(cre) " << 100 * e.epsilon
-          << " %, exact (reference R = 3) " << 100 * exact[1]
-          << " % (R = 2: " << 100 * exact[0] << " %), effectivity "
-          << std::setprecision(2) << e.epsilon / exact[1]
-          << std::setprecision(3)
-          << ", >= 1: " << (e.epsilon >= exact[1] ? "yes" : "no")
-          << "; relaxed: "
+          << " %, exact " << 100 * exact
+          << " % (extrapolated; against the reference R = 3 alone "
+          << 100 * against_reference << " %, its own error "
+          << 100 * reference.own_error() << " %), effectivity "
+          << std::setprecision(2) << e.epsilon / exact << std::setprecision(3)
+          << ", >= 1: " << (e.epsilon >= exact ? "yes" : "no") << "; relaxed: "
           << (e.relaxed_equilibration[0] && e.relaxed_equilibration[1] ? "yes" :
                                                                          "no")
           << ", prolongation conditions kept: " << 100 * kept
           << " %, above: " << (kept >= e.epsilon ? "yes" : "no") << std::endl;
-      AssertThrow(e.epsilon >= exact[1] && exact[1] >= exact[0] &&
+      AssertThrow(exact > against_reference && e.epsilon >= exact &&
                     kept >= e.epsilon && e.relaxed_equilibration[0] &&
                     e.relaxed_equilibration[1],
                   ExcMessage("blocks mu = 0: cre below the exact error, or "
@@ -286,24 +294,27 @@ main(int argc, char **argv)
         largest_change =
           std::max(largest_change, std::abs(i1[i] - i2[i]) / e1.epsilon);
       // Loads x 1e3 change the FE solution by round-off (6.7e-14 of it
-      // with P2 here). Epsilon keeps that to 1e-10, but single cells'
-      // errors carry it further the worse the relaxed system's condition:
-      // P1 4e-15 of epsilon, P2 3.3e-9 (2 ranks: 2.7e-8), with the exact
+      // with P2 here). Epsilon keeps that to 4e-15 (P1) and 6e-11 (P2),
+      // but single cells' errors carry it further the worse the relaxed
+      // system's condition: P1 4e-15 of epsilon, P2 3.3e-9 (2 ranks:
+      // 2.7e-8), with the exact
       // minimum (MUMPS) as with the truncated CG, so it is the system's
       // condition, not the iteration; without the quadratic modes P2's
       // were 5.4e-9 and 4.3e-8. A load-dependent threshold would change
       // them by far more.
-      const double cell_tolerance = degree == "1" ? 1e-9 : 1e-7;
+      const double cell_tolerance    = degree == "1" ? 1e-12 : 1e-7;
+      const double epsilon_tolerance = degree == "1" ? 1e-12 : 1e-9;
       out << "  epsilon(cre) " << 100 * e1.epsilon << " % (contact part "
           << 100 * e1.epsilon_contact
           << " %); |sum epsilon_E^2 - epsilon^2| / epsilon^2 < 1e-12: "
           << (sum_mismatch < 1e-12 ? "yes" : "no")
-          << "; loads x 1e3 change epsilon by < 1e-9 of it: "
-          << (epsilon_change < 1e-9 ? "yes" : "no") << ", every epsilon_E by < "
-          << (degree == "1" ? "1e-9" : "1e-7")
+          << "; loads x 1e3 change epsilon by < "
+          << (degree == "1" ? "1e-12" : "1e-9")
+          << " of it: " << (epsilon_change < epsilon_tolerance ? "yes" : "no")
+          << ", every epsilon_E by < " << (degree == "1" ? "1e-12" : "1e-7")
           << " epsilon: " << (largest_change < cell_tolerance ? "yes" : "no")
           << std::endl;
-      AssertThrow(sum_mismatch < 1e-12 && epsilon_change < 1e-9 &&
+      AssertThrow(sum_mismatch < 1e-12 && epsilon_change < epsilon_tolerance &&
                     largest_change < cell_tolerance,
                   ExcMessage("cre: sum rule or homogeneity broken: largest "
                              "change " +

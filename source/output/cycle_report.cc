@@ -148,6 +148,28 @@ namespace coulomb_adapt
 
 
   void
+  CycleReport::record_claimed_bound(const double estimate)
+  {
+    const std::optional<double> exact = exact_error();
+    if (!exact)
+      return;
+    const bool holds      = estimate >= *exact;
+    record["bound_holds"] = holds;
+    if (!holds)
+      pcout << "  warning: the estimate is below the exact error it claims "
+               "to bound: epsilon = "
+            << std::fixed << std::setprecision(3) << 100 * estimate
+            << " % < exact " << 100 * *exact
+            << " %; check the reference's own error (summary.json "
+               "exact_error_reference_error; 'Error indicator/Reference "
+               "refinements') and the local problems' degree ('Error "
+               "indicator/CRE degree increase', doc/indicator.md 4b)"
+            << std::defaultfloat << std::endl;
+  }
+
+
+
+  void
   CycleReport::record_contact_solve(const ContactSolveOutcome &outcome)
   {
     const ContactSolverReport &report = outcome.report;

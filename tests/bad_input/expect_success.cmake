@@ -4,7 +4,8 @@
 # PREVIOUS_ARGS (optional): a run before, with these arguments instead.
 # ABSENT (optional): a ;-list of glob patterns that must match no file
 # afterwards. UNEXPECTED (optional): a regular expression the standard
-# output must not match (a warning that must be gone).
+# output must not match (a warning that must be gone). A claimed bound
+# below the run's exact error fails unless EXPECTED names it.
 set(launcher)
 if(DEFINED RANKS)
   set(launcher ${MPIEXEC} -np ${RANKS})
@@ -26,6 +27,13 @@ endif()
 string(REPLACE "\n" " " out_one_line "${out}")
 if(NOT out_one_line MATCHES "${EXPECTED}")
   message(FATAL_ERROR "the output does not match\n  '${EXPECTED}':\n${out}")
+endif()
+# A run that computes its exact error checks the bound it claims
+# (CycleReport::record_claimed_bound): its warning fails every test that
+# does not expect it.
+if(out_one_line MATCHES "below the exact error it claims to bound" AND
+   NOT EXPECTED MATCHES "below the exact error it claims to bound")
+  message(FATAL_ERROR "a claimed bound is below the exact error:\n${out}")
 endif()
 if(DEFINED UNEXPECTED AND out_one_line MATCHES "${UNEXPECTED}")
   message(FATAL_ERROR "the output matches '${UNEXPECTED}', which it must not:\n${out}")

@@ -7,6 +7,7 @@
 #include <coulomb_adapt/adaptation/mesh_adaptation.h>
 #include <coulomb_adapt/adaptation/target_calibration.h>
 #include <coulomb_adapt/app/load_scaling.h>
+#include <coulomb_adapt/app/target_claim.h>
 #include <coulomb_adapt/bodies/elastic_bodies.h>
 #include <coulomb_adapt/contact/contact_solve_driver.h>
 #include <coulomb_adapt/contact/contact_solver.h>
@@ -123,6 +124,10 @@ namespace coulomb_adapt
     /** Adapt both meshes for the next cycle (Adaptation/Strategy). */
     void
     refine_grid();
+    /** What this cycle's estimate claims (a bound or not) and, where it
+     * was computed, its exact error (target_claim.h). */
+    TargetClaim
+    target_claim() const;
     /** Whether another cycle is wanted after @p cycle, with the reason. */
     bool
     continue_cycles(const unsigned int            cycle,

@@ -113,6 +113,16 @@ namespace coulomb_adapt
     std::optional<double>
     exact_error() const;
 
+    /** For an estimate that claims to bound the error (target_claim.h),
+     * @p estimate against this cycle's exact error (exact_error()):
+     * summary.json "bound_holds", and a warning in the log where it is
+     * below. The exact error is a reference's, extrapolated over its
+     * levels, so a small shortfall can be the reference's own error as
+     * well as the local problems' discretisation the bound is subject to.
+     * Nothing without an exact error. */
+    void
+    record_claimed_bound(const double estimate);
+
     void
     record_contact_solve(const ContactSolveOutcome &outcome);
 
