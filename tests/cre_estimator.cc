@@ -248,8 +248,12 @@ main(int argc, char **argv)
           << ", >= 1: " << (e.epsilon >= exact ? "yes" : "no") << "; relaxed: "
           << (e.relaxed_equilibration[0] && e.relaxed_equilibration[1] ? "yes" :
                                                                          "no")
-          << ", prolongation conditions kept: " << 100 * kept
-          << " %, above: " << (kept >= e.epsilon ? "yes" : "no") << std::endl;
+          << ", prolongation conditions kept: " << 100 * kept << " %, above: "
+          << (kept >= e.epsilon ? "yes" : "no")
+          // 1e9 epsilon: numdiff's relative tolerance (1e-8) then compares
+          // the 1- and 2-rank estimates to 8 digits, where a percentage's
+          // 3 decimals and the absolute tolerance (1e-6) would let 1e-3 by.
+          << "; 1e9 epsilon(cre) = " << 1e9 * e.epsilon << std::endl;
       AssertThrow(exact > against_reference && e.epsilon >= exact &&
                     kept >= e.epsilon && e.relaxed_equilibration[0] &&
                     e.relaxed_equilibration[1],
@@ -304,8 +308,8 @@ main(int argc, char **argv)
       // them by far more.
       const double cell_tolerance    = degree == "1" ? 1e-12 : 1e-7;
       const double epsilon_tolerance = degree == "1" ? 1e-12 : 1e-9;
-      out << "  epsilon(cre) " << 100 * e1.epsilon << " % (contact part "
-          << 100 * e1.epsilon_contact
+      out << "  epsilon(cre) " << 100 * e1.epsilon << " % (1e9 epsilon "
+          << 1e9 * e1.epsilon << "; contact part " << 100 * e1.epsilon_contact
           << " %); |sum epsilon_E^2 - epsilon^2| / epsilon^2 < 1e-12: "
           << (sum_mismatch < 1e-12 ? "yes" : "no")
           << "; loads x 1e3 change epsilon by < "
