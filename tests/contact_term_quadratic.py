@@ -8,8 +8,9 @@ projection onto the admissible set (indicator/contact_error.cc) c went
 negative: epsilon fell below its own volume parts and "target reached"
 was claimed for a mesh whose volume error alone exceeded the target
 (hertz P2: 0.413 % against 0.423 %). Checks, for each run:
-  - epsilon^2 = vol_1^2 + vol_2^2 + contact^2 (the printed parts, to their
-    3 decimals), hence epsilon >= its volume part;
+  - epsilon^2 = vol_1^2 + vol_2^2 + contact^2, the printed parts to their
+    3 decimals and summary.json's to 1e-12 of epsilon^2, hence epsilon >=
+    its volume part;
   - the contact error density is >= 0 at every slave node (contact CSV).
 Usage: contact_term_quadratic.py EXE OUTPUT_DIR PRM_DIR
 """
@@ -25,10 +26,14 @@ RUNS = {
     "hertz_p2_triangles": ["Mesh/Cell type=triangle"],
     "hertz_q2_frictionless": ["Mesh/Cell type=quadrilateral",
                               "Contact/Friction coefficient=0"],
+    # cre adds the same contact term to its own volume parts.
+    "hertz_p2_frictionless_cre": ["Mesh/Cell type=triangle",
+                                  "Contact/Friction coefficient=0",
+                                  "Error indicator/Estimator=cre"],
 }
-LINE = re.compile(r"error indicator \(zz\): epsilon = ([0-9.]+) % \(volume: "
-                  r"body 1 ([0-9.]+) %, body 2 ([0-9.]+) %; contact "
-                  r"([0-9.]+) %\)")
+LINE = re.compile(r"error indicator \((?:zz|spr|cre)\): epsilon = "
+                  r"([0-9.]+) % \(volume: body 1 ([0-9.]+) %, body 2 "
+                  r"([0-9.]+) %; contact ([0-9.]+) %\)")
 
 
 def main():
@@ -66,6 +71,14 @@ def main():
         if abs(100 * cycle["epsilon"] - eps) > 5e-4:
             failures.append(name + ": summary.json's epsilon differs from "
                             "the log's")
+        squares = (sum(v ** 2 for v in cycle["epsilon_volume"]) +
+                   cycle["epsilon_contact"] ** 2)
+        mismatch = abs(squares - cycle["epsilon"] ** 2) / cycle["epsilon"] ** 2
+        print("%s: |epsilon^2 - sum of the parts' squares| / epsilon^2 = "
+              "%.1e (summary.json)" % (name, mismatch))
+        if mismatch > 1e-12:
+            failures.append("%s: summary.json's parts miss epsilon^2 by "
+                            "%.1e of it" % (name, mismatch))
         with open(os.path.join(directory, "contact_000.csv")) as f:
             densities = [float(r["contact_error_density"])
                          for r in csv.DictReader(f)]
