@@ -17,8 +17,9 @@ false); 'classical tractions' (CRE traction optimisation = false);
 evaluation degree increase = 0); 'zz (for comparison)' (Estimator = zz).
 Each run is one cycle with `Compute exact error = true` and no VTU output,
 one process at a time (one rank, the program's default threads). Before
-each repeat the script waits until no other coulomb-adapt process runs and
-the load average is below --max-load, and records the load average. Within
+each run the script waits (up to --quiet-wait s) until other processes use
+less than 0.3 cores (common.wait_for_quiet), and records that load and
+whether the run stayed clean (other processes' CPU time during it). Within
 a repeat the variants alternate (case after case; the second repeat runs
 them in the reverse order); the tables (--md) give per case and variant the
 minimum time over the repeats (--report: only the tables, from the
@@ -30,12 +31,13 @@ epsilon_exact_extrapolated, theta, the timer sections 'contact solve',
 'error indicator' and 'error indicator: equilibration' (s), their ratio,
 the repeat, the timer section taken for the solve ('contact solve'; the
 manufactured scene has no contact and takes 'solve', its two bodies' separate
-elastic solves without the assembly) and the load average at the run's
-start.
+elastic solves without the assembly), the other processes' busy cores
+before the run and whether it stayed clean (common.Run.clean). The
+committed cre_settings.csv (2026-12-03) has the 1-minute load average at
+each run's start instead of the last two.
 """
 import argparse
 import os
-import subprocess
 import sys
 import time
 
@@ -83,47 +85,9 @@ COMMON = ["Error indicator/Compute exact error=true"]
 FIELDS = ["case", "variant", "n_dofs", "epsilon", "epsilon_exact_extrapolated",
           "theta", "contact_solve_s", "error_indicator_s",
           "indicator_over_solve", "repeat", "equilibration_s",
-          "solve_section", "load_average"]
-
-
-def ancestors():
-    """This process and its ancestors (their command lines may name the
-    executable too)."""
-    pids, pid = set(), os.getpid()
-    while pid > 1 and pid not in pids:
-        pids.add(pid)
-        try:
-            with open("/proc/%d/stat" % pid) as f:
-                pid = int(f.read().rsplit(")", 1)[1].split()[1])
-        except (OSError, ValueError, IndexError):
-            break
-    return pids
-
-
-def others_running(exe):
-    """The other processes whose command line names coulomb-adapt or the
-    executable measured (a copy): another benchmark, between its runs too."""
-    pattern = "coulomb-adapt|" + os.path.basename(exe)
-    out = subprocess.run(["pgrep", "-f", pattern],
-                         capture_output=True, text=True).stdout.split()
-    mine = ancestors()
-    return [p for p in out if int(p) not in mine]
-
-
-def wait_for_machine(exe, max_load, poll=20):
-    """Waits until no other coulomb-adapt process runs and the 1-minute
-    load average is below max_load; returns the load average."""
-    announced = False
-    while True:
-        others, load = others_running(exe), common.loadavg()
-        if not others and load < max_load:
-            return load
-        if not announced:
-            print("    waiting: %s, load average %.2f" % (
-                "other coulomb-adapt processes %s" % " ".join(others)
-                if others else "no other coulomb-adapt", load), flush=True)
-            announced = True
-        time.sleep(poll)
+          "solve_section", "busy_cores_before", "clean"]
+# Other processes' load (cores) below which a repeat starts.
+QUIET_THRESHOLD = 0.3
 
 
 def run_once(exe, prm, settings, timeout):
@@ -146,6 +110,7 @@ def run_once(exe, prm, settings, timeout):
     solve = common.timing(cycle, section, None)
     indicator = common.timing(cycle, "error indicator", None)
     row = {"n_dofs": cycle["n_dofs"], "epsilon": cycle["epsilon"],
+           "clean": result.clean,
            "epsilon_exact_extrapolated": exact,
            "theta": cycle["epsilon"] / exact if exact else None,
            "contact_solve_s": solve, "solve_section": section,
@@ -199,8 +164,9 @@ def main():
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--exe", default=common.DEFAULT_EXE)
     parser.add_argument("--repeats", type=int, default=2)
-    parser.add_argument("--max-load", type=float, default=1.0,
-                        help="the load average below which a repeat starts")
+    parser.add_argument("--quiet-wait", type=float, default=300,
+                        help="at most this many seconds of waiting for a "
+                        "quiet machine before each run")
     parser.add_argument("--timeout", type=float, default=1800)
     parser.add_argument("--csv", default=os.path.join(HERE,
                                                       "cre_settings.csv"))
@@ -222,14 +188,14 @@ def main():
     start = time.perf_counter()
     rows, refused = [], {}
     for repeat in range(args.repeats):
-        load = wait_for_machine(exe, args.max_load)
-        print("repeat %d (load average %.2f)" % (repeat, load), flush=True)
+        print("repeat %d" % repeat, flush=True)
         variants = VARIANTS if repeat % 2 == 0 else VARIANTS[::-1]
         for name, prm, settings in CASES:
             for variant, extra in variants:
                 if (name, variant) in refused:
                     continue
-                load = common.loadavg()
+                load = common.wait_for_quiet(args.quiet_wait,
+                                             QUIET_THRESHOLD)
                 row, message = run_once(exe, prm, settings + extra,
                                         args.timeout)
                 if row is None:
@@ -238,13 +204,14 @@ def main():
                     refused[(name, variant)] = message
                     continue
                 row.update(case=name, variant=variant, repeat=repeat,
-                           load_average=load)
+                           busy_cores_before=load)
                 rows.append(row)
                 print("  %s, %s: %d DoFs, theta %.3f, indicator %.3f s, "
-                      "contact solve %.3f s (load %.2f)" % (
+                      "contact solve %.3f s (busy cores before %.2f%s)" % (
                           name, variant, row["n_dofs"], row["theta"],
                           row["error_indicator_s"], row["contact_solve_s"],
-                          load), flush=True)
+                          load, "" if row["clean"] else ", not clean"),
+                      flush=True)
                 common.write_csv(args.csv, rows, FIELDS)
     common.write_csv(args.csv, rows, FIELDS)
     print("wrote %s; %.0f s in all" % (args.csv, time.perf_counter() - start))
