@@ -159,28 +159,45 @@ namespace coulomb_adapt
       const std::array<const TrilinosWrappers::MPI::Vector *, 2> judged = {
         {&estimate.correction.displacement(0),
          &estimate.correction.displacement(1)}};
+      // With mu = 0 the opening is chosen by the bound it gives, which
+      // needs C = A^2 + 2 int p^ g+(U_c) (the pressure-gap term's cell
+      // maps hold each piece on both sides: 2 int).
+      std::optional<ContactErrorTerm> pressure_gap;
+      double                          hypercircle_squared = 0;
+      if (mu == 0)
+        {
+          pressure_gap = pressure_gap_term(mortar, equilibrium.fields, judged);
+          hypercircle_squared = 2 * pressure_gap->integral;
+          for (unsigned int b = 0; b < 2; ++b)
+            hypercircle_squared += Utilities::MPI::sum(
+              estimate.contribution_squared[b].l1_norm(),
+              bodies[b]->triangulation().get_communicator());
+        }
       const KinematicAdmissibility admissible =
         make_kinematically_admissible(mortar,
                                       bodies,
                                       judged,
                                       nodal_pressures(equilibrium.fields),
                                       solver_parameters,
+                                      hypercircle_squared,
                                       mu == 0);
       estimate.penetration    = admissible.penetration;
       estimate.penetration_at = admissible.where;
       if (mu > 0)
         return;
-      estimate.opening_applied   = admissible.opening_applied;
-      estimate.opened_nodes      = admissible.n_opened_nodes;
-      estimate.penetration_after = admissible.penetration_after;
+      estimate.opening_applied            = admissible.opening_applied;
+      estimate.opened_nodes               = admissible.n_opened_nodes;
+      estimate.penetration_after          = admissible.penetration_after;
+      estimate.narrow_opening_side        = admissible.narrow_side;
+      estimate.narrow_opening_refinements = admissible.narrow_refinements;
+      estimate.narrow_opening_cells       = admissible.narrow_patch_cells;
+      estimate.narrow_opening_fine_cells  = admissible.narrow_fine_cells;
       // sigma^'s pressure is >= 0 wherever its nodal values are (their
       // Bernstein form, on linear segments their interpolant); checked on
       // quadratic segments.
       if (mortar.slave_element_degree() > 1)
         estimate.negative_pressure =
           pressure_gap_negative_pressure(mortar, equilibrium.fields);
-      const ContactErrorTerm pressure_gap =
-        pressure_gap_term(mortar, equilibrium.fields, judged);
       const double opening = std::sqrt(admissible.opening_norm_squared);
       // S < -b^2 / 2 would make the opening's share negative; a larger S
       // only loosens the bound.
@@ -198,8 +215,8 @@ namespace coulomb_adapt
           if (admissible.opened())
             e2.add(opening_share, admissible.opening_squared[b]);
           const auto cells = owned_boundary_cell_indices(*bodies[b]);
-          for (const auto &[id, value] :
-               (b == 0 ? pressure_gap.slave_cells : pressure_gap.master_cells))
+          for (const auto &[id, value] : (b == 0 ? pressure_gap->slave_cells :
+                                                   pressure_gap->master_cells))
             if (const auto c = cells.find(id); c != cells.end())
               e2(c->second) += value;
           volume_squared[b] =

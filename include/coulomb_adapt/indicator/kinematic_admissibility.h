@@ -68,11 +68,18 @@ namespace coulomb_adapt
      * the loads, the computable part of the exact contact traction's
      * work on it (N per unit thickness). */
     double opening_work = 0;
+    /** The body opened narrower than its cells (narrow_opening.h), -1 if
+     * none was (its bound was not lower than the nodal opening's alone),
+     * with the patch's refinements and its judged and fine cells. */
+    int          narrow_side        = -1;
+    unsigned int narrow_refinements = 0;
+    unsigned int narrow_patch_cells = 0;
+    unsigned int narrow_fine_cells  = 0;
 
     bool
     opened() const
     {
-      return n_opened_nodes[0] + n_opened_nodes[1] > 0;
+      return n_opened_nodes[0] + n_opened_nodes[1] > 0 || narrow_side >= 0;
     }
   };
 
@@ -86,8 +93,13 @@ namespace coulomb_adapt
    * extended into each body by least energy (a linear solve with
    * @p solver_parameters, on the body's stiffness with the interface
    * nodes that face the other side fixed; those beyond its ends, which no
-   * gap sees, move freely). With @p open false (friction: no bound is
-   * claimed) the penetration is only measured.
+   * gap sees, move freely). Where the penetration is deep, a narrow
+   * opening of either body (narrow_opening.h) is tried under it, the
+   * nodal opening lifting what it leaves; of these the one with the
+   * smallest bound b + sqrt(@p hypercircle_squared + b^2 + 2 S) is
+   * returned (@p hypercircle_squared: A^2 + 2 int p^ g+ of U_c). With
+   * @p open false (friction: no bound is claimed) the penetration is only
+   * measured.
    */
   KinematicAdmissibility
   make_kinematically_admissible(
@@ -96,6 +108,7 @@ namespace coulomb_adapt
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
     const std::vector<double>                                  &pressure,
     const parameters::LinearSolver &solver_parameters,
+    const double                    hypercircle_squared,
     const bool                      open = true);
 } // namespace coulomb_adapt
 
