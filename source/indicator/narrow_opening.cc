@@ -95,6 +95,8 @@ namespace coulomb_adapt
         if (lo > hi)
           return -1;
         const auto gap = [&](const double tau) {
+          if (tau_1 == tau_0) // An overlap of zero length.
+            return std::min(gap_0, gap_1);
           const double t = (tau - tau_0) / (tau_1 - tau_0);
           return gap_0 + t * (gap_1 - gap_0);
         };
@@ -430,6 +432,17 @@ namespace coulomb_adapt
     // remeshed mesh (cycle 1) epsilon is 6.405 % with at most 4, 6.385 %
     // with 5 at 3.5 times the patch's cost, 6.566 % with 3.
     refinements = std::min(refinements, 4u);
+    // The patch's direct solve stays well within the cost of a body's: at
+    // most half the body's cells (or 20,000) fine cells. Many seeds (a mortar
+    // gap zigzagging along a long zone, each tooth above 1 % of the
+    // deepest) get fewer bisections, and without even one the nodal
+    // opening does it alone.
+    const double budget =
+      std::max(2e4, 0.5 * body.triangulation().n_global_active_cells());
+    while (refinements > 1 && cells.size() * std::pow(4., refinements) > budget)
+      --refinements;
+    if (cells.size() * 4. > budget)
+      return std::nullopt;
 
     NarrowOpening opening;
     opening.side          = side;
@@ -717,6 +730,11 @@ namespace coulomb_adapt
                 delta_values[q] * fe_values.JxW(q);
           }
       }
+    if (!std::isfinite(opening.work) ||
+        !std::all_of(energy.begin(), energy.end(), [](const double e) {
+          return std::isfinite(e);
+        }))
+      return std::nullopt;
     const unsigned int rank = Utilities::MPI::this_mpi_process(comm);
     opening.energy.reinit(body.triangulation().n_active_cells());
     for (unsigned int k = 0; k < cells.size(); ++k)
