@@ -668,10 +668,10 @@ namespace coulomb_adapt
     const double nodal_bound =
       bound(best.opening_norm_squared, best.opening_work);
     // The narrow opening can at most take back what the opening adds to
-    // sqrt(C); where that is below 5 % of the estimate (the deep meshes of
-    // an adaptive run: on the punch's 228,372 DoFs 5.6 %, for a gain of
-    // 2.5 %) it is not worth its patches' solves and a second nodal
-    // opening (4 times this section's time there).
+    // sqrt(C); where that is below 10 % of sqrt(C) (the deep meshes of an
+    // adaptive run: on the punch's 228,372 DoFs 6 %, for a gain of 2.5 %)
+    // it is not worth its patches' solves and a second nodal opening (4
+    // times this section's time there).
     if (result.penetration > 1e3 * negligible &&
         nodal_bound > 1.1 * std::sqrt(hypercircle_squared))
       {

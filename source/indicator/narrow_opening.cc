@@ -184,17 +184,62 @@ namespace coulomb_adapt
       return cells;
     }
 
-    bool
-    touches(const PatchCell             &cell,
-            const std::vector<Point<2>> &points,
-            const double                 tolerance)
+    // Points sorted by x, so that finding those within a tolerance of a
+    // point costs log n: the patch's loops run over every owned cell and
+    // every gathered one, and seeds can be many (a mortar gap zigzagging
+    // along a long zone).
+    class PointLookup
     {
-      for (const auto &v : cell.vertices)
-        for (const auto &p : points)
-          if (v.distance(p) < tolerance)
+    public:
+      PointLookup(const double tolerance)
+        : tolerance(tolerance)
+      {}
+
+      void
+      add(const Point<2> &p, const unsigned int id)
+      {
+        points.push_back({p, id});
+        sorted = false;
+      }
+
+      // The ids of the points within the tolerance of @p p.
+      std::vector<unsigned int>
+      near(const Point<2> &p)
+      {
+        if (!sorted)
+          std::sort(points.begin(),
+                    points.end(),
+                    [](const auto &a, const auto &b) {
+                      return a.first[0] < b.first[0];
+                    });
+        sorted = true;
+        std::vector<unsigned int> ids;
+        auto                      it = std::lower_bound(points.begin(),
+                                   points.end(),
+                                   p[0] - tolerance,
+                                   [](const auto &a, const double x) {
+                                     return a.first[0] < x;
+                                   });
+        for (; it != points.end() && it->first[0] <= p[0] + tolerance; ++it)
+          if (it->first.distance(p) < tolerance)
+            ids.push_back(it->second);
+        return ids;
+      }
+
+      bool
+      touches(const std::vector<Point<2>> &vertices)
+      {
+        for (const auto &v : vertices)
+          if (!near(v).empty())
             return true;
-      return false;
-    }
+        return false;
+      }
+
+    private:
+      double                                         tolerance;
+      std::vector<std::pair<Point<2>, unsigned int>> points;
+      bool                                           sorted = true;
+    };
   } // namespace
 
 
@@ -325,27 +370,27 @@ namespace coulomb_adapt
             }
     if (seeds.empty())
       return std::nullopt;
+    // The seeds' vertices, each named by its seed.
     const auto seed_vertices = [&](const std::vector<unsigned int> &list) {
-      std::vector<Point<2>> points;
+      PointLookup points(tolerance);
       for (const unsigned int s : list)
         for (const unsigned int j : segments[s].nodes)
-          points.push_back(nodes[j].position);
+          points.add(nodes[j].position, s);
       return points;
     };
 
     // Every rank contributes its cells with a vertex on a seed face.
     std::vector<double> packed;
     {
-      const std::vector<Point<2>> vertices = seed_vertices(seeds);
-      const unsigned int          rank = Utilities::MPI::this_mpi_process(comm);
+      PointLookup        vertices = seed_vertices(seeds);
+      const unsigned int rank     = Utilities::MPI::this_mpi_process(comm);
       std::vector<types::global_dof_index> dofs;
       for (const auto &cell : body.dof_handler().active_cell_iterators())
         if (cell->is_locally_owned())
           {
             bool near = false;
             for (const unsigned int v : cell->vertex_indices())
-              for (const auto &p : vertices)
-                near = near || cell->vertex(v).distance(p) < tolerance;
+              near = near || !vertices.near(cell->vertex(v)).empty();
             if (!near)
               continue;
             PatchCell c;
@@ -393,25 +438,27 @@ namespace coulomb_adapt
     // A seed whose cells hold a constrained DoF is left to the nodal
     // opening: delta would have to satisfy the constraint at the fine
     // nodes too.
+    std::set<unsigned int> dropped;
+    {
+      PointLookup vertices = seed_vertices(seeds);
+      for (const auto &c : cells)
+        if (c.constrained)
+          for (const auto &v : c.vertices)
+            for (const unsigned int s : vertices.near(v))
+              dropped.insert(s);
+    }
     std::vector<unsigned int> kept;
     for (const unsigned int s : seeds)
-      {
-        const std::vector<Point<2>> own  = seed_vertices({s});
-        bool                        free = true;
-        for (const auto &c : cells)
-          if (c.constrained && touches(c, own, tolerance))
-            free = false;
-        if (free)
-          kept.push_back(s);
-      }
+      if (dropped.count(s) == 0)
+        kept.push_back(s);
     if (kept.empty())
       return std::nullopt;
     {
-      const std::vector<Point<2>> vertices = seed_vertices(kept);
+      PointLookup vertices = seed_vertices(kept);
       cells.erase(std::remove_if(cells.begin(),
                                  cells.end(),
                                  [&](const PatchCell &c) {
-                                   return !touches(c, vertices, tolerance);
+                                   return !vertices.touches(c.vertices);
                                  }),
                   cells.end());
     }
@@ -454,17 +501,21 @@ namespace coulomb_adapt
     std::vector<Point<2>>                      vertices;
     std::vector<CellData<2>>                   cell_data;
     std::map<std::array<unsigned int, 2>, int> face_boundary;
+    PointLookup                                merged(tolerance);
     for (const auto &c : cells)
       {
         CellData<2> data(c.vertices.size());
         for (unsigned int v = 0; v < c.vertices.size(); ++v)
           {
+            const auto   same  = merged.near(c.vertices[v]);
             unsigned int index = vertices.size();
-            for (unsigned int k = 0; k < vertices.size(); ++k)
-              if (vertices[k].distance(c.vertices[v]) < tolerance)
-                index = k;
-            if (index == vertices.size())
-              vertices.push_back(c.vertices[v]);
+            if (!same.empty())
+              index = same.front();
+            else
+              {
+                merged.add(c.vertices[v], index);
+                vertices.push_back(c.vertices[v]);
+              }
             data.vertices[v] = index;
           }
         for (unsigned int f = 0; f < c.face_boundary.size(); ++f)
@@ -508,7 +559,10 @@ namespace coulomb_adapt
             std::array<unsigned int, 2> key = {
               {cell->face(f)->vertex_index(0), cell->face(f)->vertex_index(1)}};
             std::sort(key.begin(), key.end());
-            const int id = face_boundary.at(key);
+            const auto found = face_boundary.find(key);
+            if (found == face_boundary.end())
+              return std::nullopt;
+            const int id = found->second;
             cell->face(f)->set_boundary_id(
               id >= 0 &&
                   types::boundary_id(id) == description.contact_boundary_id ?
@@ -703,8 +757,9 @@ namespace coulomb_adapt
       }
     constraints.distribute(delta);
 
-    // b^2 per judged cell and S, exact on the fine cells (degree 1: the
-    // integrands are constant, up to the body force).
+    // b^2 per judged cell and S on the fine cells: exact on triangles and
+    // parallelograms (the integrands are constant; the body force aside),
+    // on other quadrilaterals as accurate as the body's own assembly.
     std::vector<double>                energy(cells.size(), 0.);
     std::vector<SymmetricTensor<2, 2>> strain(quadrature.size());
     std::vector<SymmetricTensor<2, 2>> judged_strain(quadrature.size());
