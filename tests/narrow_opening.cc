@@ -23,6 +23,8 @@
 //   gives that same change of the gap;
 // - homogeneity: with every displacement (and the threshold) doubled,
 //   b^2 and S are 4 times as large, to 1e-12;
+// - the judged cells' shares of b^2, each on the rank that owns the
+//   cell, sum to b^2 (to 1e-12);
 // - the same patch, b^2 and S on 1 and 2 ranks (the outputs).
 
 #include <deal.II/base/function.h>
@@ -234,6 +236,12 @@ namespace
                            std::to_string(boundary_work)));
     AssertThrow(opening->norm_squared > 0 && boundary_work != 0,
                 ExcMessage("no opening"));
+    // Each judged cell's share lands on the rank that owns it, once.
+    const double cell_sum =
+      Utilities::MPI::sum(opening->energy.l1_norm(), comm);
+    AssertThrow(std::abs(cell_sum - opening->norm_squared) <=
+                  1e-12 * opening->norm_squared,
+                ExcMessage("the cells' b^2 do not sum to b^2"));
     return {opening->norm_squared,
             opening->work,
             penetration,
