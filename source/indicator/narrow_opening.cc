@@ -309,7 +309,8 @@ namespace coulomb_adapt
     const std::array<const ElasticBody *, 2>                   &bodies,
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
     const unsigned int                                          side,
-    const double                                                threshold)
+    const double                                                threshold,
+    const unsigned int                                          max_refinements)
   {
     if (mortar.slave_element_degree() != 1)
       return std::nullopt;
@@ -478,7 +479,7 @@ namespace coulomb_adapt
     // Four bisections (16 fine faces per judged one): on the punch's
     // remeshed mesh (cycle 1) epsilon is 6.405 % with at most 4, 6.385 %
     // with 5 at 3.5 times the patch's cost, 6.566 % with 3.
-    refinements = std::min(refinements, 4u);
+    refinements = std::min(refinements, max_refinements);
     // The patch's direct solve stays well within the cost of a body's: at
     // most half the body's cells (or 20,000) fine cells. Many seeds (a mortar
     // gap zigzagging along a long zone, each tooth above 1 % of the

@@ -88,6 +88,9 @@ namespace coulomb_adapt
    * where U_c penetrates by more than @p threshold (mm). Empty when no
    * such face qualifies (degree 2, curved faces, constrained DoFs, no
    * penetration above the threshold) or when the patch's solve fails.
+   * The patch is bisected at most @p max_refinements times (4: 16 fine
+   * faces per judged one; on the punch's remeshed mesh 3, 4 and 5 gave
+   * epsilon 6.566, 6.405 and 6.385 %, 5 at 3.5 times the cost of 4).
    */
   std::optional<NarrowOpening>
   make_narrow_opening(
@@ -95,7 +98,8 @@ namespace coulomb_adapt
     const std::array<const ElasticBody *, 2>                   &bodies,
     const std::array<const TrilinosWrappers::MPI::Vector *, 2> &displacements,
     const unsigned int                                          side,
-    const double                                                threshold);
+    const double                                                threshold,
+    const unsigned int max_refinements = 4);
 } // namespace coulomb_adapt
 
 #endif
