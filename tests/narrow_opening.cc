@@ -245,9 +245,9 @@ namespace
     return {opening->norm_squared,
             opening->work,
             penetration,
-            opening->patch_cells,
-            opening->fine_cells,
-            opening->refinements};
+            opening->patch.cells,
+            opening->patch.fine_cells,
+            opening->patch.refinements};
   }
 
 

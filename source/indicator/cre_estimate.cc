@@ -185,13 +185,10 @@ namespace coulomb_adapt
       estimate.penetration_at = admissible.where;
       if (mu > 0)
         return;
-      estimate.opening_applied            = admissible.opening_applied;
-      estimate.opened_nodes               = admissible.n_opened_nodes;
-      estimate.penetration_after          = admissible.penetration_after;
-      estimate.narrow_opening_side        = admissible.narrow_side;
-      estimate.narrow_opening_refinements = admissible.narrow_refinements;
-      estimate.narrow_opening_cells       = admissible.narrow_patch_cells;
-      estimate.narrow_opening_fine_cells  = admissible.narrow_fine_cells;
+      estimate.opening_applied   = admissible.opening_applied;
+      estimate.opened_nodes      = admissible.n_opened_nodes;
+      estimate.penetration_after = admissible.penetration_after;
+      estimate.narrow_opening    = admissible.narrow;
       // sigma^'s pressure is >= 0 wherever its nodal values are (their
       // Bernstein form, on linear segments their interpolant); checked on
       // quadratic segments.

@@ -340,8 +340,7 @@ namespace coulomb_adapt
     const double                    hypercircle_squared,
     const bool                      open)
   {
-    KinematicAdmissibility  measured;
-    KinematicAdmissibility &result = measured;
+    KinematicAdmissibility                                          measured;
     const std::array<const std::vector<MortarInterface::Node> *, 2> nodes = {
       {&mortar.slave_nodes(), &mortar.master_nodes()}};
     std::vector<MortarInterface::OverlapPoint> points =
@@ -360,13 +359,13 @@ namespace coulomb_adapt
     std::vector<double> gaps =
       pointwise_gaps(mortar, points, values[0], values[1]);
     for (unsigned int q = 0; q < points.size(); ++q)
-      if (-gaps[q] > std::max(negligible, result.penetration))
+      if (-gaps[q] > std::max(negligible, measured.penetration))
         {
-          result.penetration = -gaps[q];
-          result.where       = points[q].slave_point;
+          measured.penetration = -gaps[q];
+          measured.where       = points[q].slave_point;
         }
-    if (result.penetration == 0 || !open)
-      return result;
+    if (measured.penetration == 0 || !open)
+      return measured;
 
     // The nodal opening, after the narrow one of @p narrow (if any) has
     // lifted the gaps by its rise.
@@ -388,10 +387,7 @@ namespace coulomb_adapt
           gaps.insert(gaps.end(), kink_gaps.begin(), kink_gaps.end());
           for (unsigned int q = 0; q < points.size(); ++q)
             gaps[q] += narrow->rise(mortar, points[q]);
-          result.narrow_side        = narrow->side;
-          result.narrow_refinements = narrow->refinements;
-          result.narrow_patch_cells = narrow->patch_cells;
-          result.narrow_fine_cells  = narrow->fine_cells;
+          result.narrow = narrow->patch;
         }
 
       // Each node moves into its own body: the slave node against its
@@ -612,7 +608,7 @@ namespace coulomb_adapt
           const double nodal_squared =
             Utilities::MPI::sum(result.opening_squared[s].l1_norm(), comm);
           result.opening_work += opening_work(body, judged, delta);
-          if (narrow != nullptr && narrow->side == s)
+          if (narrow != nullptr && narrow->patch.side == s)
             {
               // ||sigma(delta_nodal + delta_narrow)|| <= b_n + b_f, split
               // into the cells as (b_n + b_f)^2 = (1 + g) b_n^2 + (1 + 1/g)
@@ -672,7 +668,7 @@ namespace coulomb_adapt
     // adaptive run: on the punch's 228,372 DoFs 6 %, for a gain of 2.5 %)
     // it is not worth its patches' solves and a second nodal opening (4
     // times this section's time there).
-    if (result.penetration > 1e3 * negligible &&
+    if (measured.penetration > 1e3 * negligible &&
         nodal_bound > 1.1 * std::sqrt(hypercircle_squared))
       {
         // The side whose own b_f and S_f promise the smaller bound, chosen
@@ -681,7 +677,7 @@ namespace coulomb_adapt
         // against 0.04 s for the rest of the estimate); its patch is then
         // bisected fully, and the nodal opening (a solve per body) run
         // after it.
-        const double                 threshold = 1e-2 * result.penetration;
+        const double                 threshold = 1e-2 * measured.penetration;
         std::optional<NarrowOpening> coarse;
         for (unsigned int s = 0; s < 2; ++s)
           if (auto narrow = make_narrow_opening(
@@ -691,10 +687,13 @@ namespace coulomb_adapt
               coarse = std::move(narrow);
         std::optional<NarrowOpening> chosen;
         if (coarse)
-          chosen = coarse->refinements < 2 ?
+          chosen = coarse->patch.refinements < 2 ?
                      std::move(coarse) :
-                     make_narrow_opening(
-                       mortar, bodies, displacements, coarse->side, threshold);
+                     make_narrow_opening(mortar,
+                                         bodies,
+                                         displacements,
+                                         coarse->patch.side,
+                                         threshold);
         if (chosen)
           {
             KinematicAdmissibility candidate = open_nodes(&*chosen);

@@ -1,3 +1,4 @@
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 
@@ -18,6 +19,7 @@
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparse_matrix.h>
 
+#include <deal.II/numerics/rtree.h>
 #include <deal.II/numerics/solution_transfer.h>
 
 #include <coulomb_adapt/indicator/narrow_opening.h>
@@ -184,50 +186,42 @@ namespace coulomb_adapt
       return cells;
     }
 
-    // Points sorted by x, so that finding those within a tolerance of a
-    // point costs log n: the patch's loops run over every owned cell and
-    // every gathered one, and seeds can be many (a mortar gap zigzagging
-    // along a long zone).
+    // Points with ids, and those within a tolerance of a point, from
+    // deal.II's R-tree (boost.geometry): the patch's loops run over every
+    // owned cell and every gathered one, and seeds can be many (a mortar
+    // gap zigzagging along a long zone).
     class PointLookup
     {
     public:
-      PointLookup(const double tolerance)
+      explicit PointLookup(const double tolerance)
         : tolerance(tolerance)
       {}
 
       void
       add(const Point<2> &p, const unsigned int id)
       {
-        points.push_back({p, id});
-        sorted = false;
+        tree.insert(std::make_pair(p, id));
       }
 
       // The ids of the points within the tolerance of @p p.
       std::vector<unsigned int>
-      near(const Point<2> &p)
+      near(const Point<2> &p) const
       {
-        if (!sorted)
-          std::sort(points.begin(),
-                    points.end(),
-                    [](const auto &a, const auto &b) {
-                      return a.first[0] < b.first[0];
-                    });
-        sorted = true;
+        const BoundingBox<2> box(
+          std::make_pair(Point<2>(p[0] - tolerance, p[1] - tolerance),
+                         Point<2>(p[0] + tolerance, p[1] + tolerance)));
+        std::vector<std::pair<Point<2>, unsigned int>> hits;
+        tree.query(boost::geometry::index::intersects(box),
+                   std::back_inserter(hits));
         std::vector<unsigned int> ids;
-        auto                      it = std::lower_bound(points.begin(),
-                                   points.end(),
-                                   p[0] - tolerance,
-                                   [](const auto &a, const double x) {
-                                     return a.first[0] < x;
-                                   });
-        for (; it != points.end() && it->first[0] <= p[0] + tolerance; ++it)
-          if (it->first.distance(p) < tolerance)
-            ids.push_back(it->second);
+        for (const auto &[q, id] : hits)
+          if (q.distance(p) < tolerance)
+            ids.push_back(id);
         return ids;
       }
 
       bool
-      touches(const std::vector<Point<2>> &vertices)
+      touches(const std::vector<Point<2>> &vertices) const
       {
         for (const auto &v : vertices)
           if (!near(v).empty())
@@ -236,9 +230,8 @@ namespace coulomb_adapt
       }
 
     private:
-      double                                         tolerance;
-      std::vector<std::pair<Point<2>, unsigned int>> points;
-      bool                                           sorted = true;
+      double                                   tolerance;
+      RTree<std::pair<Point<2>, unsigned int>> tree;
     };
   } // namespace
 
@@ -248,13 +241,14 @@ namespace coulomb_adapt
   NarrowOpening::rise(const MortarInterface &mortar,
                       const OverlapPoint    &point) const
   {
-    const unsigned int segment = segment_of(mortar, side, point.overlap);
+    const unsigned int segment = segment_of(mortar, patch.side, point.overlap);
     const auto         faces   = trace.find(segment);
     if (faces == trace.end())
       return 0;
-    const double tau = chord_parameter(side_nodes(mortar, side),
-                                       side_segments(mortar, side)[segment],
-                                       position_on(point, side));
+    const double tau =
+      chord_parameter(side_nodes(mortar, patch.side),
+                      side_segments(mortar, patch.side)[segment],
+                      position_on(point, patch.side));
     for (const auto &f : faces->second)
       if (tau >= f.begin - 1e-12 && tau <= f.end + 1e-12)
         {
@@ -263,7 +257,7 @@ namespace coulomb_adapt
           const Tensor<1, 2> delta = (1 - s) * f.delta_begin + s * f.delta_end;
           const Tensor<1, 2> n     = gap_normal(mortar, point);
           // g = (y - x) . n - n . (u^1(x) - u^2(y)).
-          return side == 0 ? -(n * delta) : n * delta;
+          return patch.side == 0 ? -(n * delta) : n * delta;
         }
     return 0;
   }
@@ -274,22 +268,24 @@ namespace coulomb_adapt
   NarrowOpening::kinks(const MortarInterface &mortar) const
   {
     std::vector<OverlapPoint> points;
-    const auto               &nodes    = side_nodes(mortar, side);
-    const auto               &segments = side_segments(mortar, side);
+    const auto               &nodes    = side_nodes(mortar, patch.side);
+    const auto               &segments = side_segments(mortar, patch.side);
     for (unsigned int o = 0; o < mortar.overlaps().size(); ++o)
       {
-        const auto faces = trace.find(segment_of(mortar, side, o));
+        const auto faces = trace.find(segment_of(mortar, patch.side, o));
         if (faces == trace.end())
           continue;
         const Segment &segment = segments[faces->first];
         const double   tau_0 =
           chord_parameter(nodes,
                           segment,
-                          position_on(mortar.overlap_point(o, 0, 0), side));
+                          position_on(mortar.overlap_point(o, 0, 0),
+                                      patch.side));
         const double tau_1 =
           chord_parameter(nodes,
                           segment,
-                          position_on(mortar.overlap_point(o, 1, 0), side));
+                          position_on(mortar.overlap_point(o, 1, 0),
+                                      patch.side));
         for (const auto &f : faces->second)
           for (const double tau : {f.begin, f.end})
             {
@@ -493,10 +489,9 @@ namespace coulomb_adapt
       return std::nullopt;
 
     NarrowOpening opening;
-    opening.side          = side;
-    opening.refinements   = refinements;
-    opening.patch_cells   = cells.size();
-    opening.seed_segments = kept.size();
+    opening.patch.side        = side;
+    opening.patch.refinements = refinements;
+    opening.patch.cells       = cells.size();
 
     // The patch: the cells, their shared vertices merged.
     std::vector<Point<2>>                      vertices;
@@ -607,7 +602,7 @@ namespace coulomb_adapt
         transfer.refine_interpolate(judged, finer);
         judged.swap(finer);
       }
-    opening.fine_cells = patch.n_active_cells();
+    opening.patch.fine_cells = patch.n_active_cells();
 
     // The trace: on each fine contact face the largest deficit of the
     // overlaps it meets, divided by the rise per unit opening; each node

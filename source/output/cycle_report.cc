@@ -409,8 +409,7 @@ namespace coulomb_adapt
             << "); with the classical tractions epsilon would be " << std::fixed
             << std::setprecision(3) << 100 * e.epsilon_before_optimisation
             << " %"
-            << (e.opened_nodes[0] + e.opened_nodes[1] > 0 ||
-                    e.narrow_opening_side >= 0 ?
+            << (e.opened_nodes[0] + e.opened_nodes[1] > 0 || e.narrow_opening ?
                   " (without the opening of the kinematic side below)" :
                   "")
             << std::defaultfloat << std::endl;
@@ -461,21 +460,20 @@ namespace coulomb_adapt
           {
             // The narrow opening (narrow_opening.h), then the nodes the
             // nodal one moved for the rest.
-            const bool narrow = e.narrow_opening_side >= 0;
-            const bool nodal  = e.opened_nodes[0] + e.opened_nodes[1] > 0;
+            const auto &narrow = e.narrow_opening;
+            const bool  nodal  = e.opened_nodes[0] + e.opened_nodes[1] > 0;
             pcout << ": opened ";
             if (narrow)
-              pcout << (e.narrow_opening_side == 0 ? "the slave" : "the master")
-                    << " body on " << e.narrow_opening_cells
-                    << " cells bisected " << e.narrow_opening_refinements
-                    << " times (" << e.narrow_opening_fine_cells
+              pcout << (narrow->side == 0 ? "the slave" : "the master")
+                    << " body on " << narrow->cells << " cells bisected "
+                    << narrow->refinements << " times (" << narrow->fine_cells
                     << " fine cells, narrower than the judged ones)"
                     << (nodal ? " and " : "");
             if (nodal || !narrow)
               pcout << e.opened_nodes[0] << " slave and " << e.opened_nodes[1]
                     << " master nodes";
             pcout << " to remove it, ||sigma(u^ - U_c)|| / D "
-                  << (e.narrow_opening_side >= 0 ? "<= " : "= ") << std::fixed
+                  << (narrow ? "<= " : "= ") << std::fixed
                   << std::setprecision(3) << 100 * e.epsilon_opening
                   << " %, which the bound adds twice (doc/indicator.md 4c)"
                   << std::defaultfloat;
@@ -503,12 +501,12 @@ namespace coulomb_adapt
         record["penetration_after_opening"] = after;
         record["epsilon_opening"]           = e.epsilon_opening;
         record["opening_work_relative"]     = e.opening_work_relative;
-        if (e.narrow_opening_side >= 0)
-          record["narrow_opening"] = {
-            {"body", e.narrow_opening_side == 0 ? "slave" : "master"},
-            {"cells", e.narrow_opening_cells},
-            {"refinements", e.narrow_opening_refinements},
-            {"fine_cells", e.narrow_opening_fine_cells}};
+        if (const auto &narrow = e.narrow_opening)
+          record["narrow_opening"] = {{"body",
+                                       narrow->side == 0 ? "slave" : "master"},
+                                      {"cells", narrow->cells},
+                                      {"refinements", narrow->refinements},
+                                      {"fine_cells", narrow->fine_cells}};
       }
     return record;
   }

@@ -12,6 +12,7 @@
 #include <coulomb_adapt/indicator/contact_correction.h>
 #include <coulomb_adapt/indicator/contact_error.h>
 #include <coulomb_adapt/indicator/equilibrated_stress.h>
+#include <coulomb_adapt/indicator/narrow_opening.h>
 #include <coulomb_adapt/indicator/recovered_stress.h>
 
 #include <array>
@@ -103,14 +104,10 @@ namespace coulomb_adapt
     double                      penetration_after     = 0;
     double                      epsilon_opening       = 0;
     double                      opening_work_relative = 0;
-    /** The body opened narrower than its cells (0: slave, 1: master; -1:
-     * none), the bisections of its patch, and its judged and fine cells
-     * (narrow_opening.h). */
-    int          narrow_opening_side        = -1;
-    unsigned int narrow_opening_refinements = 0;
-    unsigned int narrow_opening_cells       = 0;
-    unsigned int narrow_opening_fine_cells  = 0;
-    double       negative_pressure          = 0;
+    /** Where a body was opened narrower than its cells (narrow_opening.h);
+     * empty where it was not. */
+    std::optional<NarrowOpeningPatch> narrow_opening;
+    double                            negative_pressure = 0;
     /** cre where the displacement data are not interpolated exactly:
      * ||sigma(r)|| / D of their lift r (dirichlet_data_lift.h), which the
      * bound adds to ||sigma^ - sigma(u_c + r)||; 0 elsewhere. */

@@ -9,8 +9,10 @@
 #include <coulomb_adapt/bodies/elastic_body.h>
 #include <coulomb_adapt/contact/mortar_interface.h>
 #include <coulomb_adapt/core/parameters.h>
+#include <coulomb_adapt/indicator/narrow_opening.h>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace coulomb_adapt
@@ -68,18 +70,15 @@ namespace coulomb_adapt
      * the loads, the computable part of the exact contact traction's
      * work on it (N per unit thickness). */
     double opening_work = 0;
-    /** The body opened narrower than its cells (narrow_opening.h), -1 if
-     * none was (its bound was not lower than the nodal opening's alone),
-     * with the patch's refinements and its judged and fine cells. */
-    int          narrow_side        = -1;
-    unsigned int narrow_refinements = 0;
-    unsigned int narrow_patch_cells = 0;
-    unsigned int narrow_fine_cells  = 0;
+    /** Where the body was opened narrower than its cells
+     * (narrow_opening.h); empty if it was not (not tried, or its bound was
+     * not lower than the nodal opening's alone). */
+    std::optional<NarrowOpeningPatch> narrow;
 
     bool
     opened() const
     {
-      return n_opened_nodes[0] + n_opened_nodes[1] > 0 || narrow_side >= 0;
+      return n_opened_nodes[0] + n_opened_nodes[1] > 0 || narrow.has_value();
     }
   };
 

@@ -40,16 +40,21 @@ namespace coulomb_adapt
    * patch: a seed face that would include one is left to the nodal
    * opening.
    */
-  struct NarrowOpening
+  /** Where a narrow opening was built, as the log and summary.json say. */
+  struct NarrowOpeningPatch
   {
     /** The body opened (0: slave, 1: master). */
     unsigned int side = 0;
     /** How often the patch's cells were bisected, and how many there
      * are (the judged ones and the fine ones). */
-    unsigned int refinements   = 0;
-    unsigned int patch_cells   = 0;
-    unsigned int fine_cells    = 0;
-    unsigned int seed_segments = 0;
+    unsigned int refinements = 0;
+    unsigned int cells       = 0;
+    unsigned int fine_cells  = 0;
+  };
+
+  struct NarrowOpening
+  {
+    NarrowOpeningPatch patch;
     /** ||sigma(delta)||^2 on every active cell of the body (0 outside the
      * patch and on cells this rank does not own), and its sum (N per unit
      * thickness). */
