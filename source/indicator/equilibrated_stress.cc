@@ -195,6 +195,7 @@ namespace coulomb_adapt
                 }
               face.nodes.clear();
               face.s.clear();
+              face.points.clear();
               face.node_dofs.clear();
               // The nodes on the face: support points on its chord (up to
               // the sagitta of a curved face; has_support_on_face() is not
@@ -212,6 +213,7 @@ namespace coulomb_adapt
                       face.node_dofs.push_back(cells[slot].component_dofs[k]);
                       // Vertices at 0 and 1, an edge's middle node at 1/2.
                       face.s.push_back(std::round(2 * s) / 2);
+                      face.points.push_back(x);
                     }
                 }
             }
@@ -253,14 +255,14 @@ namespace coulomb_adapt
           if (t != traction_on.end())
             for (unsigned int q = 0; q < face_gauss.size(); ++q)
               {
-                const double       s   = face_gauss.point(q)[0];
-                const Point<2>     x   = face.v0 + s * (face.v1 - face.v0);
-                const Tensor<1, 2> F   = (*t->second)(x, face.normal);
-                const auto         phi = face_shape_values(face.s, s);
+                const double            s   = face_gauss.point(q)[0];
+                const FacePointGeometry g   = face_geometry(face, s);
+                const Tensor<1, 2>      F   = (*t->second)(g.point, g.normal);
+                const auto              phi = face_shape_values(face.s, s);
                 for (unsigned int k = 0; k < face.nodes.size(); ++k)
                   for (unsigned int c = 0; c < 2; ++c)
                     face.moments[k][c] +=
-                      F[c] * phi[k] * face_gauss.weight(q) * face.length;
+                      F[c] * phi[k] * face_gauss.weight(q) * g.length_element;
               }
         }
     }

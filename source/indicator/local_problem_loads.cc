@@ -40,7 +40,7 @@ namespace coulomb_adapt
             for (unsigned int c = 0; c < 2; ++c)
               F[c] += phi[k] * coefficients[k][c];
           local.add_traction(load,
-                             face.v0 + s * (face.v1 - face.v0),
+                             face_point(face, s),
                              sign * F,
                              edge_rule.weight(q) * face.length,
                              mask);
@@ -61,14 +61,13 @@ namespace coulomb_adapt
       W.reinit(M, n + 3);
       for (unsigned int q = 0; q < edge_rule.size(); ++q)
         {
-          const double s   = edge_rule.point(q)[0];
-          const auto   phi = face_shape_values(face.s, s);
-          const double L   = edge_bubble(fe_degree + 1, s);
-          const double P1  = edge_bubble(1, s);
-          const double P2  = edge_bubble(2, s);
-          const double w   = eta * edge_rule.weight(q) * face.length;
-          const auto  &values =
-            local.monomial_values(face.v0 + s * (face.v1 - face.v0));
+          const double s      = edge_rule.point(q)[0];
+          const auto   phi    = face_shape_values(face.s, s);
+          const double L      = edge_bubble(fe_degree + 1, s);
+          const double P1     = edge_bubble(1, s);
+          const double P2     = edge_bubble(2, s);
+          const double w      = eta * edge_rule.weight(q) * face.length;
+          const auto  &values = local.monomial_values(face_point(face, s));
           for (unsigned int m = 0; m < M; ++m)
             {
               for (unsigned int j = 0; j < n; ++j)
@@ -108,12 +107,12 @@ namespace coulomb_adapt
               if (t != traction_on.end())
                 for (unsigned int q = 0; q < edge_rule.size(); ++q)
                   {
-                    const Point<2> x =
-                      face.v0 + edge_rule.point(q)[0] * (face.v1 - face.v0);
+                    const FacePointGeometry g =
+                      face_geometry(face, edge_rule.point(q)[0]);
                     local.add_traction(load,
-                                       x,
-                                       (*t->second)(x, face.normal),
-                                       edge_rule.weight(q) * face.length,
+                                       g.point,
+                                       (*t->second)(g.point, g.normal),
+                                       edge_rule.weight(q) * g.length_element,
                                        prescribed);
                   }
             }
