@@ -164,6 +164,8 @@ def main():
     parser.add_argument("--plot-only", action="store_true",
                         help="draw --png from an existing --csv")
     args = parser.parse_args()
+    if args.plot_only and not args.png:
+        parser.error("--plot-only needs --png")
     if args.plot_only:
         with open(args.csv) as f:
             rows = [dict(r, wall_s=float(r["wall_s"]),

@@ -39,6 +39,9 @@ namespace coulomb_adapt
           for (unsigned int k = 0; k < face.nodes.size(); ++k)
             for (unsigned int c = 0; c < 2; ++c)
               F[c] += phi[k] * coefficients[k][c];
+          // At the face's point (on a curved face, off the chord), with
+          // the chord's length element: the coefficients are those the node
+          // systems solved for with the edge mass matrix in that measure.
           local.add_traction(load,
                              face_point(face, s),
                              sign * F,

@@ -117,6 +117,28 @@ namespace coulomb_adapt
       return values;
     }
 
+    // Their derivatives d/ds at s (the face's tangent: face_geometry()).
+    // deal.II's Polynomials::generate_complete_Lagrange_basis() gives the
+    // same, but builds polynomial objects on the heap per call; this runs
+    // per quadrature point of the loaded faces.
+    inline std::array<double, 3>
+    face_shape_derivatives(const std::vector<double> &nodes_s, const double s)
+    {
+      AssertIndexRange(nodes_s.size(), 4);
+      std::array<double, 3> derivatives = {{0., 0., 0.}};
+      for (unsigned int k = 0; k < nodes_s.size(); ++k)
+        for (unsigned int m = 0; m < nodes_s.size(); ++m)
+          if (m != k)
+            {
+              double term = 1. / (nodes_s[k] - nodes_s[m]);
+              for (unsigned int l = 0; l < nodes_s.size(); ++l)
+                if (l != k && l != m)
+                  term *= (s - nodes_s[l]) / (nodes_s[k] - nodes_s[l]);
+              derivatives[k] += term;
+            }
+      return derivatives;
+    }
+
     // The point of @p face at parameter s: its nodes' positions
     // interpolated, as the isoparametric mapping places the face (on a
     // straight face, the point of the chord). The node systems balance
@@ -153,23 +175,10 @@ namespace coulomb_adapt
     inline FacePointGeometry
     face_geometry(const FaceData &face, const double s)
     {
-      const unsigned int n = face.points.size();
-      Tensor<1, 2>       tangent;
-      for (unsigned int k = 0; k < n; ++k)
-        {
-          // d/ds of the Lagrange polynomial of node k.
-          double derivative = 0;
-          for (unsigned int m = 0; m < n; ++m)
-            if (m != k)
-              {
-                double term = 1. / (face.s[k] - face.s[m]);
-                for (unsigned int l = 0; l < n; ++l)
-                  if (l != k && l != m)
-                    term *= (s - face.s[l]) / (face.s[k] - face.s[l]);
-                derivative += term;
-              }
-          tangent += derivative * face.points[k];
-        }
+      const auto   derivatives = face_shape_derivatives(face.s, s);
+      Tensor<1, 2> tangent;
+      for (unsigned int k = 0; k < face.points.size(); ++k)
+        tangent += derivatives[k] * face.points[k];
       FacePointGeometry g;
       g.point          = face_point(face, s);
       g.length_element = tangent.norm();
